@@ -1,0 +1,82 @@
+// A rigid masonry block: a closed, consistently oriented polyhedron whose
+// faces are planar polygons (convex or not) with outward normals.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace ashlar {
+
+// Plane of one face: points x with normal.dot(x) == offset; normal is the
+// unit outward normal.
+struct FacePlane {
+  Vec3 normal;
+  double offset = 0.0;
+};
+
+// Exact mass properties of the polyhedron (divergence theorem over the faces).
+struct MassProperties {
+  double volume = 0.0;       // m^3, positive for outward-oriented faces
+  Vec3 centroid = Vec3::Zero();  // m
+};
+
+class Block {
+public:
+  // vertices: positions in metres. faces: loops of 0-based indices into
+  // vertices, counter-clockwise seen from outside. density in kg/m^3.
+  // Throws GeometryError (naming the defect and the block) unless the input
+  // is a valid block; see validate_block() for the checks.
+  Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces,
+        double density = kDefaultDensity, std::string name = {});
+
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const std::vector<FaceLoop>& faces() const { return faces_; }
+  const std::vector<FacePlane>& face_planes() const { return planes_; }
+  double density() const { return density_; }
+  const std::string& name() const { return name_; }
+
+  double volume() const { return mass_.volume; }
+  double mass() const { return density_ * mass_.volume; }  // kg
+  const Vec3& centroid() const { return mass_.centroid; }
+  const Box3& bounds() const { return bounds_; }
+  // True when every vertex lies behind or on every face plane.
+  bool convex() const { return convex_; }
+
+  // Rigid motions return new blocks; name and density carry over.
+  Block translated(const Vec3& offset) const;
+  // Right-handed rotation by angle (radians) about axis through origin.
+  Block rotated(const Vec3& axis, double angle, const Vec3& origin) const;
+  Block with_name(std::string name) const;
+  Block with_density(double density) const;
+
+private:
+  struct Trusted {};
+  // For rigid motions of an already validated block: no re-validation.
+  Block(Trusted, std::vector<Vec3> vertices, std::vector<FaceLoop> faces,
+        double density, std::string name);
+  void compute_derived();
+
+  std::vector<Vec3> vertices_;
+  std::vector<FaceLoop> faces_;
+  std::vector<FacePlane> planes_;
+  double density_;
+  std::string name_;
+  MassProperties mass_;
+  Box3 bounds_;
+  bool convex_ = false;
+};
+
+using BlockPtr = std::shared_ptr<const Block>;
+
+// Exact volume and centroid of a closed polyhedron with planar (or not)
+// polygon faces; faces are fan-triangulated, which is exact for planar faces
+// whatever their convexity because the signed contributions cancel.
+MassProperties mass_properties(const std::vector<Vec3>& vertices,
+                               const std::vector<FaceLoop>& faces);
+
+}  // namespace ashlar

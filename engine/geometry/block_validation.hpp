@@ -1,0 +1,34 @@
+// Checks that a vertex/face description is a valid block. Used by the Block
+// constructor; exposed so importers can report defects before building.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace ashlar {
+
+// Throws GeometryError naming the first defect found, in this order:
+//  - fewer than 4 vertices or 4 faces, non-finite coordinates;
+//  - a face with fewer than 3 vertices, an index out of range, or a repeated
+//    vertex;
+//  - coincident vertices (closer than 1e-9 of the block's size);
+//  - open surface (an edge used by one face only) or inconsistent
+//    orientation (an edge used twice in the same direction) or an edge
+//    shared by more than two faces (non-manifold);
+//  - degenerate (zero-area) or non-planar face, or a face whose outline
+//    crosses itself;
+//  - zero volume, or negative volume (inverted: faces point inward);
+//  - faces that intersect each other (non-convex blocks only: a closed,
+//    outward-oriented convex polyhedron cannot self-intersect).
+// `what` names the block in messages, e.g. "block 'pier 2'".
+void validate_block(const std::vector<Vec3>& vertices,
+                    const std::vector<FaceLoop>& faces, const std::string& what);
+
+// The CGAL part of validation: true if any two non-adjacent faces of the
+// (triangulated) surface intersect. Only called for non-convex blocks.
+bool surface_self_intersects(const std::vector<Vec3>& vertices,
+                             const std::vector<FaceLoop>& faces);
+
+}  // namespace ashlar

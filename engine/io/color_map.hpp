@@ -1,0 +1,19 @@
+// Colour maps that turn values into colours for export.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/mesh_io.hpp"
+
+namespace ashlar {
+
+// Maps values into colours with the named map; values are scaled from
+// [lo, hi] to [0, 1] and clamped. Throws InvalidArgument for an unknown map.
+std::vector<Rgb> map_colors(const std::vector<double>& values, double lo, double hi,
+                            const std::string& map_name);
+
+// Names of the available maps, e.g. "viridis", for error messages.
+const std::vector<std::string>& color_map_names();
+
+}  // namespace ashlar

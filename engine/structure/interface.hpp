@@ -1,0 +1,24 @@
+// A contact interface between two blocks, found by contact detection.
+#pragma once
+
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace ashlar {
+
+// The contact polygon where a face of block a meets a face of block b
+// (coplanar within the tolerance, opposite normals). One interface per
+// connected piece of contact. Vertices lie in the plane of block a's face.
+struct Interface {
+  int a = -1, b = -1;            // 0-based block indices, a < b
+  Vec3 normal = Vec3::Zero();    // unit, pointing from block a into block b
+  Vec3 u = Vec3::Zero();         // unit tangent along the polygon's longest edge
+  Vec3 v = Vec3::Zero();         // normal x u
+  Vec3 center = Vec3::Zero();    // area centroid (m)
+  double area = 0.0;             // m^2, holes excluded
+  std::vector<Vec3> vertices;    // outer boundary, counter-clockwise about normal
+  std::vector<std::vector<Vec3>> holes;  // clockwise about normal
+};
+
+}  // namespace ashlar
