@@ -1,0 +1,145 @@
+#include "geometry/block.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "geometry/block_validation.hpp"
+#include "geometry/polygon.hpp"
+
+namespace ashlar {
+
+namespace {
+
+// Vertices this far (relative to the block's size) in front of a face plane
+// still count as behind it: rounding of rotated coordinates.
+constexpr double kConvexSlack = 1e-9;
+
+std::string describe(const std::string& name) {
+  return name.empty() ? std::string("block") : "block '" + name + "'";
+}
+
+void check_density(double density, const std::string& name) {
+  if (!std::isfinite(density) || density <= 0.0) {
+    throw InvalidArgument(describe(name) + ": density must be a positive finite number (kg/m^3), got " +
+                          std::to_string(density));
+  }
+}
+
+void check_finite(const Vec3& v, const char* what) {
+  if (!v.allFinite()) throw InvalidArgument(std::string(what) + " must be finite");
+}
+
+}  // namespace
+
+MassProperties mass_properties(const std::vector<Vec3>& vertices,
+                               const std::vector<FaceLoop>& faces) {
+  MassProperties props;
+  if (vertices.empty()) return props;
+  // Tetrahedra from a reference point inside the bounding box keep the
+  // products small, so the sums keep their digits far from the origin.
+  Box3 box;
+  for (const Vec3& p : vertices) box.add(p);
+  const Vec3 ref = 0.5 * (box.lo + box.hi);
+  double six_volume = 0.0;
+  Vec3 moment = Vec3::Zero();  // sum of 6V_t * (sum of the three face points)
+  for (const FaceLoop& face : faces) {
+    const Vec3 p0 = vertices[face[0]] - ref;
+    for (size_t i = 1; i + 1 < face.size(); ++i) {
+      const Vec3 p1 = vertices[face[i]] - ref;
+      const Vec3 p2 = vertices[face[i + 1]] - ref;
+      const double d = p0.dot(p1.cross(p2));
+      six_volume += d;
+      moment += d * (p0 + p1 + p2);
+    }
+  }
+  props.volume = six_volume / 6.0;
+  // Centroid of tetrahedron (0, p0, p1, p2) is (p0 + p1 + p2) / 4.
+  props.centroid = six_volume != 0.0 ? Vec3(ref + moment / (4.0 * six_volume)) : ref;
+  return props;
+}
+
+Block::Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double density,
+             std::string name)
+    : vertices_(std::move(vertices)),
+      faces_(std::move(faces)),
+      density_(density),
+      name_(std::move(name)) {
+  check_density(density_, name_);
+  validate_block(vertices_, faces_, describe(name_));
+  compute_derived();
+}
+
+Block::Block(Trusted, std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double density,
+             std::string name)
+    : vertices_(std::move(vertices)),
+      faces_(std::move(faces)),
+      density_(density),
+      name_(std::move(name)) {
+  compute_derived();
+}
+
+std::vector<FacePlane> face_planes(const std::vector<Vec3>& vertices,
+                                   const std::vector<FaceLoop>& faces) {
+  std::vector<FacePlane> planes;
+  planes.reserve(faces.size());
+  std::vector<Vec3> loop;
+  for (const FaceLoop& face : faces) {
+    loop.clear();
+    for (int index : face) loop.push_back(vertices[index]);
+    FacePlane plane;
+    plane.normal = newell_normal(loop).normalized();
+    double offset = 0.0;
+    for (const Vec3& p : loop) offset += plane.normal.dot(p);
+    plane.offset = offset / static_cast<double>(loop.size());
+    planes.push_back(plane);
+  }
+  return planes;
+}
+
+bool is_convex_polyhedron(const std::vector<Vec3>& vertices,
+                          const std::vector<FacePlane>& planes, double slack) {
+  for (const FacePlane& plane : planes) {
+    for (const Vec3& p : vertices) {
+      if (plane.normal.dot(p) - plane.offset > slack) return false;
+    }
+  }
+  return true;
+}
+
+void Block::compute_derived() {
+  bounds_ = Box3{};
+  for (const Vec3& p : vertices_) bounds_.add(p);
+  planes_ = ashlar::face_planes(vertices_, faces_);
+  mass_ = mass_properties(vertices_, faces_);
+  convex_ = is_convex_polyhedron(vertices_, planes_, kConvexSlack * bounds_.diagonal());
+}
+
+Block Block::translated(const Vec3& offset) const {
+  check_finite(offset, "translation");
+  std::vector<Vec3> moved = vertices_;
+  for (Vec3& p : moved) p += offset;
+  return Block(Trusted{}, std::move(moved), faces_, density_, name_);
+}
+
+Block Block::rotated(const Vec3& axis, double angle, const Vec3& origin) const {
+  check_finite(axis, "rotation axis");
+  check_finite(origin, "rotation origin");
+  if (!std::isfinite(angle)) throw InvalidArgument("rotation angle must be finite");
+  if (axis.norm() == 0.0) throw InvalidArgument("rotation axis must not be zero");
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+  std::vector<Vec3> moved = vertices_;
+  for (Vec3& p : moved) p = origin + rotation * (p - origin);
+  return Block(Trusted{}, std::move(moved), faces_, density_, name_);
+}
+
+Block Block::with_name(std::string name) const {
+  return Block(Trusted{}, vertices_, faces_, density_, std::move(name));
+}
+
+Block Block::with_density(double density) const {
+  check_density(density, name_);
+  return Block(Trusted{}, vertices_, faces_, density, name_);
+}
+
+}  // namespace ashlar

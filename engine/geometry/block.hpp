@@ -79,4 +79,12 @@ using BlockPtr = std::shared_ptr<const Block>;
 MassProperties mass_properties(const std::vector<Vec3>& vertices,
                                const std::vector<FaceLoop>& faces);
 
+// Unit outward normal (Newell) and mean offset of every face.
+std::vector<FacePlane> face_planes(const std::vector<Vec3>& vertices,
+                                   const std::vector<FaceLoop>& faces);
+
+// True when no vertex lies more than `slack` (m) in front of any face plane.
+bool is_convex_polyhedron(const std::vector<Vec3>& vertices,
+                          const std::vector<FacePlane>& planes, double slack);
+
 }  // namespace ashlar
