@@ -1,0 +1,312 @@
+#include "structure/contact_detection.hpp"
+
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "core/error.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/polygon_boolean.hpp"
+
+namespace ashlar {
+
+namespace {
+
+using BoxWithIndex = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+// Faces whose normals are further from opposite than about 8 degrees are never
+// in contact; nearer ones are judged by the gap at the contact polygon.
+constexpr double kOppositeNormals = -0.99;
+// Normals of faces of one block within this (1 - cos) are treated as one plane.
+constexpr double kSamePlaneNormals = 1e-9;
+// Above this many candidate face pairs in one block pair, pair the faces by
+// box intersection instead of testing all of them (meshes with many facets).
+constexpr size_t kBruteForceFacePairs = 1024;
+
+BoxWithIndex make_box(const Box3& box, double grow, int index) {
+  const CGAL::Bbox_3 bbox(box.lo.x() - grow, box.lo.y() - grow, box.lo.z() - grow,
+                          box.hi.x() + grow, box.hi.y() + grow, box.hi.z() + grow);
+  return BoxWithIndex(bbox, index);
+}
+
+bool boxes_overlap(const Box3& a, const Box3& b, double grow) {
+  return (a.lo.array() <= b.hi.array() + grow).all() && (b.lo.array() <= a.hi.array() + grow).all();
+}
+
+// Per-face data computed once per block.
+struct FaceInfo {
+  std::vector<Vec3> loop;
+  Box3 box;
+  FacePlane plane;
+};
+
+std::vector<FaceInfo> face_infos(const Block& block) {
+  std::vector<FaceInfo> infos;
+  infos.reserve(block.faces().size());
+  for (size_t f = 0; f < block.faces().size(); ++f) {
+    FaceInfo info;
+    for (int index : block.faces()[f]) {
+      info.loop.push_back(block.vertices()[index]);
+      info.box.add(block.vertices()[index]);
+    }
+    info.plane = block.face_planes()[f];
+    infos.push_back(std::move(info));
+  }
+  return infos;
+}
+
+// True when every vertex of the loop is further than tol on one side of the plane.
+bool clear_of_plane(const std::vector<Vec3>& loop, const FacePlane& plane, double tol) {
+  bool above = true, below = true;
+  for (const Vec3& p : loop) {
+    const double d = plane.normal.dot(p) - plane.offset;
+    above = above && d > tol;
+    below = below && d < -tol;
+  }
+  return above || below;
+}
+
+// Calls visit(face_a, face_b) for the faces of a and b whose boxes overlap.
+template <class Visit>
+void for_each_overlapping_face_pair(const std::vector<FaceInfo>& a, const Box3& box_a,
+                                    const std::vector<FaceInfo>& b, const Box3& box_b, double tol,
+                                    Visit visit) {
+  std::vector<int> near_a, near_b;
+  for (size_t f = 0; f < a.size(); ++f) {
+    if (boxes_overlap(a[f].box, box_b, tol)) near_a.push_back(static_cast<int>(f));
+  }
+  for (size_t f = 0; f < b.size(); ++f) {
+    if (boxes_overlap(b[f].box, box_a, tol)) near_b.push_back(static_cast<int>(f));
+  }
+  if (near_a.size() * near_b.size() <= kBruteForceFacePairs) {
+    for (int fa : near_a) {
+      for (int fb : near_b) {
+        if (boxes_overlap(a[fa].box, b[fb].box, tol)) visit(fa, fb);
+      }
+    }
+    return;
+  }
+  std::vector<BoxWithIndex> boxes_a, boxes_b;
+  for (int fa : near_a) boxes_a.push_back(make_box(a[fa].box, 0.5 * tol, fa));
+  for (int fb : near_b) boxes_b.push_back(make_box(b[fb].box, 0.5 * tol, fb));
+  CGAL::box_intersection_d(boxes_a.begin(), boxes_a.end(), boxes_b.begin(), boxes_b.end(),
+                           [&](const BoxWithIndex& x, const BoxWithIndex& y) {
+                             visit(x.info(), y.info());
+                           });
+}
+
+// Drops repeated points and points where the outline does not turn.
+Loop2 simplify_loop(const Loop2& loop, double size) {
+  const double close = 1e-9 * size;
+  Loop2 out = loop;
+  bool changed = true;
+  while (changed && out.size() >= 3) {
+    changed = false;
+    for (size_t i = 0; i < out.size() && out.size() >= 3; ++i) {
+      const Vec2& prev = out[(i + out.size() - 1) % out.size()];
+      const Vec2& here = out[i];
+      const Vec2& next = out[(i + 1) % out.size()];
+      const Vec2 d1 = here - prev, d2 = next - here;
+      const double cross = d1.x() * d2.y() - d1.y() * d2.x();
+      const bool repeated = d1.norm() <= close;
+      const bool straight = std::abs(cross) <= 1e-9 * d1.norm() * d2.norm() && d1.dot(d2) > 0.0;
+      if (repeated || straight) {
+        out.erase(out.begin() + static_cast<long>(i));
+        changed = true;
+      }
+    }
+  }
+  if (out.size() < 3) out.clear();
+  return out;
+}
+
+// The faces of block a and block b that touch on one plane.
+struct PlaneContact {
+  std::vector<int> faces_a, faces_b;
+};
+
+class ContactBuilder {
+public:
+  ContactBuilder(double tol) : tol_(tol) {}
+
+  void add_contacts(int ia, int ib, const std::vector<FaceInfo>& fa,
+                    const std::vector<FaceInfo>& fb, const Box3& box_a, const Box3& box_b,
+                    std::vector<Interface>& out) const {
+    std::vector<PlaneContact> planes;
+    for_each_overlapping_face_pair(fa, box_a, fb, box_b, tol_, [&](int f, int g) {
+      const FacePlane& pa = fa[f].plane;
+      const FacePlane& pb = fb[g].plane;
+      if (pa.normal.dot(pb.normal) > kOppositeNormals) return;
+      if (clear_of_plane(fb[g].loop, pa, tol_) || clear_of_plane(fa[f].loop, pb, tol_)) return;
+      PlaneContact* target = nullptr;
+      for (PlaneContact& contact : planes) {
+        const FacePlane& q = fa[contact.faces_a.front()].plane;
+        if (1.0 - q.normal.dot(pa.normal) <= kSamePlaneNormals &&
+            std::abs(q.offset - pa.offset) <= tol_) {
+          target = &contact;
+        }
+      }
+      if (!target) target = &planes.emplace_back();
+      if (std::find(target->faces_a.begin(), target->faces_a.end(), f) == target->faces_a.end()) {
+        target->faces_a.push_back(f);
+      }
+      if (std::find(target->faces_b.begin(), target->faces_b.end(), g) == target->faces_b.end()) {
+        target->faces_b.push_back(g);
+      }
+    });
+    for (const PlaneContact& contact : planes) {
+      add_plane_contact(ia, ib, fa, fb, contact, out);
+    }
+  }
+
+private:
+  void add_plane_contact(int ia, int ib, const std::vector<FaceInfo>& fa,
+                         const std::vector<FaceInfo>& fb, const PlaneContact& contact,
+                         std::vector<Interface>& out) const {
+    const FacePlane& plane_a = fa[contact.faces_a.front()].plane;
+    const PlaneFrame frame =
+        PlaneFrame::from_normal(plane_a.normal * plane_a.offset, plane_a.normal);
+    std::vector<Loop2> loops_a, loops_b;
+    for (int f : contact.faces_a) {
+      Loop2 loop;
+      for (const Vec3& p : fa[f].loop) loop.push_back(frame.project(p));
+      loops_a.push_back(std::move(loop));
+    }
+    for (int g : contact.faces_b) {
+      // b's faces run counter-clockwise about b's normal, i.e. clockwise here.
+      Loop2 loop;
+      for (auto it = fb[g].loop.rbegin(); it != fb[g].loop.rend(); ++it) {
+        loop.push_back(frame.project(*it));
+      }
+      loops_b.push_back(std::move(loop));
+    }
+    std::vector<PolygonWithHoles2> pieces;
+    if (loops_a.size() == 1 && loops_b.size() == 1 && is_convex(loops_a[0]) &&
+        is_convex(loops_b[0])) {
+      Loop2 clipped = clip_convex(loops_a[0], loops_b[0]);
+      if (!clipped.empty()) pieces.push_back({std::move(clipped), {}});
+    } else {
+      pieces = intersect_polygon_sets(loops_a, loops_b);
+    }
+    std::vector<FacePlane> planes_b;
+    for (int g : contact.faces_b) planes_b.push_back(fb[g].plane);
+    for (const PolygonWithHoles2& piece : pieces) {
+      add_piece(ia, ib, frame, planes_b, piece, out);
+    }
+  }
+
+  void add_piece(int ia, int ib, const PlaneFrame& frame, const std::vector<FacePlane>& planes_b,
+                 const PolygonWithHoles2& piece, std::vector<Interface>& out) const {
+    Box3 extent;
+    for (const Vec2& p : piece.outer) extent.add(Vec3(p.x(), p.y(), 0.0));
+    const double size = extent.diagonal();
+    const Loop2 outer = simplify_loop(piece.outer, size);
+    if (outer.empty()) return;
+    double area = signed_area(outer);
+    Vec2 moment = area * area_centroid(outer);
+    std::vector<Loop2> holes;
+    for (const Loop2& hole : piece.holes) {
+      Loop2 simple = simplify_loop(hole, size);
+      if (simple.empty()) continue;
+      const double hole_area = signed_area(simple);  // negative: clockwise
+      area += hole_area;
+      moment += hole_area * area_centroid(simple);
+      holes.push_back(std::move(simple));
+    }
+    // A strip narrower than the tolerance is an edge or corner touch.
+    if (area <= tol_ * size) return;
+    Interface contact;
+    contact.a = ia;
+    contact.b = ib;
+    contact.normal = frame.normal;
+    contact.area = area;
+    contact.center = frame.lift(moment / area);
+    for (const Vec2& p : outer) contact.vertices.push_back(frame.lift(p));
+    for (const Loop2& hole : holes) {
+      std::vector<Vec3> lifted;
+      for (const Vec2& p : hole) lifted.push_back(frame.lift(p));
+      contact.holes.push_back(std::move(lifted));
+    }
+    // The faces must meet across the whole polygon, not just cross each other.
+    for (const Vec3& p : contact.vertices) {
+      double gap = std::numeric_limits<double>::infinity();
+      for (const FacePlane& plane : planes_b) {
+        gap = std::min(gap, std::abs(plane.normal.dot(p) - plane.offset));
+      }
+      if (gap > tol_) return;
+    }
+    size_t longest = 0;
+    double longest_length = -1.0;
+    for (size_t i = 0; i < contact.vertices.size(); ++i) {
+      const double length =
+          (contact.vertices[(i + 1) % contact.vertices.size()] - contact.vertices[i]).norm();
+      if (length > longest_length) {
+        longest_length = length;
+        longest = i;
+      }
+    }
+    contact.u = (contact.vertices[(longest + 1) % contact.vertices.size()] -
+                 contact.vertices[longest]).normalized();
+    contact.v = contact.normal.cross(contact.u);
+    out.push_back(std::move(contact));
+  }
+
+  double tol_;
+};
+
+}  // namespace
+
+double effective_tolerance(const std::vector<const Block*>& blocks,
+                           const ContactOptions& options) {
+  if (!std::isfinite(options.tolerance) || options.tolerance < 0.0) {
+    throw InvalidArgument("contact tolerance must be a finite number >= 0 (m)");
+  }
+  if (!std::isfinite(options.relative_tolerance) || options.relative_tolerance <= 0.0) {
+    throw InvalidArgument("relative contact tolerance must be a finite number > 0");
+  }
+  if (options.tolerance > 0.0) return options.tolerance;
+  Box3 box;
+  for (const Block* block : blocks) box.add(block->bounds());
+  return options.relative_tolerance * box.diagonal();
+}
+
+std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
+                                         const ContactOptions& options) {
+  const double tol = effective_tolerance(blocks, options);
+  std::vector<BoxWithIndex> boxes;
+  boxes.reserve(blocks.size());
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    boxes.push_back(make_box(blocks[i]->bounds(), 0.5 * tol, static_cast<int>(i)));
+  }
+  std::vector<std::pair<int, int>> candidates;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
+                                [&](const BoxWithIndex& x, const BoxWithIndex& y) {
+                                  candidates.emplace_back(std::min(x.info(), y.info()),
+                                                          std::max(x.info(), y.info()));
+                                });
+  std::sort(candidates.begin(), candidates.end());
+
+  // Face data only for blocks that have a neighbour, computed once each.
+  std::vector<std::vector<FaceInfo>> faces(blocks.size());
+  for (const auto& [a, b] : candidates) {
+    if (faces[a].empty()) faces[a] = face_infos(*blocks[a]);
+    if (faces[b].empty()) faces[b] = face_infos(*blocks[b]);
+  }
+  const ContactBuilder builder(tol);
+  std::vector<Interface> interfaces;
+  for (const auto& [a, b] : candidates) {
+    builder.add_contacts(a, b, faces[a], faces[b], blocks[a]->bounds(), blocks[b]->bounds(),
+                         interfaces);
+  }
+  // Same-pair pieces in a stable order, whatever order CGAL reported pairs in.
+  std::stable_sort(interfaces.begin(), interfaces.end(), [](const Interface& x, const Interface& y) {
+    return std::tie(x.a, x.b, x.center.x(), x.center.y(), x.center.z()) <
+           std::tie(y.a, y.b, y.center.x(), y.center.y(), y.center.z());
+  });
+  return interfaces;
+}
+
+}  // namespace ashlar

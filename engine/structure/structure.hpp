@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "geometry/block.hpp"
@@ -26,11 +27,12 @@ struct PointLoad {
 
 class Structure {
 public:
-  // Adds a block; an empty name becomes the block's own name, or
-  // "block N" (N 1-based) when that is empty too. Returns the 0-based index.
-  // Throws InvalidArgument if the name is already used.
+  // Adds a block and returns its 0-based index. A given name must be unused
+  // (else InvalidArgument). An empty name becomes the block's own name, or
+  // "block N" (N 1-based) when that is empty, with N appended when taken.
   int add(BlockPtr block, bool support = false, std::string name = {});
-  // Throws InvalidArgument for a bad block index or a non-finite value.
+  // Throws InvalidArgument for a bad block index, a support block (loads
+  // on fixed ground do nothing) or a non-finite value.
   void add_load(const PointLoad& load);
 
   int size() const { return static_cast<int>(blocks_.size()); }
@@ -50,6 +52,7 @@ public:
 private:
   std::vector<StructureBlock> blocks_;
   std::vector<PointLoad> loads_;
+  std::unordered_map<std::string, int> index_by_name_;
 
   struct InterfaceCache {
     bool valid = false;
