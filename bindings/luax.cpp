@@ -1,0 +1,320 @@
+#include "luax.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ashlar::lua {
+
+namespace {
+
+// Position of the calling Lua code ("file:line: "), as luaL_error gives.
+void push_where(lua_State* L) { luaL_where(L, 1); }
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
+  return out;
+}
+
+}  // namespace
+
+int raise_pending_error(lua_State* L, int arg) {
+  // The message is on top of the stack; no C++ object is alive any more.
+  if (arg > 0) return luaL_argerror(L, arg, lua_tostring(L, -1));
+  push_where(L);
+  lua_insert(L, -2);
+  lua_concat(L, 2);
+  return lua_error(L);
+}
+
+std::string type_name(lua_State* L, int idx) {
+  const int field = luaL_getmetafield(L, idx, "__name");
+  if (field != LUA_TNIL) {
+    const std::string name = field == LUA_TSTRING ? lua_tostring(L, -1) : "";
+    lua_pop(L, 1);
+    // "ashlar.Block" reads as "Block" in messages.
+    const size_t dot = name.rfind('.');
+    if (!name.empty()) return dot == std::string::npos ? name : name.substr(dot + 1);
+  }
+  return luaL_typename(L, idx);
+}
+
+namespace {
+
+std::string describe_number_problem(lua_State* L, int idx) {
+  if (lua_type(L, idx) != LUA_TNUMBER) return "expected a number, got " + type_name(L, idx);
+  return std::isnan(lua_tonumber(L, idx)) ? "expected a finite number, got nan"
+                                          : "expected a finite number, got inf";
+}
+
+bool finite_number_at(lua_State* L, int idx, double& out) {
+  if (lua_type(L, idx) != LUA_TNUMBER) return false;
+  out = lua_tonumber(L, idx);
+  return std::isfinite(out);
+}
+
+}  // namespace
+
+double check_number(lua_State* L, int arg, const char* what) {
+  double value = 0.0;
+  if (!finite_number_at(L, arg, value)) {
+    throw ArgError(arg, std::string(what) + ": " + describe_number_problem(L, arg));
+  }
+  return value;
+}
+
+lua_Integer check_integer(lua_State* L, int arg, const char* what) {
+  int is_integer = 0;
+  const lua_Integer value = lua_tointegerx(L, arg, &is_integer);
+  if (!is_integer || lua_type(L, arg) != LUA_TNUMBER) {
+    throw ArgError(arg, std::string(what) + ": expected an integer, got " +
+                            (lua_type(L, arg) == LUA_TNUMBER ? "a fractional number"
+                                                             : type_name(L, arg)));
+  }
+  return value;
+}
+
+std::string check_string(lua_State* L, int arg, const char* what) {
+  if (lua_type(L, arg) != LUA_TSTRING) {
+    throw ArgError(arg, std::string(what) + ": expected a string, got " + type_name(L, arg));
+  }
+  size_t length = 0;
+  const char* text = lua_tolstring(L, arg, &length);
+  return std::string(text, length);
+}
+
+Vec3 to_vec3(lua_State* L, int idx, int arg, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TTABLE || lua_rawlen(L, idx) != 3) {
+    throw ArgError(arg, what + ": expected a table of 3 numbers {x, y, z}, got " +
+                            (lua_type(L, idx) == LUA_TTABLE
+                                 ? "a table of length " + std::to_string(lua_rawlen(L, idx))
+                                 : type_name(L, idx)));
+  }
+  idx = lua_absindex(L, idx);
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) {
+    lua_rawgeti(L, idx, k + 1);
+    double value = 0.0;
+    const bool ok = finite_number_at(L, -1, value);
+    const std::string problem = ok ? std::string() : describe_number_problem(L, -1);
+    lua_pop(L, 1);
+    if (!ok) throw ArgError(arg, what + "[" + std::to_string(k + 1) + "]: " + problem);
+    v[k] = value;
+  }
+  return v;
+}
+
+std::vector<Vec3> to_points(lua_State* L, int idx, int arg, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TTABLE) {
+    throw ArgError(arg, what + ": expected a list of points {{x, y, z}, ...}, got " +
+                            type_name(L, idx));
+  }
+  idx = lua_absindex(L, idx);
+  const lua_Unsigned count = lua_rawlen(L, idx);
+  std::vector<Vec3> points;
+  points.reserve(count);
+  for (lua_Unsigned i = 1; i <= count; ++i) {
+    lua_rawgeti(L, idx, static_cast<lua_Integer>(i));
+    try {
+      points.push_back(to_vec3(L, -1, arg, what + "[" + std::to_string(i) + "]"));
+    } catch (...) {
+      lua_pop(L, 1);
+      throw;
+    }
+    lua_pop(L, 1);
+  }
+  return points;
+}
+
+std::vector<FaceLoop> to_faces(lua_State* L, int idx, int arg, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TTABLE) {
+    throw ArgError(arg, what + ": expected a list of faces {{i, j, k, ...}, ...}, got " +
+                            type_name(L, idx));
+  }
+  idx = lua_absindex(L, idx);
+  std::vector<FaceLoop> faces;
+  const lua_Unsigned count = lua_rawlen(L, idx);
+  for (lua_Unsigned f = 1; f <= count; ++f) {
+    const std::string face_name = what + "[" + std::to_string(f) + "]";
+    lua_rawgeti(L, idx, static_cast<lua_Integer>(f));
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      const std::string got = type_name(L, -1);
+      lua_pop(L, 1);
+      throw ArgError(arg, face_name + ": expected a list of vertex indices, got " + got);
+    }
+    FaceLoop face;
+    const lua_Unsigned size = lua_rawlen(L, -1);
+    for (lua_Unsigned k = 1; k <= size; ++k) {
+      lua_rawgeti(L, -1, static_cast<lua_Integer>(k));
+      int is_integer = 0;
+      const lua_Integer index = lua_tointegerx(L, -1, &is_integer);
+      lua_pop(L, 1);
+      if (!is_integer || index < 1 || index > std::numeric_limits<int>::max()) {
+        lua_pop(L, 1);
+        throw ArgError(arg, face_name + "[" + std::to_string(k) +
+                                "]: expected a vertex index (an integer >= 1)");
+      }
+      face.push_back(static_cast<int>(index - 1));
+    }
+    lua_pop(L, 1);
+    faces.push_back(std::move(face));
+  }
+  return faces;
+}
+
+void push_vec3(lua_State* L, const Vec3& v) {
+  lua_createtable(L, 3, 0);
+  for (int k = 0; k < 3; ++k) {
+    lua_pushnumber(L, v[k]);
+    lua_rawseti(L, -2, k + 1);
+  }
+}
+
+void push_points(lua_State* L, const std::vector<Vec3>& points) {
+  lua_createtable(L, static_cast<int>(points.size()), 0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    push_vec3(L, points[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+OptionTable::OptionTable(lua_State* L, int arg, std::initializer_list<const char*> allowed)
+    : L_(L), arg_(arg), index_(0) {
+  const int type = lua_type(L, arg);
+  if (type == LUA_TNONE || type == LUA_TNIL) return;
+  if (type != LUA_TTABLE) {
+    throw ArgError(arg, "expected an option table, got " + type_name(L, arg));
+  }
+  index_ = lua_absindex(L, arg);
+  lua_pushnil(L);
+  while (lua_next(L, index_) != 0) {
+    lua_pop(L, 1);  // value; the key stays for lua_next
+    const bool string_key = lua_type(L, -1) == LUA_TSTRING;
+    // lua_tostring would turn a number key into a string in place and break lua_next.
+    const std::string key = string_key ? lua_tostring(L, -1) : type_name(L, -1);
+    const bool known = string_key && std::any_of(allowed.begin(), allowed.end(),
+                                                 [&](const char* name) { return key == name; });
+    if (!known) {
+      std::vector<std::string> names(allowed.begin(), allowed.end());
+      std::sort(names.begin(), names.end());
+      const std::string shown = string_key ? "'" + key + "'" : "(a " + key + " key)";
+      throw ArgError(arg, "unknown option " + shown + " (allowed: " + join(names) + ")");
+    }
+  }
+}
+
+void OptionTable::fail(const char* key, const std::string& message) const {
+  throw ArgError(arg_, std::string(key) + ": " + message);
+}
+
+int OptionTable::push(const char* key) const {
+  if (index_ == 0) {
+    lua_pushnil(L_);
+    return LUA_TNIL;
+  }
+  return lua_getfield(L_, index_, key);
+}
+
+bool OptionTable::has(const char* key) const {
+  const bool present = push(key) != LUA_TNIL;
+  lua_pop(L_, 1);
+  return present;
+}
+
+std::optional<double> OptionTable::number(const char* key) const {
+  push(key);
+  if (lua_isnil(L_, -1)) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  double value = 0.0;
+  const bool ok = finite_number_at(L_, -1, value);
+  const std::string problem = ok ? std::string() : describe_number_problem(L_, -1);
+  lua_pop(L_, 1);
+  if (!ok) fail(key, problem);
+  return value;
+}
+
+double OptionTable::number(const char* key, double fallback) const {
+  return number(key).value_or(fallback);
+}
+
+double OptionTable::positive(const char* key, double fallback, bool zero_allowed) const {
+  const double value = number(key, fallback);
+  if (value < 0.0 || (!zero_allowed && value == 0.0)) {
+    fail(key, std::string("expected a number ") + (zero_allowed ? ">= 0" : "> 0") + ", got " +
+                  std::to_string(value));
+  }
+  return value;
+}
+
+std::optional<Vec3> OptionTable::vec3(const char* key) const {
+  push(key);
+  if (lua_isnil(L_, -1)) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  try {
+    const Vec3 v = to_vec3(L_, -1, arg_, key);
+    lua_pop(L_, 1);
+    return v;
+  } catch (...) {
+    lua_pop(L_, 1);
+    throw;
+  }
+}
+
+std::optional<std::string> OptionTable::string(const char* key) const {
+  push(key);
+  if (lua_isnil(L_, -1)) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  if (lua_type(L_, -1) != LUA_TSTRING) {
+    const std::string got = type_name(L_, -1);
+    lua_pop(L_, 1);
+    fail(key, "expected a string, got " + got);
+  }
+  std::string value = lua_tostring(L_, -1);
+  lua_pop(L_, 1);
+  return value;
+}
+
+std::optional<bool> OptionTable::boolean(const char* key) const {
+  push(key);
+  if (lua_isnil(L_, -1)) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  if (!lua_isboolean(L_, -1)) {
+    const std::string got = type_name(L_, -1);
+    lua_pop(L_, 1);
+    fail(key, "expected a boolean, got " + got);
+  }
+  const bool value = lua_toboolean(L_, -1);
+  lua_pop(L_, 1);
+  return value;
+}
+
+void protected_call(lua_State* L, int nargs, int nresults) {
+  if (lua_pcall(L, nargs, nresults, 0) != LUA_OK) {
+    std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)
+                                                         : "(error object is a " +
+                                                               type_name(L, -1) + " value)";
+    lua_pop(L, 1);
+    throw std::runtime_error(message);
+  }
+}
+
+void register_type(lua_State* L, const char* metatable, const luaL_Reg* methods,
+                   const luaL_Reg* metamethods) {
+  luaL_newmetatable(L, metatable);
+  luaL_setfuncs(L, metamethods, 0);
+  lua_newtable(L);
+  luaL_setfuncs(L, methods, 0);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+}
+
+}  // namespace ashlar::lua

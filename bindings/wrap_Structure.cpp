@@ -1,0 +1,261 @@
+#include "wrap_Structure.hpp"
+
+#include <sstream>
+
+#include "io/structure_json.hpp"
+#include "luax.hpp"
+#include "wrap_Block.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+constexpr const char* kStructureMeta = "ashlar.Structure";
+
+void set_number(lua_State* L, const char* key, double value) {
+  lua_pushnumber(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_vec3(lua_State* L, const char* key, const Vec3& value) {
+  push_vec3(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void push_interface(lua_State* L, const Interface& contact) {
+  lua_createtable(L, 0, 10);
+  lua_pushinteger(L, contact.a + 1);
+  lua_setfield(L, -2, "a");
+  lua_pushinteger(L, contact.b + 1);
+  lua_setfield(L, -2, "b");
+  set_number(L, "area", contact.area);
+  set_vec3(L, "center", contact.center);
+  set_vec3(L, "normal", contact.normal);
+  set_vec3(L, "u", contact.u);
+  set_vec3(L, "v", contact.v);
+  push_points(L, contact.vertices);
+  lua_setfield(L, -2, "vertices");
+  lua_createtable(L, static_cast<int>(contact.holes.size()), 0);
+  for (size_t h = 0; h < contact.holes.size(); ++h) {
+    push_points(L, contact.holes[h]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(h + 1));
+  }
+  lua_setfield(L, -2, "holes");
+}
+
+int w_structure(lua_State* L) {
+  return guard(L, [&] {
+    if (!lua_isnoneornil(L, 1)) {
+      throw ArgError(1, "ashlar.structure() takes no arguments; add blocks with s:add(block)");
+    }
+    luax_pushStructure(L, std::make_shared<Structure>());
+    return 1;
+  });
+}
+
+int w_load(lua_State* L) {
+  return guard(L, [&] {
+    const std::string path = check_string(L, 1, "path");
+    luax_pushStructure(L, std::make_shared<Structure>(load_structure(path)));
+    return 1;
+  });
+}
+
+int w_Structure_add(lua_State* L) {
+  return guard(L, [&] {
+    Structure& s = *luax_checkStructure(L, 1);
+    const BlockPtr& block = luax_checkBlock(L, 2);
+    const OptionTable options(L, 3, {"support", "name"});
+    const int index =
+        s.add(block, options.boolean("support").value_or(false), options.string("name").value_or(""));
+    lua_pushinteger(L, index + 1);
+    return 1;
+  });
+}
+
+int w_Structure_add_load(lua_State* L) {
+  return guard(L, [&] {
+    Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"block", "force", "at"});
+    if (lua_type(L, 2) != LUA_TTABLE) {
+      throw ArgError(2, "expected a load table {block = i, force = {fx, fy, fz}, at = {x, y, z}}");
+    }
+    PointLoad load;
+    options.push("block");
+    load.block = check_block_index(L, s, -1, 2, "block");
+    lua_pop(L, 1);
+    const std::optional<Vec3> force = options.vec3("force");
+    if (!force) throw ArgError(2, "force: required, a table of 3 numbers {fx, fy, fz} (N)");
+    load.force = *force;
+    load.at = options.vec3("at").value_or(s.block(load.block).centroid());
+    s.add_load(load);
+    lua_pushinteger(L, static_cast<lua_Integer>(s.loads().size()));
+    return 1;
+  });
+}
+
+int w_Structure_len(lua_State* L) {
+  return guard(L, [&] {
+    lua_pushinteger(L, luax_checkStructure(L, 1)->size());
+    return 1;
+  });
+}
+
+int w_Structure_block(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    luax_pushBlock(L, s.entry(check_block_index(L, s, 2, 2, "block")).block);
+    return 1;
+  });
+}
+
+int w_Structure_name(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    lua_pushstring(L, s.name(check_block_index(L, s, 2, 2, "block")).c_str());
+    return 1;
+  });
+}
+
+int w_Structure_is_support(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    lua_pushboolean(L, s.is_support(check_block_index(L, s, 2, 2, "block")));
+    return 1;
+  });
+}
+
+int w_Structure_find(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const int index = s.find(check_string(L, 2, "name"));
+    if (index < 0) lua_pushnil(L);
+    else lua_pushinteger(L, index + 1);
+    return 1;
+  });
+}
+
+int w_Structure_loads(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    lua_createtable(L, static_cast<int>(s.loads().size()), 0);
+    for (size_t i = 0; i < s.loads().size(); ++i) {
+      const PointLoad& load = s.loads()[i];
+      lua_createtable(L, 0, 3);
+      lua_pushinteger(L, load.block + 1);
+      lua_setfield(L, -2, "block");
+      set_vec3(L, "force", load.force);
+      set_vec3(L, "at", load.at);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    return 1;
+  });
+}
+
+int w_Structure_bounds(lua_State* L) {
+  return guard(L, [&] {
+    const Box3 box = luax_checkStructure(L, 1)->bounds();
+    if (box.empty()) return 0;
+    push_vec3(L, box.lo);
+    push_vec3(L, box.hi);
+    return 2;
+  });
+}
+
+int w_Structure_interfaces(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"tolerance"});
+    ContactOptions contact;
+    contact.tolerance = options.positive("tolerance", 0.0, true);
+    const std::vector<Interface>& found = s.interfaces(contact);
+    lua_createtable(L, static_cast<int>(found.size()), 0);
+    for (size_t k = 0; k < found.size(); ++k) {
+      push_interface(L, found[k]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    return 1;
+  });
+}
+
+int w_Structure_save(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    save_structure(s, check_string(L, 2, "path"));
+    return 0;
+  });
+}
+
+int w_Structure_tostring(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    int supports = 0;
+    for (const StructureBlock& entry : s.entries()) supports += entry.support ? 1 : 0;
+    std::ostringstream text;
+    text << "Structure (" << s.size() << " blocks, " << supports << " supports, "
+         << s.loads().size() << " loads)";
+    lua_pushstring(L, text.str().c_str());
+    return 1;
+  });
+}
+
+int w_Structure_gc(lua_State* L) { return release_boxed<Structure>(L, kStructureMeta); }
+
+}  // namespace
+
+int check_block_index(lua_State* L, const Structure& s, int idx, int arg, const char* what) {
+  if (lua_type(L, idx) == LUA_TSTRING) {
+    const std::string name = lua_tostring(L, idx);
+    const int index = s.find(name);
+    if (index < 0) throw ArgError(arg, std::string(what) + ": no block is named '" + name + "'");
+    return index;
+  }
+  int is_integer = 0;
+  const lua_Integer index = lua_tointegerx(L, idx, &is_integer);
+  if (lua_type(L, idx) != LUA_TNUMBER || !is_integer) {
+    throw ArgError(arg, std::string(what) + ": expected a block index or name, got " +
+                            type_name(L, idx));
+  }
+  if (index < 1 || index > s.size()) {
+    throw ArgError(arg, std::string(what) + ": index " + std::to_string(index) +
+                            " is out of range (the structure has " + std::to_string(s.size()) +
+                            " blocks)");
+  }
+  return static_cast<int>(index - 1);
+}
+
+const std::shared_ptr<Structure>& luax_checkStructure(lua_State* L, int idx) {
+  return check_boxed<Structure>(L, idx, kStructureMeta, "Structure");
+}
+
+void luax_pushStructure(lua_State* L, std::shared_ptr<Structure> structure) {
+  push_boxed<Structure>(L, std::move(structure), kStructureMeta);
+}
+
+void register_Structure(lua_State* L) {
+  static const luaL_Reg methods[] = {{"add", w_Structure_add},
+                                     {"add_load", w_Structure_add_load},
+                                     {"block", w_Structure_block},
+                                     {"name", w_Structure_name},
+                                     {"is_support", w_Structure_is_support},
+                                     {"find", w_Structure_find},
+                                     {"loads", w_Structure_loads},
+                                     {"bounds", w_Structure_bounds},
+                                     {"interfaces", w_Structure_interfaces},
+                                     {"save", w_Structure_save},
+                                     {nullptr, nullptr}};
+  static const luaL_Reg metamethods[] = {{"__len", w_Structure_len},
+                                         {"__tostring", w_Structure_tostring},
+                                         {"__gc", w_Structure_gc},
+                                         {"__close", w_Structure_gc},
+                                         {nullptr, nullptr}};
+  register_type(L, kStructureMeta, methods, metamethods);
+}
+
+void set_structure_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {
+      {"structure", w_structure}, {"load", w_load}, {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua

@@ -1,0 +1,206 @@
+// The `ashlar` library table: version, constructors, files.
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "ashlar_lua.hpp"
+#include "core/version.hpp"
+#include "io/color_map.hpp"
+#include "io/mesh_io.hpp"
+#include "luax.hpp"
+#include "wrap_Block.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what) {
+  const Vec3 v = to_vec3(L, idx, arg, what);
+  if ((v.array() < 0.0).any() || (v.array() > 1.0).any()) {
+    throw ArgError(arg, what + ": colour components must lie in [0, 1]");
+  }
+  return {v.x(), v.y(), v.z()};
+}
+
+// `color` export option: {r, g, b} for every block, a list with one {r, g, b}
+// per block, or {values = {...}, map = "viridis", range = {lo, hi}}.
+std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count) {
+  const int arg = options.arg();
+  if (options.push("color") == LUA_TNIL) {
+    lua_pop(L, 1);
+    return {};
+  }
+  const int color = lua_gettop(L);
+  if (lua_type(L, color) != LUA_TTABLE) {
+    throw ArgError(arg, "color: expected {r, g, b}, a list of {r, g, b} per block, or "
+                        "{values = {...}, map = name, range = {lo, hi}}, got " +
+                            type_name(L, color));
+  }
+  std::vector<Rgb> colors;
+  lua_rawgeti(L, color, 1);
+  const int first = lua_type(L, -1);
+  lua_pop(L, 1);
+  if (first == LUA_TNUMBER) {
+    colors.assign(block_count, to_rgb(L, color, arg, "color"));
+  } else if (first == LUA_TTABLE) {
+    if (lua_rawlen(L, color) != static_cast<lua_Unsigned>(block_count)) {
+      throw ArgError(arg, "color: a list of colours needs one per block (" +
+                              std::to_string(block_count) + "), got " +
+                              std::to_string(lua_rawlen(L, color)));
+    }
+    for (int i = 1; i <= block_count; ++i) {
+      lua_rawgeti(L, color, i);
+      colors.push_back(to_rgb(L, -1, arg, "color[" + std::to_string(i) + "]"));
+      lua_pop(L, 1);
+    }
+  } else {
+    const OptionTable mapped(L, color, {"values", "map", "range"});
+    if (mapped.push("values") != LUA_TTABLE) {
+      throw ArgError(arg, "color.values: expected a list of numbers, one per block");
+    }
+    const int values_index = lua_gettop(L);
+    if (lua_rawlen(L, values_index) != static_cast<lua_Unsigned>(block_count)) {
+      throw ArgError(arg, "color.values: needs one value per block (" +
+                              std::to_string(block_count) + "), got " +
+                              std::to_string(lua_rawlen(L, values_index)));
+    }
+    std::vector<double> values;
+    for (int i = 1; i <= block_count; ++i) {
+      lua_rawgeti(L, values_index, i);
+      if (lua_type(L, -1) != LUA_TNUMBER) {
+        throw ArgError(arg, "color.values[" + std::to_string(i) + "]: expected a number, got " +
+                                type_name(L, -1));
+      }
+      values.push_back(lua_tonumber(L, -1));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    double lo = 0.0, hi = 0.0;
+    if (mapped.has("range")) {
+      mapped.push("range");
+      if (lua_type(L, -1) != LUA_TTABLE || lua_rawlen(L, -1) != 2) {
+        throw ArgError(arg, "color.range: expected {lo, hi}");
+      }
+      lua_rawgeti(L, -1, 1);
+      lua_rawgeti(L, -2, 2);
+      lo = check_number(L, -2, "color.range[1]");
+      hi = check_number(L, -1, "color.range[2]");
+      lua_pop(L, 3);
+    } else if (!values.empty()) {
+      lo = *std::min_element(values.begin(), values.end());
+      hi = *std::max_element(values.begin(), values.end());
+    }
+    colors = map_colors(values, lo, hi, mapped.string("map").value_or("viridis"));
+  }
+  lua_pop(L, 1);
+  return colors;
+}
+
+int w_export(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const std::string path = check_string(L, 2, "path");
+    const OptionTable options(L, 3, {"color", "interfaces", "tolerance"});
+    ExportOptions exported;
+    exported.block_colors = block_colors(L, options, s.size());
+    exported.interfaces = options.boolean("interfaces").value_or(false);
+    exported.contact.tolerance = options.positive("tolerance", 0.0, true);
+    export_structure(s, path, exported);
+    return 0;
+  });
+}
+
+// Decides whether an imported block is a support: `support` is a Lua pattern
+// matched against the name, or a function(name, block) returning a boolean.
+bool is_support(lua_State* L, int rule, const ImportedBlock& imported) {
+  switch (lua_type(L, rule)) {
+    case LUA_TNIL:
+      return false;
+    case LUA_TSTRING: {
+      lua_getglobal(L, "string");
+      lua_getfield(L, -1, "find");
+      lua_remove(L, -2);
+      lua_pushstring(L, imported.name.c_str());
+      lua_pushvalue(L, rule);
+      protected_call(L, 2, 1);
+      const bool found = !lua_isnil(L, -1);
+      lua_pop(L, 1);
+      return found;
+    }
+    case LUA_TFUNCTION: {
+      lua_pushvalue(L, rule);
+      lua_pushstring(L, imported.name.c_str());
+      luax_pushBlock(L, std::make_shared<const Block>(imported.block));
+      protected_call(L, 2, 1);
+      const bool chosen = lua_toboolean(L, -1);
+      lua_pop(L, 1);
+      return chosen;
+    }
+    default:
+      throw ArgError(2, "support: expected a name pattern (string) or function(name, block), got " +
+                            type_name(L, rule));
+  }
+}
+
+int w_import(lua_State* L) {
+  return guard(L, [&] {
+    const std::string path = check_string(L, 1, "path");
+    const OptionTable options(L, 2, {"support", "density"});
+    ImportOptions import_options;
+    import_options.density = options.positive("density", kDefaultDensity);
+    options.push("support");
+    const int rule = lua_gettop(L);
+    if (!lua_isnil(L, rule) && !lua_isstring(L, rule) && !lua_isfunction(L, rule)) {
+      throw ArgError(2, "support: expected a name pattern (string) or function(name, block), got " +
+                            type_name(L, rule));
+    }
+    auto structure = std::make_shared<Structure>();
+    for (ImportedBlock& imported : import_blocks(path, import_options)) {
+      const bool support = is_support(L, rule, imported);
+      structure->add(std::make_shared<const Block>(std::move(imported.block)), support,
+                     imported.name);
+    }
+    lua_pop(L, 1);
+    luax_pushStructure(L, std::move(structure));
+    return 1;
+  });
+}
+
+}  // namespace
+
+}  // namespace ashlar::lua
+
+int ashlar_open_library(lua_State* L) {
+  using namespace ashlar::lua;
+  register_Block(L);
+  register_Structure(L);
+  lua_newtable(L);
+  lua_pushstring(L, ashlar::version());
+  lua_setfield(L, -2, "version");
+  set_block_constructors(L);
+  set_structure_functions(L);
+  static const luaL_Reg files[] = {{"import", w_import}, {"export", w_export}, {nullptr, nullptr}};
+  luaL_setfuncs(L, files, 0);
+  return 1;
+}
+
+void ashlar_add_model_path(lua_State* L) {
+  const char* env = std::getenv("ASHLAR_MODELS");
+  const std::string folder = env && *env ? env : ASHLAR_MODELS_DIR;
+  const std::string entries = folder + "/?.lua;" + folder + "/?/init.lua";
+  lua_getglobal(L, "package");
+  if (!lua_istable(L, -1)) {
+    lua_pop(L, 1);
+    return;
+  }
+  lua_getfield(L, -1, "path");
+  const std::string path = lua_isstring(L, -1) ? lua_tostring(L, -1) : "";
+  lua_pop(L, 1);
+  if (path.find(entries) == std::string::npos) {
+    const std::string joined = path.empty() ? entries : path + ";" + entries;
+    lua_pushstring(L, joined.c_str());
+    lua_setfield(L, -2, "path");
+  }
+  lua_pop(L, 1);
+}

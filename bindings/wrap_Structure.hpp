@@ -1,0 +1,20 @@
+// Lua type "ashlar.Structure": blocks, supports, loads and their contacts.
+#pragma once
+
+#include <lua.hpp>
+#include <memory>
+
+#include "structure/structure.hpp"
+
+namespace ashlar::lua {
+
+const std::shared_ptr<Structure>& luax_checkStructure(lua_State* L, int idx);
+void luax_pushStructure(lua_State* L, std::shared_ptr<Structure> structure);
+void register_Structure(lua_State* L);
+// ashlar.structure and ashlar.load: set into the table on top of the stack.
+void set_structure_functions(lua_State* L);
+
+// Block index argument: an integer 1..#s or a block name; returns 0-based.
+int check_block_index(lua_State* L, const Structure& s, int idx, int arg, const char* what);
+
+}  // namespace ashlar::lua
