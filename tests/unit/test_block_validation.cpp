@@ -1,0 +1,127 @@
+// Each defect is rejected with a message that names it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "geometry/block.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+struct Mesh {
+  std::vector<Vec3> vertices;
+  std::vector<FaceLoop> faces;
+};
+
+Mesh unit_cube() {
+  Mesh m;
+  for (int k = 0; k < 8; ++k) m.vertices.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+  m.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  return m;
+}
+
+std::string error_of(const Mesh& m) {
+  try {
+    Block(m.vertices, m.faces, kDefaultDensity, "test");
+  } catch (const GeometryError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_error(const Mesh& m, const std::string& fragment) {
+  const std::string message = error_of(m);
+  EXPECT_NE(message.find("block 'test'"), std::string::npos) << message;
+  EXPECT_NE(message.find(fragment), std::string::npos) << "message: " << message;
+}
+
+}  // namespace
+
+TEST(BlockValidation, ValidCubeIsAccepted) {
+  const Mesh m = unit_cube();
+  const Block cube(m.vertices, m.faces);
+  EXPECT_DOUBLE_EQ(cube.volume(), 1.0);
+  EXPECT_TRUE(cube.convex());
+}
+
+TEST(BlockValidation, OpenSurface) {
+  Mesh m = unit_cube();
+  m.faces.pop_back();
+  expect_error(m, "open surface");
+}
+
+TEST(BlockValidation, Inverted) {
+  Mesh m = unit_cube();
+  for (FaceLoop& f : m.faces) std::reverse(f.begin(), f.end());
+  expect_error(m, "inverted");
+}
+
+TEST(BlockValidation, InconsistentOrientation) {
+  Mesh m = unit_cube();
+  std::reverse(m.faces[2].begin(), m.faces[2].end());
+  expect_error(m, "inconsistent face orientation");
+}
+
+TEST(BlockValidation, NonPlanarFace) {
+  Mesh m = unit_cube();
+  m.vertices[7] += Vec3(0.0, 0.0, 0.01);
+  expect_error(m, "not planar");
+}
+
+TEST(BlockValidation, CoincidentVertices) {
+  Mesh m = unit_cube();
+  m.vertices[7] = m.vertices[6];
+  expect_error(m, "coincide");
+}
+
+TEST(BlockValidation, NanCoordinate) {
+  Mesh m = unit_cube();
+  m.vertices[3].y() = std::nan("");
+  expect_error(m, "NaN");
+}
+
+TEST(BlockValidation, IndexOutOfRangeAndRepeats) {
+  Mesh m = unit_cube();
+  m.faces[0][1] = 8;
+  expect_error(m, "refers to vertex 9");
+  m = unit_cube();
+  m.faces[0] = {0, 2, 2, 1};
+  expect_error(m, "uses vertex 3 twice");
+}
+
+TEST(BlockValidation, TooFewFaces) {
+  Mesh m = unit_cube();
+  m.faces.resize(3);
+  expect_error(m, "at least 4 faces");
+}
+
+TEST(BlockValidation, FlatSolidHasZeroVolume) {
+  // A "tetrahedron" whose four points are coplanar: closed, but flat.
+  Mesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  const std::string message = error_of(m);
+  EXPECT_TRUE(message.find("zero") != std::string::npos ||
+              message.find("degenerate") != std::string::npos)
+      << message;
+}
+
+TEST(BlockValidation, SelfIntersectingSurface) {
+  // Two overlapping cubes written as one closed, consistently oriented surface.
+  Mesh a = unit_cube();
+  Mesh m = a;
+  for (const Vec3& p : a.vertices) m.vertices.push_back(p + Vec3(0.5, 0.5, 0.5));
+  for (FaceLoop f : a.faces) {
+    for (int& i : f) i += 8;
+    m.faces.push_back(f);
+  }
+  expect_error(m, "self-intersecting");
+}
+
+TEST(BlockValidation, NonPositiveDensity) {
+  const Mesh m = unit_cube();
+  EXPECT_THROW(Block(m.vertices, m.faces, -1.0), InvalidArgument);
+  EXPECT_THROW(Block(m.vertices, m.faces, std::nan("")), InvalidArgument);
+}
