@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ashlar_lua.hpp"
+#include "core/process_stats.hpp"
 #include "core/version.hpp"
 #include "io/color_map.hpp"
 #include "io/mesh_io.hpp"
@@ -151,7 +152,7 @@ int w_import(lua_State* L) {
     import_options.density = options.positive("density", kDefaultDensity);
     options.push("support");
     const int rule = lua_gettop(L);
-    if (!lua_isnil(L, rule) && !lua_isstring(L, rule) && !lua_isfunction(L, rule)) {
+    if (!lua_isnil(L, rule) && lua_type(L, rule) != LUA_TSTRING && !lua_isfunction(L, rule)) {
       throw ArgError(2, "support: expected a name pattern (string) or function(name, block), got " +
                             type_name(L, rule));
     }
@@ -163,6 +164,25 @@ int w_import(lua_State* L) {
     }
     lua_pop(L, 1);
     luax_pushStructure(L, std::move(structure));
+    return 1;
+  });
+}
+
+int w_clock(lua_State* L) {
+  lua_pushnumber(L, monotonic_seconds());
+  return 1;
+}
+
+int w_memory(lua_State* L) {
+  return guard(L, [&] {
+    const OptionTable options(L, 1, {"reset_peak"});
+    if (options.boolean("reset_peak").value_or(false)) reset_peak_memory();
+    const MemoryUse use = memory_use();
+    lua_createtable(L, 0, 2);
+    lua_pushnumber(L, use.resident_mb);
+    lua_setfield(L, -2, "resident_mb");
+    lua_pushnumber(L, use.peak_mb);
+    lua_setfield(L, -2, "peak_mb");
     return 1;
   });
 }
@@ -180,8 +200,10 @@ int ashlar_open_library(lua_State* L) {
   lua_setfield(L, -2, "version");
   set_block_constructors(L);
   set_structure_functions(L);
-  static const luaL_Reg files[] = {{"import", w_import}, {"export", w_export}, {nullptr, nullptr}};
-  luaL_setfuncs(L, files, 0);
+  static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
+                                       {"clock", w_clock},   {"memory", w_memory},
+                                       {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
   return 1;
 }
 

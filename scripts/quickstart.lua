@@ -1,0 +1,41 @@
+-- ashlar quickstart: builds a small scene, finds its contact interfaces,
+-- exports it as glTF and prints a summary.
+--   ashlar scripts/quickstart.lua [output folder]
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+
+local out = arg and arg[1] or "."
+
+-- A running-bond garden wall, and beside it a leaning stack of three stones.
+local s = models.wall{ length = 2.4, height = 0.84, thickness = 0.11, brick = { 0.24, 0.07 } }
+s:add(ashlar.box{ size = { 2, 1, 0.2 }, center = { 0, 2, -0.1 } }, { support = true, name = "plinth" })
+for i = 1, 3 do
+  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0.1 * i, 2, 0.25 + 0.5 * (i - 1) } },
+        { name = "stone " .. i })
+end
+
+local start = ashlar.clock()
+local interfaces = s:interfaces()
+local seconds = ashlar.clock() - start
+
+local supports, mass, area = 0, 0, 0
+local heights = {}
+for i = 1, #s do
+  local b = s:block(i)
+  if s:is_support(i) then supports = supports + 1 else mass = mass + b:mass() end
+  heights[i] = b:centroid()[3]
+end
+for _, f in ipairs(interfaces) do area = area + f.area end
+
+local glb = out .. "/quickstart.glb"
+ashlar.export(s, glb, { color = { values = heights, map = "viridis" }, interfaces = true })
+s:save(out .. "/quickstart.json")
+
+print(("ashlar %s quickstart"):format(ashlar.version))
+print(("  blocks       %6d (%d supports)"):format(#s, supports))
+print(("  free mass    %10.1f kg"):format(mass))
+print(("  interfaces   %6d, total contact area %.4f m^2, found in %.2f ms"):format(#interfaces, area, seconds * 1e3))
+local f = interfaces[#interfaces]
+print(("  last contact: blocks %d-%d ('%s' on '%s'), area %.3f m^2, %d vertices"):format(
+  f.a, f.b, s:name(f.b), s:name(f.a), f.area, #f.vertices))
+print(("  wrote %s and %s/quickstart.json"):format(glb, out))

@@ -1,0 +1,219 @@
+-- The public Lua API of the foundation: blocks, structures, contacts, files.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+
+local function tmpdir()
+  local path = os.tmpname()
+  os.remove(path)
+  assert(os.execute("mkdir -p " .. path))
+  return path
+end
+
+local function near(actual, expected, tolerance)
+  assert(math.abs(actual - expected) <= tolerance,
+    ("expected %.17g, got %.17g (tolerance %g)"):format(expected, actual, tolerance))
+end
+
+local function stack()
+  local s = ashlar.structure()
+  s:add(ashlar.box{ size = { 2, 1, 0.2 }, center = { 0, 0, -0.1 } }, { support = true })
+  for i = 1, 3 do
+    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0.1 * i, 0, 0.25 + 0.5 * (i - 1) } })
+  end
+  return s
+end
+
+describe("ashlar", function()
+  it("has a semantic version", function()
+    assert.is_truthy(ashlar.version:match("^%d+%.%d+%.%d+$"))
+  end)
+end)
+
+describe("blocks", function()
+  it("box has exact mass properties", function()
+    local b = ashlar.box{ size = { 2, 3, 0.5 }, center = { 1, -2, 0.25 }, density = 2000, name = "slab" }
+    near(b:volume(), 3, 1e-15)
+    near(b:mass(), 6000, 1e-11)
+    local c = b:centroid()
+    near(c[1], 1, 1e-15); near(c[2], -2, 1e-15); near(c[3], 0.25, 1e-15)
+    assert.equal("slab", b:name())
+    assert.equal(8, #b:vertices())
+    assert.equal(6, #b:faces())
+    assert.is_true(b:is_convex())
+  end)
+
+  it("block from vertices and 1-based faces round-trips", function()
+    local v = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }
+    local f = { { 1, 3, 2 }, { 1, 2, 4 }, { 2, 3, 4 }, { 1, 4, 3 } }
+    local t = ashlar.block{ vertices = v, faces = f }
+    near(t:volume(), 1 / 6, 1e-16)
+    assert.same(f, t:faces())
+    assert.same(v, t:vertices())
+    near(t:mass(), 2400 / 6, 1e-12)
+  end)
+
+  it("prism of a non-convex polygon", function()
+    local l = { { 0, 0, 0 }, { 3, 0, 0 }, { 3, 1, 0 }, { 1, 1, 0 }, { 1, 3, 0 }, { 0, 3, 0 } }
+    local p = ashlar.prism(l, { 0, 0, 2 })
+    near(p:volume(), 10, 1e-13)
+    assert.is_false(p:is_convex())
+    local c = p:centroid()
+    near(c[1], 1.1, 1e-14); near(c[3], 1, 1e-14)
+  end)
+
+  it("loft makes a frustum", function()
+    local bottom = { { -1, -1, 0 }, { 1, -1, 0 }, { 1, 1, 0 }, { -1, 1, 0 } }
+    local top = { { -0.5, -0.5, 3 }, { 0.5, -0.5, 3 }, { 0.5, 0.5, 3 }, { -0.5, 0.5, 3 } }
+    near(ashlar.loft(bottom, top):volume(), 7, 1e-13)
+  end)
+
+  it("hull of the corners of a box has six faces", function()
+    local pts = {}
+    for x = 0, 1 do for y = 0, 1 do for z = 0, 1 do pts[#pts + 1] = { 2 * x, 3 * y, z } end end end
+    pts[#pts + 1] = { 1, 1.5, 0.5 }  -- interior point, not a vertex
+    local h = ashlar.hull(pts)
+    assert.equal(6, #h:faces())
+    near(h:volume(), 6, 1e-14)
+  end)
+
+  it("rigid motions keep volume and move the centroid", function()
+    local b = ashlar.box{ size = { 1, 2, 3 } }
+    local r = b:rotated({ 0, 0, 1 }, math.pi / 2, { 1, 0, 0 }):translated({ 0, 0, 5 })
+    near(r:volume(), 6, 1e-14)
+    local c = r:centroid()
+    near(c[1], 1, 1e-14); near(c[2], -1, 1e-14); near(c[3], 5, 1e-14)
+    assert.equal(6, b:volume())  -- the original is unchanged
+  end)
+
+  it("split keeps the volume", function()
+    local b = ashlar.box{ size = { 2, 2, 2 } }
+    local below, above = b:split({ 0.2, 0, 0 }, { 1, 1, 0.5 })
+    near(below:volume() + above:volume(), 8, 1e-12)
+    assert.is_true(below:centroid()[1] < above:centroid()[1])
+    local whole, none = b:split({ 0, 0, 5 }, { 0, 0, 1 })
+    near(whole:volume(), 8, 1e-14)
+    assert.is_nil(none)
+  end)
+
+  it("with renames and changes density", function()
+    local b = ashlar.box{ size = { 1, 1, 1 } }:with{ name = "cube", density = 1000 }
+    assert.equal("cube", b:name())
+    near(b:mass(), 1000, 1e-12)
+    assert.is_truthy(tostring(b):match("Block 'cube'"))
+  end)
+end)
+
+describe("structures", function()
+  it("counts blocks and supports, names them", function()
+    local s = stack()
+    assert.equal(4, #s)
+    assert.is_true(s:is_support(1))
+    assert.is_false(s:is_support(2))
+    assert.equal("block 1", s:name(1))
+    assert.equal(2, s:find("block 2"))
+    near(s:block(2):volume(), 0.5, 1e-15)
+    assert.is_truthy(tostring(s):match("4 blocks, 1 supports"))
+  end)
+
+  it("finds the stack's three interfaces exactly", function()
+    local found = stack():interfaces()
+    assert.equal(3, #found)
+    local areas = { 1.0, 0.9, 0.9 }
+    for k, f in ipairs(found) do
+      assert.equal(k, f.a)
+      assert.equal(k + 1, f.b)
+      near(f.area, areas[k], 1e-14)
+      assert.equal(4, #f.vertices)
+      near(f.normal[3], 1, 1e-15)
+      near(f.center[3], 0.5 * (k - 1), 1e-14)
+    end
+  end)
+
+  it("finds the 575 interfaces of a 20 x 10 running-bond wall", function()
+    local w = models.wall{ length = 4.8, height = 0.7, brick = { 0.24, 0.07 }, thickness = 0.11 }
+    assert.equal(1 + 5 * 20 + 5 * 21, #w)
+    local found = w:interfaces()
+    assert.equal(5 * 19 + 5 * 20 + 9 * 40 + 20, #found)
+    local total = 0
+    for _, f in ipairs(found) do total = total + f.area end
+    near(total, 195 * 0.07 * 0.11 + 360 * 0.12 * 0.11 + 20 * 0.24 * 0.11, 1e-12)
+  end)
+
+  it("takes loads by index or name, defaulting to the centroid", function()
+    local s = stack()
+    s:add_load{ block = 4, force = { 100, 0, 0 } }
+    s:add_load{ block = "block 2", force = { 0, 0, -10 }, at = { 0, 0, 0.5 } }
+    local loads = s:loads()
+    assert.equal(2, #loads)
+    assert.equal(4, loads[1].block)
+    near(loads[1].at[3], 1.25, 1e-15)
+    assert.equal(2, loads[2].block)
+  end)
+
+  it("saves and loads exactly", function()
+    local dir = tmpdir()
+    local s = stack()
+    s:add(ashlar.box{ size = { 0.1, 0.2, 0.3 }, center = { 1 / 3, math.pi, 1e-7 }, density = 1234.5 },
+      { name = "odd" })
+    s:add_load{ block = "odd", force = { 1 / 7, 0, -2 } }
+    s:save(dir .. "/s.json")
+    local t = ashlar.load(dir .. "/s.json")
+    assert.equal(#s, #t)
+    for i = 1, #s do
+      assert.same(s:block(i):vertices(), t:block(i):vertices())
+      assert.same(s:block(i):faces(), t:block(i):faces())
+      assert.equal(s:name(i), t:name(i))
+      assert.equal(s:is_support(i), t:is_support(i))
+      assert.equal(s:block(i):density(), t:block(i):density())
+    end
+    assert.same(s:loads(), t:loads())
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("exports glTF, OBJ, PLY and STL, and imports them back", function()
+    local dir = tmpdir()
+    local s = stack()
+    for _, ext in ipairs{ "glb", "gltf", "obj", "ply", "stl" } do
+      local path = dir .. "/stack." .. ext
+      ashlar.export(s, path, { color = { 0.1, 0.5, 0.9 } })
+      local t = ashlar.import(path, { support = "^block 1$" })
+      assert.equal(4, #t, ext)
+      local volume = 0
+      for i = 1, #t do volume = volume + t:block(i):volume() end
+      near(volume, 0.4 + 1.5, 1e-6)  -- glTF stores float32 coordinates
+      assert.equal(3, #t:interfaces(), ext)
+    end
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("chooses supports on import with a function", function()
+    local dir = tmpdir()
+    ashlar.export(stack(), dir .. "/s.glb", { interfaces = false })
+    local t = ashlar.import(dir .. "/s.glb", {
+      support = function(name, block) return block:centroid()[3] < 0 end,
+    })
+    local supports = 0
+    for i = 1, #t do if t:is_support(i) then supports = supports + 1 end end
+    assert.equal(1, supports)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("colours blocks from values and a colour map", function()
+    local dir = tmpdir()
+    local s = stack()
+    ashlar.export(s, dir .. "/v.glb", { color = { values = { 1, 2, 3, 4 }, map = "viridis" }, interfaces = true })
+    local f = assert(io.open(dir .. "/v.glb", "rb"))
+    assert.equal("glTF", f:read(4))
+    f:close()
+    os.execute("rm -rf " .. dir)
+  end)
+end)
+
+describe("utilities", function()
+  it("clock is monotonic and memory is reported", function()
+    local t0 = ashlar.clock()
+    assert.is_true(ashlar.clock() >= t0)
+    local m = ashlar.memory()
+    assert.is_true(m.resident_mb > 0 and m.peak_mb >= m.resident_mb * 0.5)
+  end)
+end)

@@ -1,0 +1,118 @@
+-- Bad input raises a Lua error that says where (file:line), what was wrong
+-- and what is allowed; nothing crashes.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+
+-- Calls f from a Lua function (so that the error has a Lua caller to blame)
+-- and returns its error message, failing if it did not raise.
+local function error_of(f, ...)
+  local args = table.pack(...)
+  -- Not a tail call: the wrapper must stay on the stack as the caller.
+  local ok, message = pcall(function() f(table.unpack(args, 1, args.n)) end)
+  assert(not ok, "expected an error")
+  return tostring(message)
+end
+
+local function expect_error(fragments, f, ...)
+  local message = error_of(f, ...)
+  assert(message:match("errors_spec%.lua:%d+:"), "no file:line in: " .. message)
+  for _, fragment in ipairs(fragments) do
+    assert(message:find(fragment, 1, true), ("'%s' not in: %s"):format(fragment, message))
+  end
+end
+
+local cube_vertices = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 },
+                        { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 }, { 1, 1, 1 } }
+local cube_faces = { { 1, 3, 4, 2 }, { 5, 6, 8, 7 }, { 1, 2, 6, 5 }, { 3, 7, 8, 4 },
+                     { 1, 5, 7, 3 }, { 2, 4, 8, 6 } }
+
+local function without(list, index)
+  local out = {}
+  for i, v in ipairs(list) do if i ~= index then out[#out + 1] = v end end
+  return out
+end
+
+describe("argument errors", function()
+  it("names unknown options and lists the allowed ones", function()
+    expect_error({ "bad argument #1 to ", "unknown option 'colour'", "allowed: center, density, name, size" },
+      ashlar.box, { size = { 1, 1, 1 }, colour = 1 })
+    expect_error({ "unknown option 'tol'", "allowed: tolerance" },
+      function() ashlar.structure():interfaces{ tol = 1 } end)
+    expect_error({ "unknown option 'suport'" },
+      function() ashlar.structure():add(ashlar.box{ size = { 1, 1, 1 } }, { suport = true }) end)
+  end)
+
+  it("rejects wrong types, shapes, NaN and infinity", function()
+    expect_error({ "size: expected a table of 3 numbers", "got a table of length 2" }, ashlar.box, { size = { 1, 2 } })
+    expect_error({ "size[2]: expected a finite number, got nan" }, ashlar.box, { size = { 1, 0 / 0, 1 } })
+    expect_error({ "center[3]: expected a finite number, got inf" }, ashlar.box, { size = { 1, 1, 1 }, center = { 0, 0, math.huge } })
+    expect_error({ "expected an option table, got string" }, ashlar.box, "big")
+    expect_error({ "density: expected a number > 0" }, ashlar.box, { size = { 1, 1, 1 }, density = -5 })
+    expect_error({ "box size must be three positive" }, ashlar.box, { size = { 1, -1, 1 } })
+    expect_error({ "size: required" }, ashlar.box, {})
+    expect_error({ "angle: expected a number, got string" },
+      function() ashlar.box{ size = { 1, 1, 1 } }:rotated({ 0, 0, 1 }, "ninety") end)
+    expect_error({ "rotation axis must not be zero" },
+      function() ashlar.box{ size = { 1, 1, 1 } }:rotated({ 0, 0, 0 }, 1) end)
+  end)
+
+  it("says which block argument is wrong", function()
+    local s = ashlar.structure()
+    expect_error({ "bad argument #1 to 'add'", "Block expected, got number" }, function() s:add(5) end)
+    expect_error({ "bad argument #1 to 'add'", "Structure expected, got Block" }, function()
+      local b = ashlar.box{ size = { 1, 1, 1 } }
+      s.add(b, b)
+    end)
+    s:add(ashlar.box{ size = { 1, 1, 1 } }, { name = "a" })
+    expect_error({ "index 7 is out of range", "has 1 blocks" }, function() s:block(7) end)
+    expect_error({ "no block is named 'b'" }, function() s:add_load{ block = "b", force = { 0, 0, 1 } } end)
+    expect_error({ "force: required" }, function() s:add_load{ block = 1 } end)
+    expect_error({ "name 'a' is already used" }, function() s:add(ashlar.box{ size = { 1, 1, 1 } }, { name = "a" }) end)
+    s:add(ashlar.box{ size = { 1, 1, 1 } }, { support = true, name = "g" })
+    expect_error({ "is a support" }, function() s:add_load{ block = "g", force = { 0, 0, 1 } } end)
+  end)
+
+  it("explains invalid geometry", function()
+    expect_error({ "block 'open' is not a valid block", "open surface" },
+      ashlar.block, { vertices = cube_vertices, faces = without(cube_faces, 6), name = "open" })
+    local inverted = {}
+    for i, f in ipairs(cube_faces) do inverted[i] = { f[4], f[3], f[2], f[1] } end
+    expect_error({ "inverted" }, ashlar.block, { vertices = cube_vertices, faces = inverted })
+    expect_error({ "faces[2][3]: expected a vertex index" },
+      ashlar.block, { vertices = cube_vertices, faces = { { 1, 2, 3 }, { 1, 2, "x" } } })
+    expect_error({ "refers to vertex 9" },
+      ashlar.block, { vertices = cube_vertices, faces = { { 1, 3, 4, 9 }, table.unpack(cube_faces, 2) } })
+    expect_error({ "needs 'vertices' and 'faces'" }, ashlar.block, { vertices = cube_vertices })
+    expect_error({ "hull", "coplanar" }, ashlar.hull, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } })
+    expect_error({ "lies in the polygon's plane" }, ashlar.prism, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }, { 1, 1, 0 })
+    expect_error({ "equal vertex counts" }, ashlar.loft,
+      { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }, { { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } })
+  end)
+
+  it("reports files that cannot be read or written", function()
+    expect_error({ "/nonexistent/x.json" }, ashlar.load, "/nonexistent/x.json")
+    expect_error({ "/nonexistent/y.obj" }, ashlar.import, "/nonexistent/y.obj")
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 1, 1, 1 } })
+    expect_error({ "/nonexistent/dir/s.json" }, function() s:save("/nonexistent/dir/s.json") end)
+    expect_error({ ".xyz", "glb" }, ashlar.export, s, os.tmpname() .. ".xyz")
+    expect_error({ "color: colour components must lie in [0, 1]" }, ashlar.export, s, "x.glb", { color = { 2, 0, 0 } })
+    expect_error({ "color.values: needs one value per block (1), got 2" }, ashlar.export, s, "x.glb",
+      { color = { values = { 1, 2 } } })
+    expect_error({ "support: expected a name pattern" }, ashlar.import, "x.obj", { support = 3 })
+  end)
+
+  it("rejects bad model options with the generator's name", function()
+    expect_error({ "models.wall: unknown option 'lenght'", "allowed:" }, models.wall, { lenght = 3 })
+    expect_error({ "models.wall: bond: 'flemish' is not one of running, stack" }, models.wall, { bond = "flemish" })
+    expect_error({ "models.wall: length 4.81 is not a whole number of bricks" }, models.wall, { length = 4.81 })
+    expect_error({ "models.wall: thickness: must be > 0" }, models.wall, { thickness = 0 })
+  end)
+
+  it("reports a closed object instead of using it", function()
+    local b = ashlar.box{ size = { 1, 1, 1 } }
+    getmetatable(b).__close(b)
+    getmetatable(b).__close(b)  -- idempotent
+    expect_error({ "attempt to use a closed Block" }, function() return b:volume() end)
+  end)
+end)
