@@ -1,0 +1,181 @@
+// Mesh import through assimp: every scene node that carries polygon meshes
+// becomes one block, in world coordinates. Files such as STL repeat each
+// vertex per triangle, and assimp's own JoinIdenticalVertices keeps vertices
+// with different normals apart, so the raw polygons go to block_from_mesh,
+// which welds by position alone, merges coplanar triangles and validates.
+//
+// Axes: glTF is +Y up by specification, ashlar is +Z up, so glTF/GLB scenes
+// are rotated (x, y, z) -> (x, -z, y) on import (the inverse of export).
+// Other formats carry no convention and are taken as they are.
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "geometry/block_builders.hpp"
+#include "io/mesh_io.hpp"
+
+namespace ashlar {
+namespace {
+
+// One node's meshes joined into a polygon soup in world coordinates.
+struct RawObject {
+  std::string name;
+  std::vector<Vec3> vertices;
+  std::vector<FaceLoop> faces;
+};
+
+Eigen::Matrix4d to_matrix(const aiMatrix4x4& m) {
+  Eigen::Matrix4d result;
+  result << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
+      m.d3, m.d4;
+  return result;
+}
+
+std::string lower_case(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+bool is_gltf(const std::string& path) {
+  const std::string lower = lower_case(path);
+  auto ends_with = [&](const std::string& suffix) {
+    return lower.size() >= suffix.size() &&
+           lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  return ends_with(".gltf") || ends_with(".glb");
+}
+
+// Assimp names nodes it had to invent "<STL_BINARY>", "<PLY_Root>" and the
+// like; those say nothing about the object, so they count as no name.
+std::string meaningful_name(const aiString& name) {
+  const std::string text = name.C_Str();
+  if (text.size() >= 2 && text.front() == '<' && text.back() == '>') return {};
+  return text;
+}
+
+class SceneWalker {
+public:
+  SceneWalker(const aiScene& scene, bool y_up) : scene_(scene), y_up_(y_up) {}
+
+  std::vector<RawObject> objects(const aiNode& root) {
+    walk(root, Eigen::Matrix4d::Identity());
+    return std::move(objects_);
+  }
+
+private:
+  void walk(const aiNode& node, const Eigen::Matrix4d& parent_to_world) {
+    const Eigen::Matrix4d to_world = parent_to_world * to_matrix(node.mTransformation);
+    if (node.mNumMeshes > 0) add_object(node, to_world);
+    for (unsigned c = 0; c < node.mNumChildren; ++c) walk(*node.mChildren[c], to_world);
+  }
+
+  Vec3 world_point(const Eigen::Matrix4d& to_world, const aiVector3D& p) const {
+    const Vec3 q = (to_world * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
+    return y_up_ ? Vec3(q.x(), -q.z(), q.y()) : q;
+  }
+
+  void add_object(const aiNode& node, const Eigen::Matrix4d& to_world) {
+    RawObject object;
+    object.name = meaningful_name(node.mName);
+    for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+      const aiMesh& mesh = *scene_.mMeshes[node.mMeshes[m]];
+      if (object.name.empty()) object.name = meaningful_name(mesh.mName);
+      const int offset = static_cast<int>(object.vertices.size());
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        object.vertices.push_back(world_point(to_world, mesh.mVertices[v]));
+      }
+      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        // Points and lines (e.g. OBJ "l" records) bound no volume.
+        if (face.mNumIndices < 3) continue;
+        FaceLoop loop(face.mIndices, face.mIndices + face.mNumIndices);
+        for (int& index : loop) index += offset;
+        object.faces.push_back(std::move(loop));
+      }
+    }
+    if (object.faces.empty()) return;
+    if (object.name.empty()) object.name = "object " + std::to_string(objects_.size() + 1);
+    objects_.push_back(std::move(object));
+  }
+
+  const aiScene& scene_;
+  bool y_up_;
+  std::vector<RawObject> objects_;
+};
+
+// Repeated names get "#2", "#3", ... so that every block keeps its own name.
+void make_names_unique(std::vector<RawObject>& objects) {
+  std::map<std::string, int> uses;
+  for (const RawObject& object : objects) uses[object.name] = 0;
+  for (RawObject& object : objects) {
+    int& count = uses[object.name];
+    if (++count == 1) continue;
+    std::string candidate;
+    do {
+      candidate = object.name + "#" + std::to_string(count++);
+    } while (uses.count(candidate) > 0);
+    uses[candidate] = 1;
+    object.name = candidate;
+  }
+}
+
+void check_options(const ImportOptions& options) {
+  if (!std::isfinite(options.density) || options.density <= 0) {
+    std::ostringstream message;
+    message << "import: density must be a positive number (kg/m^3), got " << options.density;
+    throw InvalidArgument(message.str());
+  }
+  if (!std::isfinite(options.relative_weld_tolerance) || options.relative_weld_tolerance < 0) {
+    std::ostringstream message;
+    message << "import: relative_weld_tolerance must be a number >= 0, got "
+            << options.relative_weld_tolerance;
+    throw InvalidArgument(message.str());
+  }
+}
+
+}  // namespace
+
+std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOptions& options) {
+  check_options(options);
+  Assimp::Importer importer;
+  // No JoinIdenticalVertices and no Triangulate: welding is by position in
+  // block_from_mesh, and polygon faces are kept as they are.
+  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  if (scene == nullptr) {
+    throw IoError("cannot import '" + path + "': " + importer.GetErrorString());
+  }
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr) {
+    throw IoError("cannot import '" + path + "': the file holds no complete scene");
+  }
+
+  std::vector<RawObject> objects = SceneWalker(*scene, is_gltf(path)).objects(*scene->mRootNode);
+  if (objects.empty()) throw IoError("cannot import '" + path + "': it contains no polygon mesh");
+  make_names_unique(objects);
+
+  Box3 bounds;
+  for (const RawObject& object : objects) {
+    for (const Vec3& v : object.vertices) bounds.add(v);
+  }
+  const double weld_tolerance = options.relative_weld_tolerance * bounds.diagonal();
+
+  std::vector<ImportedBlock> blocks;
+  blocks.reserve(objects.size());
+  for (const RawObject& object : objects) {
+    const BlockStyle style{options.density, object.name};
+    blocks.push_back({object.name,
+                      block_from_mesh(object.vertices, object.faces, weld_tolerance, style,
+                                      "object '" + object.name + "' in '" + path + "'")});
+  }
+  return blocks;
+}
+
+}  // namespace ashlar

@@ -1,0 +1,341 @@
+// The structure file format (docs/structure-format.md) with nlohmann_json.
+// Doubles are written in nlohmann's shortest round-trip form and read back
+// with correct rounding, so a save/load cycle reproduces every coordinate
+// bit for bit. Reading is strict: every defect is reported with the path of
+// the offending entry, e.g. "blocks[3].vertices[2]: expected 3 numbers".
+#include "io/structure_json.hpp"
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace ashlar {
+namespace {
+
+// ordered_json keeps fields in the order written, so files read top-down.
+using json = nlohmann::ordered_json;
+
+constexpr const char* kFormatName = "ashlar-structure";
+
+json vec3_to_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+std::string scalar_text(const json& value) {
+  return value.dump(-1, ' ', false, json::error_handler_t::strict);
+}
+
+// JSON text is UTF-8; nlohmann's strict dump refuses anything else.
+bool is_valid_utf8(const json& text) {
+  try {
+    scalar_text(text);
+    return true;
+  } catch (const json::type_error&) {
+    return false;
+  }
+}
+
+// "[x, y, z]": arrays of scalars on one line.
+std::string inline_array(const json& array) {
+  std::string text = "[";
+  for (size_t i = 0; i < array.size(); ++i) text += (i > 0 ? ", " : "") + scalar_text(array[i]);
+  return text + "]";
+}
+
+// Objects one key per line, arrays of scalars on one line, arrays of arrays
+// one element per line: a vertex or a face reads as one line of the file.
+void write_pretty(const json& value, int indent, std::string& out) {
+  const std::string pad(static_cast<size_t>(indent) * 2, ' ');
+  const std::string inner_pad = pad + "  ";
+  if (value.is_object() && !value.empty()) {
+    out += "{\n";
+    bool first = true;
+    for (const auto& [key, item] : value.items()) {
+      if (!first) out += ",\n";
+      first = false;
+      out += inner_pad + json(key).dump() + ": ";
+      write_pretty(item, indent + 1, out);
+    }
+    out += "\n" + pad + "}";
+  } else if (value.is_array() && !value.empty() &&
+             (value.front().is_array() || value.front().is_object())) {
+    out += "[\n";
+    for (size_t i = 0; i < value.size(); ++i) {
+      if (i > 0) out += ",\n";
+      out += inner_pad;
+      if (value[i].is_array()) {
+        out += inline_array(value[i]);
+      } else {
+        write_pretty(value[i], indent + 1, out);
+      }
+    }
+    out += "\n" + pad + "]";
+  } else if (value.is_array()) {
+    out += inline_array(value);
+  } else {
+    out += scalar_text(value);
+  }
+}
+
+// Reads the document, throwing IoError "<source>: <where>: <problem>".
+class Reader {
+public:
+  explicit Reader(std::string source_name) : source_(std::move(source_name)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
+    throw IoError(source_ + ": " + (where.empty() ? "" : where + ": ") + problem);
+  }
+
+  const json& member(const json& object, const char* key, const std::string& where) const {
+    const auto found = object.find(key);
+    if (found == object.end()) fail(where, std::string("missing field '") + key + "'");
+    return *found;
+  }
+
+  void expect_object(const json& value, const std::string& where) const {
+    if (!value.is_object()) fail(where, "expected an object, got " + describe(value));
+  }
+
+  void expect_array(const json& value, const std::string& where) const {
+    if (!value.is_array()) fail(where, "expected an array, got " + describe(value));
+  }
+
+  void reject_unknown_keys(const json& object, const std::set<std::string>& allowed,
+                           const std::string& where) const {
+    for (const auto& item : object.items()) {
+      if (allowed.count(item.key()) == 0) {
+        std::string names;
+        for (const auto& name : allowed) names += (names.empty() ? "" : ", ") + name;
+        fail(where, "unknown field '" + item.key() + "' (allowed: " + names + ")");
+      }
+    }
+  }
+
+  // Numbers are finite here: the parser rejects NaN, Infinity and overflow.
+  double number(const json& value, const std::string& where) const {
+    if (!value.is_number()) fail(where, "expected a number, got " + describe(value));
+    return value.get<double>();
+  }
+
+  Vec3 vec3(const json& value, const std::string& where) const {
+    if (!value.is_array() || value.size() != 3 || !value[0].is_number() ||
+        !value[1].is_number() || !value[2].is_number()) {
+      fail(where, "expected 3 numbers, got " + describe(value));
+    }
+    return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+  }
+
+  // A 0-based index below `count`; `what` names what it indexes.
+  int index(const json& value, size_t count, const std::string& what,
+            const std::string& where) const {
+    if (!value.is_number_integer()) {
+      fail(where, "expected an integer index, got " + describe(value));
+    }
+    const bool negative = !value.is_number_unsigned() && value.get<std::int64_t>() < 0;
+    if (negative || value.get<std::uint64_t>() >= count) {
+      fail(where, "index " + value.dump() + " is out of range (" + std::to_string(count) + " " +
+                      what + ", 0-based)");
+    }
+    return static_cast<int>(value.get<std::uint64_t>());
+  }
+
+  const std::string& source() const { return source_; }
+
+private:
+  static std::string describe(const json& value) {
+    std::string text = value.dump();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return std::string(value.type_name()) + " " + text;
+  }
+
+  std::string source_;
+};
+
+void check_header(const Reader& reader, const json& root) {
+  const json& format = reader.member(root, "format", "");
+  if (!format.is_string() || format.get<std::string>() != kFormatName) {
+    reader.fail("format", "not an ashlar structure file (format is " + format.dump() +
+                              ", expected \"" + kFormatName + "\")");
+  }
+  const json& version = reader.member(root, "version", "");
+  if (!version.is_number_integer() || version.get<std::int64_t>() != kStructureFormatVersion) {
+    reader.fail("version", "unsupported version " + version.dump() + " (this build reads version " +
+                               std::to_string(kStructureFormatVersion) + ")");
+  }
+  const auto units = root.find("units");
+  if (units == root.end()) return;
+  reader.expect_object(*units, "units");
+  reader.reject_unknown_keys(*units, {"length", "mass", "force"}, "units");
+  const std::pair<const char*, const char*> supported[] = {
+      {"length", "m"}, {"mass", "kg"}, {"force", "N"}};
+  for (const auto& [quantity, unit] : supported) {
+    const auto given = units->find(quantity);
+    if (given != units->end() && *given != unit) {
+      reader.fail(std::string("units.") + quantity,
+                  "unsupported unit " + given->dump() + " (only \"" + unit + "\" is supported)");
+    }
+  }
+}
+
+void read_block(const Reader& reader, const json& entry, int i, Structure& structure) {
+  const std::string where = "blocks[" + std::to_string(i) + "]";
+  reader.expect_object(entry, where);
+  reader.reject_unknown_keys(entry, {"name", "support", "density", "vertices", "faces"}, where);
+
+  std::string name;
+  if (const auto found = entry.find("name"); found != entry.end()) {
+    if (!found->is_string()) reader.fail(where + ".name", "expected a string");
+    name = found->get<std::string>();
+  }
+  bool support = false;
+  if (const auto found = entry.find("support"); found != entry.end()) {
+    if (!found->is_boolean()) reader.fail(where + ".support", "expected true or false");
+    support = found->get<bool>();
+  }
+  double density = kDefaultDensity;
+  if (const auto found = entry.find("density"); found != entry.end()) {
+    density = reader.number(*found, where + ".density");
+    if (density <= 0) reader.fail(where + ".density", "must be positive (kg/m^3)");
+  }
+
+  const json& vertex_list = reader.member(entry, "vertices", where);
+  reader.expect_array(vertex_list, where + ".vertices");
+  std::vector<Vec3> vertices;
+  vertices.reserve(vertex_list.size());
+  for (size_t v = 0; v < vertex_list.size(); ++v) {
+    vertices.push_back(
+        reader.vec3(vertex_list[v], where + ".vertices[" + std::to_string(v) + "]"));
+  }
+
+  const json& face_list = reader.member(entry, "faces", where);
+  reader.expect_array(face_list, where + ".faces");
+  std::vector<FaceLoop> faces;
+  faces.reserve(face_list.size());
+  for (size_t f = 0; f < face_list.size(); ++f) {
+    const std::string face_where = where + ".faces[" + std::to_string(f) + "]";
+    reader.expect_array(face_list[f], face_where);
+    FaceLoop loop;
+    for (size_t k = 0; k < face_list[f].size(); ++k) {
+      loop.push_back(reader.index(face_list[f][k], vertices.size(), "vertices",
+                                  face_where + "[" + std::to_string(k) + "]"));
+    }
+    faces.push_back(std::move(loop));
+  }
+
+  const std::string label = where + (name.empty() ? "" : " ('" + name + "')");
+  BlockPtr block;
+  try {
+    block = std::make_shared<const Block>(std::move(vertices), std::move(faces), density, name);
+  } catch (const GeometryError& e) {
+    throw GeometryError(reader.source() + ": " + label + ": " + e.what());
+  }
+  try {
+    structure.add(std::move(block), support, name);
+  } catch (const InvalidArgument& e) {
+    reader.fail(label, e.what());
+  }
+}
+
+void read_load(const Reader& reader, const json& entry, int i, Structure& structure) {
+  const std::string where = "loads[" + std::to_string(i) + "]";
+  reader.expect_object(entry, where);
+  reader.reject_unknown_keys(entry, {"block", "force", "at"}, where);
+  PointLoad load;
+  load.block = reader.index(reader.member(entry, "block", where), structure.size(), "blocks",
+                            where + ".block");
+  load.force = reader.vec3(reader.member(entry, "force", where), where + ".force");
+  load.at = reader.vec3(reader.member(entry, "at", where), where + ".at");
+  try {
+    structure.add_load(load);
+  } catch (const InvalidArgument& e) {
+    reader.fail(where, e.what());
+  }
+}
+
+}  // namespace
+
+std::string structure_to_json(const Structure& structure) {
+  json blocks = json::array();
+  for (int i = 0; i < structure.size(); ++i) {
+    const Block& block = structure.block(i);
+    json vertices = json::array();
+    for (const Vec3& v : block.vertices()) vertices.push_back(vec3_to_json(v));
+    json faces = json::array();
+    for (const FaceLoop& loop : block.faces()) faces.push_back(loop);
+    json entry;
+    entry["name"] = structure.name(i);
+    if (!is_valid_utf8(entry["name"])) {
+      throw InvalidArgument("cannot save the structure: the name of block " +
+                            std::to_string(i + 1) + " is not valid UTF-8 text");
+    }
+    entry["support"] = structure.is_support(i);
+    entry["density"] = block.density();
+    entry["vertices"] = std::move(vertices);
+    entry["faces"] = std::move(faces);
+    blocks.push_back(std::move(entry));
+  }
+  json loads = json::array();
+  for (const PointLoad& load : structure.loads()) {
+    json entry;
+    entry["block"] = load.block;
+    entry["force"] = vec3_to_json(load.force);
+    entry["at"] = vec3_to_json(load.at);
+    loads.push_back(std::move(entry));
+  }
+  json root;
+  root["format"] = kFormatName;
+  root["version"] = kStructureFormatVersion;
+  root["units"] = {{"length", "m"}, {"mass", "kg"}, {"force", "N"}};
+  root["blocks"] = std::move(blocks);
+  root["loads"] = std::move(loads);
+  std::string text;
+  write_pretty(root, 0, text);
+  return text + "\n";
+}
+
+Structure structure_from_json(const std::string& text, const std::string& source_name) {
+  const Reader reader(source_name);
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::exception& e) {
+    // Syntax errors and numbers beyond the double range ("1e999") land here.
+    // Drop nlohmann's "[json.exception.parse_error.101] " prefix.
+    std::string message = e.what();
+    if (const auto end = message.find("] "); end != std::string::npos) {
+      message = message.substr(end + 2);
+    }
+    reader.fail("", "not valid JSON: " + message);
+  }
+  reader.expect_object(root, "top level");
+  // Format and version first: a file of another kind or a later version is
+  // reported as such, not by its first unknown field.
+  check_header(reader, root);
+  reader.reject_unknown_keys(root, {"format", "version", "units", "blocks", "loads"},
+                             "top level");
+
+  Structure structure;
+  const json& blocks = reader.member(root, "blocks", "");
+  reader.expect_array(blocks, "blocks");
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    read_block(reader, blocks[i], static_cast<int>(i), structure);
+  }
+  if (const auto loads = root.find("loads"); loads != root.end()) {
+    reader.expect_array(*loads, "loads");
+    for (size_t i = 0; i < loads->size(); ++i) {
+      read_load(reader, (*loads)[i], static_cast<int>(i), structure);
+    }
+  }
+  return structure;
+}
+
+void save_structure(const Structure& structure, const std::string& path) {
+  write_file_atomically(path, structure_to_json(structure));
+}
+
+Structure load_structure(const std::string& path) {
+  return structure_from_json(read_file(path), path);
+}
+
+}  // namespace ashlar
