@@ -1,0 +1,395 @@
+// The `ashlar` host program: a Lua 5.4 stand-alone interpreter in the manner of
+// Lua's own lua.c, with the ashlar library preloaded and the model library and
+// the script's own folder on package.path.
+//
+// It links the C++ build of Lua, so a Lua error unwinds C++ frames as an
+// exception: locals with destructors are safe in every function below.
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+#include <lua.hpp>
+
+#include "ashlar_lua.hpp"
+#include "core/version.hpp"
+
+namespace {
+
+const char* const kProgramName = "ashlar";
+const char* const kErrorPrefix = "ashlar: ";
+
+// What the options before the script asked for. Options are checked here,
+// before Lua starts, and acted on in order later (-e and -l run in sequence).
+struct CommandLine {
+  int argc = 0;
+  char** argv = nullptr;
+  int script = 0;  // index in argv of the script name; argc when there is none
+  bool interactive = false;
+  bool show_version = false;
+  bool has_chunk = false;  // at least one -e
+  bool show_help = false;
+  std::string error;  // set when the options are wrong
+};
+
+void print_usage(FILE* out) {
+  std::fprintf(out,
+      "usage: %s [options] [script [args]]\n"
+      "Available options are:\n"
+      "  -e stat    execute string 'stat'\n"
+      "  -i         enter interactive mode after executing 'script'\n"
+      "  -l mod     require library 'mod' into global 'mod'\n"
+      "  -l g=mod   require library 'mod' into global 'g'\n"
+      "  -v         show version information\n"
+      "  -W         turn warnings on\n"
+      "  --         stop handling options\n"
+      "  -          stop handling options and execute stdin\n"
+      "  --help     show this help\n"
+      "  --version  show version information\n"
+      "With no script and no -e, %s reads statements interactively when stdin\n"
+      "is a terminal, and runs stdin as a script otherwise.\n",
+      kProgramName, kProgramName);
+}
+
+void print_version() {
+  std::printf("%s %s (%s)\n", kProgramName, ashlar::version(), LUA_VERSION);
+  std::fflush(stdout);
+}
+
+// Options stop at the first argument that is not one, as in lua.c: the rest
+// belong to the script.
+CommandLine parse_command_line(int argc, char** argv) {
+  CommandLine command_line;
+  command_line.argc = argc;
+  command_line.argv = argv;
+  int i = 1;
+  for (; i < argc; ++i) {
+    const char* option = argv[i];
+    if (option[0] != '-') break;  // the script
+    if (std::strcmp(option, "-") == 0) break;  // the script is stdin
+    if (std::strcmp(option, "--") == 0) {
+      ++i;
+      break;
+    }
+    if (std::strcmp(option, "--help") == 0) {
+      command_line.show_help = true;
+    } else if (std::strcmp(option, "--version") == 0 || std::strcmp(option, "-v") == 0) {
+      command_line.show_version = true;
+    } else if (std::strcmp(option, "-i") == 0) {
+      command_line.interactive = true;
+      command_line.show_version = true;
+    } else if (std::strcmp(option, "-W") == 0) {
+      // acted on in run_options
+    } else if (option[1] == 'e' || option[1] == 'l') {
+      command_line.has_chunk |= option[1] == 'e';
+      if (option[2] == '\0') {  // the argument is the next word, not "-estat"
+        ++i;
+        if (i == argc || argv[i][0] == '-') {
+          command_line.error = std::string("'") + option + "' needs argument";
+          break;
+        }
+      }
+    } else {
+      command_line.error = std::string("unrecognized option '") + option + "'";
+      break;
+    }
+  }
+  command_line.script = i;
+  return command_line;
+}
+
+// The state running a chunk, for the SIGINT handler; chunks run one at a time.
+lua_State* g_running_state = nullptr;
+
+void stop_at_hook(lua_State* L, lua_Debug*) {
+  lua_sethook(L, nullptr, 0, 0);
+  luaL_error(L, "interrupted!");
+}
+
+// A signal handler may not touch the Lua state except to set a hook, so the
+// error is raised from the hook at the next instruction Lua runs.
+void on_interrupt(int signal_number) {
+  std::signal(signal_number, SIG_DFL);  // a second Ctrl-C kills a script stuck in C code
+  lua_sethook(g_running_state, stop_at_hook,
+              LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+}
+
+int add_traceback(lua_State* L) {
+  const char* message = lua_tostring(L, 1);
+  if (message == nullptr) {
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+      message = lua_tostring(L, -1);
+    else
+      message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  }
+  luaL_traceback(L, L, message, 1);
+  return 1;
+}
+
+// lua_pcall with a traceback on errors and Ctrl-C turned into a Lua error.
+// Expects the function and its arguments on the stack, like lua_pcall.
+int call_with_traceback(lua_State* L, int argument_count, int result_count) {
+  const int handler_index = lua_gettop(L) - argument_count;
+  lua_pushcfunction(L, add_traceback);
+  lua_insert(L, handler_index);
+  g_running_state = L;
+  std::signal(SIGINT, on_interrupt);
+  const int status = lua_pcall(L, argument_count, result_count, handler_index);
+  std::signal(SIGINT, SIG_DFL);
+  lua_remove(L, handler_index);
+  return status;
+}
+
+// Prints the error object on top of the stack and pops it; returns the status.
+int report(lua_State* L, int status, const char* prefix = kErrorPrefix) {
+  if (status == LUA_OK) return status;
+  const int error_index = lua_gettop(L);
+  const char* message = lua_tostring(L, error_index);
+  if (message == nullptr)  // not raised through add_traceback
+    message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, error_index));
+  std::fflush(stdout);  // what the script wrote comes before its error in a shared log
+  std::fprintf(stderr, "%s%s\n", prefix, message);
+  std::fflush(stderr);
+  lua_settop(L, error_index - 1);
+  return status;
+}
+
+// Runs the chunk that a load left on the stack, or reports the load's error.
+int run_loaded_chunk(lua_State* L, int load_status) {
+  const int status = load_status == LUA_OK ? call_with_traceback(L, 0, 0) : load_status;
+  return report(L, status);
+}
+
+int run_string(lua_State* L, const char* chunk) {
+  return run_loaded_chunk(L, luaL_loadbuffer(L, chunk, std::strlen(chunk), "=(command line)"));
+}
+
+// `-l mod` sets global mod = require "mod"; `-l g=mod` sets global g instead.
+int require_into_global(lua_State* L, const char* specification) {
+  const char* equals = std::strchr(specification, '=');
+  const std::string global = equals ? std::string(specification, equals) : specification;
+  const char* module = equals ? equals + 1 : specification;
+  lua_getglobal(L, "require");
+  lua_pushstring(L, module);
+  const int status = call_with_traceback(L, 1, 1);
+  if (status == LUA_OK) lua_setglobal(L, global.c_str());
+  return report(L, status);
+}
+
+// Runs -e, -l and -W in the order given; false after the first failure.
+bool run_options(lua_State* L, const CommandLine& command_line) {
+  for (int i = 1; i < command_line.script; ++i) {
+    const char* option = command_line.argv[i];
+    if (std::strcmp(option, "-W") == 0) {
+      lua_warning(L, "@on", 0);
+      continue;
+    }
+    if (option[1] != 'e' && option[1] != 'l') continue;
+    const char* value = option[2] != '\0' ? option + 2 : command_line.argv[++i];
+    const int status = option[1] == 'e' ? run_string(L, value) : require_into_global(L, value);
+    if (status != LUA_OK) return false;
+  }
+  return true;
+}
+
+bool script_is_stdin(const CommandLine& command_line) {
+  const int script = command_line.script;
+  // `ashlar -- -` names a file called "-".
+  return std::strcmp(command_line.argv[script], "-") == 0 &&
+         std::strcmp(command_line.argv[script - 1], "--") != 0;
+}
+
+// Lets a script `require` the modules beside it wherever it is run from.
+void prepend_script_folder_to_path(lua_State* L, const char* script) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::path(script).parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ignored;  // a relative folder still works while the cwd stays
+  const fs::path absolute = fs::absolute(folder, ignored);
+  if (!absolute.empty()) folder = absolute.lexically_normal();
+  std::string directory = folder.string();
+  if (directory.size() > 1 && directory.back() == '/') directory.pop_back();
+
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "path");
+  const std::string path = directory + "/?.lua;" + directory + "/?/init.lua;" +
+                           (lua_tostring(L, -1) ? lua_tostring(L, -1) : "");
+  lua_pop(L, 1);
+  lua_pushlstring(L, path.data(), path.size());
+  lua_setfield(L, -2, "path");
+  lua_pop(L, 1);
+}
+
+// Global `arg` as lua.c builds it: arg[0] is the script, arg[1..] its
+// arguments, negative indices the interpreter and the options before it.
+void create_arg_table(lua_State* L, const CommandLine& command_line) {
+  const int script = command_line.script < command_line.argc ? command_line.script : 0;
+  lua_createtable(L, command_line.argc - script - 1, script + 1);
+  for (int i = 0; i < command_line.argc; ++i) {
+    lua_pushstring(L, command_line.argv[i]);
+    lua_rawseti(L, -2, i - script);
+  }
+  lua_setglobal(L, "arg");
+}
+
+int run_script(lua_State* L, const CommandLine& command_line) {
+  const char* file_name = script_is_stdin(command_line) ? nullptr : command_line.argv[command_line.script];
+  int status = luaL_loadfile(L, file_name);
+  if (status == LUA_OK) {
+    const int first_argument = command_line.script + 1;
+    const int argument_count = command_line.argc - first_argument;
+    luaL_checkstack(L, argument_count + 3, "too many arguments to script");
+    for (int i = first_argument; i < command_line.argc; ++i) lua_pushstring(L, command_line.argv[i]);
+    status = call_with_traceback(L, argument_count, LUA_MULTRET);
+  }
+  return report(L, status);
+}
+
+// Reads one line without its newline; false at end of input.
+bool read_line(const char* prompt, std::string& line) {
+  std::fputs(prompt, stdout);
+  std::fflush(stdout);
+  line.clear();
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, stdin) != nullptr) {
+    line += buffer;
+    if (line.back() == '\n') {
+      line.pop_back();
+      return true;
+    }
+  }
+  return !line.empty();
+}
+
+// A syntax error that ends at "<eof>" means the statement goes on.
+bool is_incomplete(lua_State* L, int status) {
+  if (status != LUA_ERRSYNTAX) return false;
+  static const char kEofMark[] = "<eof>";
+  constexpr size_t kEofMarkLength = sizeof kEofMark - 1;
+  size_t length = 0;
+  const char* message = lua_tolstring(L, -1, &length);
+  return length >= kEofMarkLength && std::strcmp(message + length - kEofMarkLength, kEofMark) == 0;
+}
+
+constexpr int kEndOfInput = -1;
+
+// Compiles what is typed at the prompt: an expression (so its value gets
+// printed) if it is one, else a statement, reading more lines while it is
+// incomplete. Leaves the function or an error message on the stack.
+int load_typed_chunk(lua_State* L) {
+  std::string line;
+  if (!read_line("> ", line)) return kEndOfInput;
+  const std::string as_expression = "return " + line;
+  if (luaL_loadbuffer(L, as_expression.data(), as_expression.size(), "=stdin") == LUA_OK)
+    return LUA_OK;
+  lua_pop(L, 1);
+  std::string chunk = line;
+  for (;;) {
+    const int status = luaL_loadbuffer(L, chunk.data(), chunk.size(), "=stdin");
+    if (!is_incomplete(L, status) || !read_line(">> ", line)) return status;
+    lua_pop(L, 1);
+    chunk += '\n';
+    chunk += line;
+  }
+}
+
+// Prints the values left above `base` with the global print.
+void print_results(lua_State* L, int base) {
+  const int count = lua_gettop(L) - base;
+  if (count == 0) return;
+  luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
+  lua_getglobal(L, "print");
+  lua_insert(L, base + 1);
+  if (lua_pcall(L, count, 0, 0) != LUA_OK) {
+    lua_pushfstring(L, "error calling 'print' (%s)", lua_tostring(L, -1));
+    report(L, LUA_ERRRUN);
+    lua_pop(L, 1);
+  }
+}
+
+// Errors typed at the prompt print without the program name, as in lua.c.
+void run_interactive(lua_State* L) {
+  const int base = lua_gettop(L);
+  int status;
+  while ((status = load_typed_chunk(L)) != kEndOfInput) {
+    if (status == LUA_OK) status = call_with_traceback(L, 0, LUA_MULTRET);
+    if (status == LUA_OK)
+      print_results(L, base);
+    else
+      report(L, status, "");
+    lua_settop(L, base);
+  }
+  std::fputs("\n", stdout);
+  std::fflush(stdout);
+}
+
+// Everything that touches Lua runs in here, under lua_pcall, so that even a
+// memory error during set-up is reported instead of aborting.
+int run_host(lua_State* L) {
+  const auto& command_line = *static_cast<const CommandLine*>(lua_touserdata(L, 1));
+  luaL_checkversion(L);
+  luaL_openlibs(L);
+  // The same collector mode as stock lua5.4, so scripts time alike in both.
+  lua_gc(L, LUA_GCGEN, 0, 0);
+
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "preload");
+  lua_pushcfunction(L, ashlar_open_library);
+  lua_setfield(L, -2, "ashlar");
+  lua_pop(L, 2);
+  ashlar_add_model_path(L);
+  const bool has_script = command_line.script < command_line.argc;
+  if (has_script && !script_is_stdin(command_line))
+    prepend_script_folder_to_path(L, command_line.argv[command_line.script]);
+  create_arg_table(L, command_line);
+
+  if (command_line.show_version) print_version();
+  bool succeeded = run_options(L, command_line);
+  if (succeeded && has_script) succeeded = run_script(L, command_line) == LUA_OK;
+  if (succeeded) {
+    if (command_line.interactive) {
+      run_interactive(L);
+    } else if (!has_script && !command_line.has_chunk && !command_line.show_version) {
+      if (isatty(STDIN_FILENO)) {
+        print_version();
+        run_interactive(L);
+      } else {
+        succeeded = run_loaded_chunk(L, luaL_loadfile(L, nullptr)) == LUA_OK;
+      }
+    }
+  }
+  lua_pushboolean(L, succeeded);
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine command_line = parse_command_line(argc, argv);
+  if (!command_line.error.empty()) {
+    std::fprintf(stderr, "%s%s\n", kErrorPrefix, command_line.error.c_str());
+    print_usage(stderr);
+    return EXIT_FAILURE;
+  }
+  if (command_line.show_help) {
+    print_usage(stdout);
+    return EXIT_SUCCESS;
+  }
+  lua_State* L = luaL_newstate();
+  if (L == nullptr) {
+    std::fprintf(stderr, "%scannot create state: not enough memory\n", kErrorPrefix);
+    return EXIT_FAILURE;
+  }
+  lua_pushcfunction(L, run_host);
+  lua_pushlightuserdata(L, &command_line);
+  const int status = lua_pcall(L, 1, 1, 0);
+  const bool succeeded = status == LUA_OK && lua_toboolean(L, -1);
+  report(L, status);
+  lua_close(L);
+  return succeeded ? EXIT_SUCCESS : EXIT_FAILURE;
+}

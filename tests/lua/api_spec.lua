@@ -170,18 +170,35 @@ describe("structures", function()
     os.execute("rm -rf " .. dir)
   end)
 
-  it("exports glTF, OBJ, PLY and STL, and imports them back", function()
+  it("exports glTF and OBJ, and imports them back block by block", function()
     local dir = tmpdir()
     local s = stack()
-    for _, ext in ipairs{ "glb", "gltf", "obj", "ply", "stl" } do
+    for _, ext in ipairs{ "glb", "gltf", "obj" } do
       local path = dir .. "/stack." .. ext
       ashlar.export(s, path, { color = { 0.1, 0.5, 0.9 } })
       local t = ashlar.import(path, { support = "^block 1$" })
       assert.equal(4, #t, ext)
+      assert.is_true(t:is_support(1))
+      assert.equal("block 3", t:name(3))
       local volume = 0
       for i = 1, #t do volume = volume + t:block(i):volume() end
-      near(volume, 0.4 + 1.5, 1e-6)  -- glTF stores float32 coordinates
+      near(volume, 0.4 + 1.5, 1e-6)  -- mesh files store float32 coordinates
       assert.equal(3, #t:interfaces(), ext)
+    end
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("exports PLY and STL, which hold one mesh, and imports a single solid back", function()
+    local dir = tmpdir()
+    local s = ashlar.structure()
+    s:add(ashlar.prism({ { 0, 0, 0 }, { 3, 0, 0 }, { 3, 1, 0 }, { 1, 1, 0 }, { 1, 3, 0 }, { 0, 3, 0 } }, { 0, 0, 2 }))
+    for _, ext in ipairs{ "ply", "stl" } do
+      local path = dir .. "/l." .. ext
+      ashlar.export(s, path)
+      local t = ashlar.import(path)
+      assert.equal(1, #t, ext)
+      near(t:block(1):volume(), 10, 1e-5)
+      assert.equal(8, #t:block(1):faces(), ext)  -- triangles merged back into polygons
     end
     os.execute("rm -rf " .. dir)
   end)

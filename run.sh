@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for ashlar, builds it, and runs it.
+#   ./run.sh build              install what is missing, build (Release) into build/
+#   ./run.sh quickstart [dir]   build, then run scripts/quickstart.lua (output in dir, default build/out)
+#   ./run.sh test [args]        build, then run the test suite (args go to ctest)
+# Re-running is cheap: packages, npm tools and the CMake configuration are
+# only set up when missing. ASHLAR_JOBS sets the build's parallelism.
+set -euo pipefail
+
+cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")"
+
+readonly DEBIAN_PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
+  libassimp-dev liblbfgspp-dev libsqlite3-dev nlohmann-json3-dev
+  googletest libgtest-dev lua-busted
+  nodejs npm gnuplot-nox python3
+)
+# Node.js may come from outside Debian (NodeSource's nodejs bundles npm and
+# conflicts with Debian's npm): for these a working command is enough.
+declare -rA COMMAND_OF_PACKAGE=([nodejs]=node [npm]=npm)
+readonly BUILD_DIR=build
+
+say() { printf 'run.sh: %s\n' "$*"; }
+
+usage() {
+  printf 'usage:\n' >&2
+  sed -n '3,5s/^#//p' "${BASH_SOURCE[0]}" >&2
+  exit 1
+}
+
+missing_packages() {
+  local package status command
+  for package in "${DEBIAN_PACKAGES[@]}"; do
+    command=${COMMAND_OF_PACKAGE[$package]:-}
+    [[ -n $command ]] && command -v "$command" >/dev/null && continue
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
+    [[ $status == installed ]] || echo "$package"
+  done
+}
+
+install_packages() {
+  if ! command -v dpkg-query >/dev/null; then
+    say "no dpkg-query: not a Debian system, assuming the build tools are installed"
+    return
+  fi
+  local missing
+  mapfile -t missing < <(missing_packages)
+  ((${#missing[@]} == 0)) && return
+  say "installing ${missing[*]}"
+  local as_root=()
+  if ((EUID != 0)); then
+    command -v sudo >/dev/null || { say "not root and no sudo: install ${missing[*]} by hand" >&2; exit 1; }
+    as_root=(sudo)
+  fi
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+# The glTF validator used by the export tests.
+install_node_tools() {
+  local tools=tests/tools
+  [[ -f $tools/package.json && ! -d $tools/node_modules ]] || return 0
+  say "installing node tools in $tools"
+  (cd "$tools" && npm ci --no-audit --no-fund)
+}
+
+build() {
+  if [[ ! -f $BUILD_DIR/build.ninja ]]; then
+    say "configuring $BUILD_DIR/"
+    cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+  fi
+  say "building"
+  cmake --build "$BUILD_DIR" -j "${ASHLAR_JOBS:-$(nproc)}"
+}
+
+set_up_and_build() {
+  install_packages
+  install_node_tools
+  build
+}
+
+(($# >= 1)) || usage
+mode=$1
+shift
+case $mode in
+  build)
+    set_up_and_build
+    ;;
+  quickstart)
+    set_up_and_build
+    mkdir -p "$BUILD_DIR/out"
+    say "running scripts/quickstart.lua (output in $BUILD_DIR/out/)"
+    exec "$BUILD_DIR/bin/ashlar" scripts/quickstart.lua "${@:-$BUILD_DIR/out}"
+    ;;
+  test)
+    set_up_and_build
+    say "running the tests"
+    cd "$BUILD_DIR"
+    exec ctest --output-on-failure -j2 "$@"
+    ;;
+  *)
+    usage
+    ;;
+esac
