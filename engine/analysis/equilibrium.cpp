@@ -1,0 +1,174 @@
+#include "analysis/equilibrium.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace ashlar {
+
+namespace {
+
+void check_settings(const AnalysisSettings& settings) {
+  const InteriorPointSettings& solver = settings.solver;
+  if (solver.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
+  if (!(solver.tolerance > 0.0) || !std::isfinite(solver.tolerance)) {
+    throw InvalidArgument("tolerance must be a finite number > 0");
+  }
+  if (!(solver.step_fraction > 0.0 && solver.step_fraction < 1.0)) {
+    throw InvalidArgument("step_fraction must lie strictly between 0 and 1");
+  }
+  if (!(settings.stable_tolerance > 0.0) || !std::isfinite(settings.stable_tolerance)) {
+    throw InvalidArgument("stable_tolerance must be a finite number > 0");
+  }
+}
+
+// Largest imbalance, relative to each block's own load (or the mean block
+// weight when larger), that remains when every tension is set to zero.
+double imbalance_without_tension(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
+  Eigen::VectorXd from_tension = Eigen::VectorXd::Zero(problem.row_count);
+  for (size_t k = 0; k < problem.vertices.size(); ++k) {
+    const ContactVertex& v = problem.vertices[k];
+    const double s = x(4 * static_cast<Eigen::Index>(k) + 1);
+    if (v.row_a >= 0) from_tension.segment<6>(v.row_a) += v.on_a.col(1) * s;
+    if (v.row_b >= 0) from_tension.segment<6>(v.row_b) += v.on_b.col(1) * s;
+  }
+  double worst = 0.0;
+  for (int row = 0; row < problem.row_count; row += 6) {
+    const double load = std::max(1.0, problem.rhs.segment<6>(row).lpNorm<Eigen::Infinity>());
+    worst = std::max(worst, from_tension.segment<6>(row).lpNorm<Eigen::Infinity>() / load);
+  }
+  return worst;
+}
+
+}  // namespace
+
+EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
+                                      const EquilibriumResult* warm_start) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  check_settings(settings);
+  const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
+  EquilibriumSolver solver(problem);
+  EquilibriumResult result;
+  result.timings.setup = std::chrono::duration<double>(Clock::now() - start).count();
+  if (warm_start) result.solution = warm_start->solution;
+  const InteriorPointInfo info =
+      solver.solve(problem, settings.solver, result.solution, warm_start != nullptr);
+  result.status = info.status;
+  result.iterations = info.iterations;
+  result.factorizations = info.factorizations;
+  result.objective = info.objective;
+  result.timings.assembly = info.assembly_seconds;
+  result.timings.factorization = info.factorization_seconds;
+  result.timings.solve = info.solve_seconds;
+  result.floating_blocks = problem.floating_blocks;
+
+  const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);
+  result.interfaces.resize(interfaces.size());
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.interfaces[i].a = interfaces[i].a;
+    result.interfaces[i].b = interfaces[i].b;
+  }
+  std::vector<double> pressure_weight(interfaces.size(), 0.0);
+  std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
+  result.block_tension.assign(structure.size(), 0.0);
+  double total_tension = 0.0;
+  const Eigen::VectorXd& x = result.solution.x;
+  for (size_t k = 0; k < problem.vertices.size(); ++k) {
+    const ContactVertex& v = problem.vertices[k];
+    const Eigen::Vector4d forces = x.segment<4>(4 * static_cast<Eigen::Index>(k)) * problem.weight_unit;
+    const Interface& contact = interfaces[v.interface_index];
+    InterfaceForces& through = result.interfaces[v.interface_index];
+    const double normal = forces(0) - forces(1);
+    through.compression += forces(0);
+    through.tension += forces(1);
+    through.normal_force += normal;
+    through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
+    pressure_weight[v.interface_index] += normal;
+    pressure_moment[v.interface_index] += normal * v.position;
+    result.block_tension[v.block_a] += forces(1);
+    result.block_tension[v.block_b] += forces(1);
+    total_tension += forces(1);
+    result.vertex_forces.push_back(forces);
+    result.vertex_positions.push_back(v.position);
+    result.vertex_interface.push_back(v.interface_index);
+  }
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.interfaces[i].center_of_pressure = pressure_weight[i] > 0.0
+                                                  ? Vec3(pressure_moment[i] / pressure_weight[i])
+                                                  : interfaces[i].center;
+  }
+
+  result.imbalance_without_tension = imbalance_without_tension(problem, x);
+  result.stable = result.status == SolverStatus::converged && result.floating_blocks.empty() &&
+                  result.imbalance_without_tension <= settings.stable_tolerance;
+  if (!result.floating_blocks.empty()) {
+    result.infeasibility = std::numeric_limits<double>::infinity();
+  } else if (result.stable) {
+    result.infeasibility = 0.0;
+  } else {
+    result.infeasibility = problem.total_weight > 0.0 ? total_tension / problem.total_weight : 0.0;
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+std::vector<Vec3> thrust_line(const Structure& structure, const EquilibriumResult& result) {
+  const int n = structure.size();
+  std::vector<std::vector<int>> touching(n);
+  for (size_t i = 0; i < result.interfaces.size(); ++i) {
+    const InterfaceForces& f = result.interfaces[i];
+    if (structure.is_support(f.a) && structure.is_support(f.b)) continue;
+    touching[f.a].push_back(static_cast<int>(i));
+    touching[f.b].push_back(static_cast<int>(i));
+  }
+  std::vector<int> order;
+  bool chain = true;
+  int start = -1;
+  for (int i = 0; i < n && chain; ++i) {
+    if (structure.is_support(i)) continue;
+    if (touching[i].size() > 2) chain = false;
+    for (int f : touching[i]) {
+      const InterfaceForces& contact = result.interfaces[f];
+      if (start < 0 && structure.is_support(contact.a == i ? contact.b : contact.a)) start = f;
+    }
+  }
+  if (chain && start >= 0) {
+    // Walk from a support through blocks with two interfaces each.
+    std::vector<bool> used(result.interfaces.size(), false);
+    int f = start;
+    const InterfaceForces& first = result.interfaces[f];
+    int block = structure.is_support(first.a) ? first.b : first.a;
+    while (f >= 0 && !used[f]) {
+      used[f] = true;
+      order.push_back(f);
+      if (structure.is_support(block)) break;
+      int next = -1;
+      for (int g : touching[block]) {
+        if (!used[g]) next = g;
+      }
+      if (next < 0) break;
+      const InterfaceForces& contact = result.interfaces[next];
+      block = contact.a == block ? contact.b : contact.a;
+      f = next;
+    }
+    size_t reachable = 0;
+    for (size_t i = 0; i < result.interfaces.size(); ++i) {
+      const InterfaceForces& c = result.interfaces[i];
+      reachable += !(structure.is_support(c.a) && structure.is_support(c.b));
+    }
+    chain = order.size() == reachable;
+  }
+  if (!chain || start < 0) {
+    order.clear();
+    for (size_t i = 0; i < result.interfaces.size(); ++i) order.push_back(static_cast<int>(i));
+  }
+  std::vector<Vec3> points;
+  for (int f : order) {
+    if (result.interfaces[f].normal_force > 0.0) points.push_back(result.interfaces[f].center_of_pressure);
+  }
+  return points;
+}
+
+}  // namespace ashlar

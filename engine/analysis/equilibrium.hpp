@@ -1,0 +1,75 @@
+// Rigid-block equilibrium analysis: is there a compression-only equilibrium
+// that respects friction, and if not, how much tension does the best one need?
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/equilibrium_problem.hpp"
+#include "analysis/interior_point.hpp"
+
+namespace ashlar {
+
+struct AnalysisSettings {
+  EquilibriumOptions problem;
+  InteriorPointSettings solver;
+  // A structure is stable when dropping every tension from the optimum
+  // leaves each block out of balance by at most this fraction of its own
+  // load (weight plus point loads; moments over the block's size).
+  double stable_tolerance = 1e-6;
+};
+
+// Forces through one interface, acting on block b from block a (N, m).
+struct InterfaceForces {
+  int a = -1, b = -1;
+  double normal_force = 0.0;  // compression minus tension, positive in compression
+  double compression = 0.0;   // sum of vertex compressions
+  double tension = 0.0;       // sum of vertex tensions
+  Vec3 resultant = Vec3::Zero();
+  // Point of the interface plane where the resultant's normal part acts;
+  // meaningful when normal_force > 0 (else the interface centre).
+  Vec3 center_of_pressure = Vec3::Zero();
+};
+
+struct AnalysisTimings {
+  double setup = 0.0;          // contact detection, problem and pattern analysis
+  double assembly = 0.0;       // per-iteration residuals and normal-matrix values
+  double factorization = 0.0;  // CHOLMOD numeric factorisations
+  double solve = 0.0;          // triangular solves and updates
+};
+
+struct EquilibriumResult {
+  bool stable = false;
+  // Total tension of the best equilibrium over the total free weight
+  // (dimensionless); exactly 0 when stable. Infinite when a free block has
+  // no chain of contacts to a support.
+  double infeasibility = 0.0;
+  double objective = 0.0;      // the QP's optimum, scaled as in the QPS export
+  SolverStatus status = SolverStatus::numerical_error;
+  int iterations = 0;
+  int factorizations = 0;
+  double seconds = 0.0;        // wall time of the whole analysis
+  AnalysisTimings timings;
+  double imbalance_without_tension = 0.0;  // the quantity compared to stable_tolerance
+  std::vector<int> floating_blocks;        // 0-based; they make the structure unstable
+  std::vector<Eigen::Vector4d> vertex_forces;  // (c, s, f_u, f_v) in N per contact vertex
+  std::vector<Vec3> vertex_positions;          // m
+  std::vector<int> vertex_interface;           // interface index of each vertex
+  std::vector<InterfaceForces> interfaces;     // parallel to Structure::interfaces()
+  std::vector<double> block_tension;           // N: tension over each block's interfaces
+  InteriorPointSolution solution;              // scaled; for warm starts
+};
+
+// Runs the analysis. Throws InvalidArgument for bad settings; every outcome
+// (unstable, not converged, floating blocks) is reported in the result.
+// `warm_start`, if given, must come from the same structure.
+EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
+                                      const EquilibriumResult* warm_start = nullptr);
+
+// Centres of pressure along the structure: when the contact graph of the
+// free blocks is a chain from support to support (an arch, a column), in
+// chain order; otherwise in interface order. Interfaces without compression
+// are skipped.
+std::vector<Vec3> thrust_line(const Structure& structure, const EquilibriumResult& result);
+
+}  // namespace ashlar

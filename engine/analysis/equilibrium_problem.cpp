@@ -1,0 +1,191 @@
+#include "analysis/equilibrium_problem.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include "core/error.hpp"
+
+namespace ashlar {
+
+namespace {
+
+void check_options(const EquilibriumOptions& options) {
+  if (std::isnan(options.friction) || options.friction < 0.0) {
+    throw InvalidArgument("friction must be a number >= 0 (math.huge for no sliding)");
+  }
+  if (options.friction_sides < 3 || options.friction_sides > 1024) {
+    throw InvalidArgument("friction_sides must be an integer from 3 to 1024, got " +
+                          std::to_string(options.friction_sides));
+  }
+  if (!std::isfinite(options.tension_weight) || options.tension_weight < 0.0) {
+    throw InvalidArgument("tension_weight must be a finite number >= 0");
+  }
+  if (!std::isfinite(options.force_weight) || options.force_weight <= 0.0) {
+    throw InvalidArgument("force_weight must be a finite number > 0");
+  }
+}
+
+// Union-find over blocks, to find free blocks with no contact path to a support.
+class Components {
+public:
+  explicit Components(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int root(int i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void join(int a, int b) { parent_[root(a)] = root(b); }
+
+private:
+  std::vector<int> parent_;
+};
+
+std::vector<bool> grounded_blocks(const Structure& structure,
+                                  const std::vector<Interface>& interfaces) {
+  const int n = structure.size();
+  Components components(n);
+  for (const Interface& contact : interfaces) components.join(contact.a, contact.b);
+  std::vector<bool> root_grounded(n, false);
+  for (int i = 0; i < n; ++i) {
+    if (structure.is_support(i)) root_grounded[components.root(i)] = true;
+  }
+  std::vector<bool> grounded(n);
+  for (int i = 0; i < n; ++i) grounded[i] = root_grounded[components.root(i)];
+  return grounded;
+}
+
+// Columns (c, s, f_u, f_v) of the balance rows of a block with centroid
+// `centroid` for a force acting on it at `position` (sign +1 for block b).
+Eigen::Matrix<double, 6, 4> vertex_effect(const Interface& contact, const Vec3& position,
+                                          const Vec3& centroid, double length_unit,
+                                          double sign) {
+  const Vec3 arm = (position - centroid) / length_unit;
+  Eigen::Matrix<double, 6, 4> effect;
+  const Vec3 directions[3] = {contact.normal, contact.u, contact.v};
+  const int columns[3] = {0, 2, 3};
+  for (int k = 0; k < 3; ++k) {
+    effect.block<3, 1>(0, columns[k]) = sign * directions[k];
+    effect.block<3, 1>(3, columns[k]) = sign * arm.cross(directions[k]);
+  }
+  effect.col(1) = -effect.col(0);  // tension pulls where compression pushes
+  return effect;
+}
+
+}  // namespace
+
+Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options) {
+  const double mu = options.friction;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> rows;
+  if (std::isinf(mu)) return rows;
+  if (options.friction_model == FrictionModel::box) {
+    rows.resize(4, 3);
+    rows << mu, -1, 0, mu, 1, 0, mu, 0, -1, mu, 0, 1;
+    return rows;
+  }
+  // Inscribed pyramid: edges on the cone at angles 2 pi j / m (one along u);
+  // side j faces the direction (2j + 1) pi / m at distance mu c cos(pi / m).
+  const int m = options.friction_sides;
+  rows.resize(m, 3);
+  for (int j = 0; j < m; ++j) {
+    const double facing = (2 * j + 1) * M_PI / m;
+    rows.row(j) << mu * std::cos(M_PI / m), -std::cos(facing), -std::sin(facing);
+  }
+  return rows;
+}
+
+EquilibriumProblem build_equilibrium_problem(const Structure& structure,
+                                             const EquilibriumOptions& options) {
+  check_options(options);
+  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
+  const std::vector<bool> grounded = grounded_blocks(structure, interfaces);
+
+  EquilibriumProblem problem;
+  const int n = structure.size();
+  problem.row_of_block.assign(n, -1);
+  double size_sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (structure.is_support(i)) continue;
+    if (!grounded[i]) {
+      problem.floating_blocks.push_back(i);
+      continue;
+    }
+    problem.row_of_block[i] = problem.row_count;
+    problem.row_count += 6;
+    problem.total_weight += structure.block(i).mass() * kGravity;
+    size_sum += structure.block(i).bounds().diagonal();
+  }
+  const int analysed = problem.row_count / 6;
+  if (analysed > 0) {
+    problem.weight_unit = problem.total_weight / analysed;
+    problem.length_unit = size_sum / analysed;
+  }
+  const double wu = problem.weight_unit, lu = problem.length_unit;
+
+  problem.rhs = Eigen::VectorXd::Zero(problem.row_count);
+  for (int i = 0; i < n; ++i) {
+    const int row = problem.row_of_block[i];
+    if (row >= 0) problem.rhs(row + 2) = structure.block(i).mass() * kGravity / wu;
+  }
+  for (const PointLoad& load : structure.loads()) {
+    const int row = problem.row_of_block[load.block];
+    if (row < 0) continue;
+    const Vec3 arm = (load.at - structure.block(load.block).centroid()) / lu;
+    problem.rhs.segment<3>(row) -= load.force / wu;
+    problem.rhs.segment<3>(row + 3) -= arm.cross(load.force / wu);
+  }
+
+  for (size_t k = 0; k < interfaces.size(); ++k) {
+    const Interface& contact = interfaces[k];
+    const int row_a = problem.row_of_block[contact.a], row_b = problem.row_of_block[contact.b];
+    if (row_a < 0 && row_b < 0) continue;  // between supports, or floating
+    for (const Vec3& p : contact.vertices) {
+      ContactVertex vertex;
+      vertex.interface_index = static_cast<int>(k);
+      vertex.block_a = contact.a;
+      vertex.block_b = contact.b;
+      vertex.row_a = row_a;
+      vertex.row_b = row_b;
+      vertex.position = p;
+      vertex.on_b = vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0);
+      vertex.on_a = vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0);
+      problem.vertices.push_back(vertex);
+    }
+  }
+
+  const Eigen::Matrix<double, Eigen::Dynamic, 3> friction = friction_rows(options);
+  problem.vertex_rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2 + friction.rows(), 4);
+  problem.vertex_rows(0, 0) = 1.0;
+  problem.vertex_rows(1, 1) = 1.0;
+  for (int j = 0; j < friction.rows(); ++j) {
+    problem.vertex_rows(2 + j, 0) = friction(j, 0);
+    problem.vertex_rows(2 + j, 2) = friction(j, 1);
+    problem.vertex_rows(2 + j, 3) = friction(j, 2);
+  }
+  problem.hessian_diagonal << options.force_weight, options.tension_weight, options.force_weight,
+      options.force_weight;
+  problem.linear << 0.0, 1.0, 0.0, 0.0;
+  return problem;
+}
+
+Eigen::SparseMatrix<double> EquilibriumProblem::equality_matrix() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(vertices.size() * 48);
+  for (size_t k = 0; k < vertices.size(); ++k) {
+    const ContactVertex& v = vertices[k];
+    for (int col = 0; col < 4; ++col) {
+      const int variable = 4 * static_cast<int>(k) + col;
+      for (int r = 0; r < 6; ++r) {
+        if (v.row_b >= 0 && v.on_b(r, col) != 0.0) {
+          entries.emplace_back(v.row_b + r, variable, v.on_b(r, col));
+        }
+        if (v.row_a >= 0 && v.on_a(r, col) != 0.0) {
+          entries.emplace_back(v.row_a + r, variable, v.on_a(r, col));
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(row_count, variable_count());
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  return matrix;
+}
+
+}  // namespace ashlar

@@ -1,0 +1,87 @@
+// The rigid-block equilibrium problem (Shin 2014, eq. 1) as a convex QP with
+// per-vertex structure, in scaled units.
+//
+// At every vertex k of every contact polygon between blocks a and b, the
+// force that a exerts on b is
+//     F_k = (c_k - s_k) n + f_uk u + f_vk v
+// with compression c_k >= 0, tension s_k >= 0 and friction (f_uk, f_vk) in
+// the interface frame. Every free block balances its weight, its point loads
+// and the contact forces (6 rows: force, then moment about its centroid).
+// Friction is bounded by mu * c_k: a pyramid inscribed in the Coulomb cone
+// with `friction_sides` sides and one edge along u, or the box
+// |f_u|, |f_v| <= mu c; none when mu is infinite.
+//
+// Scaling: forces are in units of the mean free-block weight Wm (total free
+// weight / free blocks) and lengths in units of the mean free-block size L,
+// so the QP is the same in millimetres or kilometres and its numbers are
+// O(1) per block whatever the model size. The objective is
+//     sum_k [ s_k + tension_weight/2 s_k^2 + force_weight/2 (c_k^2 + f_uk^2 + f_vk^2) ]
+// The linear tension term is an exact penalty: when a compression-only
+// equilibrium exists, the optimum has no tension at all (the tiny
+// force_weight regularisation only picks the most even force distribution).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "structure/structure.hpp"
+
+namespace ashlar {
+
+enum class FrictionModel {
+  pyramid,  // inscribed pyramid, friction_sides sides, one edge along u (safe side)
+  box,      // |f_u| <= mu c and |f_v| <= mu c (the thesis; up to sqrt 2 too generous)
+};
+
+struct EquilibriumOptions {
+  double friction = 0.7;            // Coulomb coefficient mu >= 0; +infinity: no sliding
+  int friction_sides = 4;           // sides of the friction pyramid, >= 3
+  FrictionModel friction_model = FrictionModel::pyramid;
+  double tension_weight = 1.0;      // quadratic tension penalty (scaled units)
+  double force_weight = 1e-4;       // regularisation of compression and friction
+  ContactOptions contact;           // how interfaces are found
+};
+
+// One contact vertex: the unknowns (c, s, f_u, f_v) at one polygon vertex.
+struct ContactVertex {
+  int interface_index = -1;  // into Structure::interfaces()
+  int block_a = -1, block_b = -1;
+  int row_a = -1, row_b = -1;  // first of the 6 balance rows, -1 for supports
+  Vec3 position = Vec3::Zero();  // m
+  // Scaled effect of (c, s, f_u, f_v) on the balance rows of block b (force,
+  // then moment about b's centroid / L) and of block a.
+  Eigen::Matrix<double, 6, 4> on_b, on_a;
+};
+
+struct EquilibriumProblem {
+  std::vector<ContactVertex> vertices;  // 4 unknowns each: c, s, f_u, f_v
+  std::vector<int> row_of_block;        // first balance row per block, -1 if none
+  std::vector<int> floating_blocks;     // free blocks with no path of contacts to a support
+  int row_count = 0;                    // 6 per analysed free block
+  Eigen::VectorXd rhs;                  // balance: sum of contact effects = rhs
+  // Inequality rows shared by every vertex, over (c, s, f_u, f_v): each row
+  // r gives r . x_k >= 0. The first two are c >= 0 and s >= 0.
+  Eigen::Matrix<double, Eigen::Dynamic, 4> vertex_rows;
+  Eigen::Vector4d hessian_diagonal;  // per vertex, scaled
+  Eigen::Vector4d linear;            // per vertex, scaled
+  double weight_unit = 1.0;          // N: one scaled force unit (mean free-block weight)
+  double length_unit = 1.0;          // m: one scaled length unit
+  double total_weight = 0.0;         // N: weight of the free blocks analysed
+
+  int variable_count() const { return 4 * static_cast<int>(vertices.size()); }
+  // The equality constraint matrix (row_count x variable_count), for export
+  // and residual checks; the solver works with the per-vertex blocks.
+  Eigen::SparseMatrix<double> equality_matrix() const;
+};
+
+// Builds the problem. Throws InvalidArgument for bad options (naming them).
+EquilibriumProblem build_equilibrium_problem(const Structure& structure,
+                                             const EquilibriumOptions& options);
+
+// The friction rows (over c, f_u, f_v) for the options; empty for mu = inf.
+Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options);
+
+}  // namespace ashlar

@@ -1,0 +1,296 @@
+#include "analysis/interior_point.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "analysis/sparse_cholesky.hpp"
+
+namespace ashlar {
+
+namespace {
+
+using Matrix4 = Eigen::Matrix4d;
+using Vector4 = Eigen::Vector4d;
+using Matrix64 = Eigen::Matrix<double, 6, 4>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Largest step in (0, 1] keeping v + step * dv >= 0.
+double step_to_boundary(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
+  double step = 1.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (dv(i) < 0.0) step = std::min(step, -v(i) / dv(i));
+  }
+  return step;
+}
+
+}  // namespace
+
+const char* status_name(SolverStatus status) {
+  switch (status) {
+    case SolverStatus::converged:
+      return "converged";
+    case SolverStatus::max_iterations:
+      return "max_iterations";
+    case SolverStatus::numerical_error:
+      return "numerical_error";
+  }
+  return "numerical_error";
+}
+
+EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem) : size_(problem.row_count) {
+  const int blocks = problem.row_count / 6;
+  // Upper-triangle block pattern: for block column J, the block rows I <= J.
+  std::vector<std::vector<int>> upper(blocks);
+  for (int j = 0; j < blocks; ++j) upper[j].push_back(j);
+  for (const ContactVertex& v : problem.vertices) {
+    if (v.row_a >= 0 && v.row_b >= 0) {
+      const int a = v.row_a / 6, b = v.row_b / 6;
+      upper[std::max(a, b)].push_back(std::min(a, b));
+    }
+  }
+  for (std::vector<int>& rows : upper) {
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  }
+  column_starts_.assign(problem.row_count + 1, 0);
+  std::vector<int> row_indices;
+  for (int j = 0; j < blocks; ++j) {
+    for (int cj = 0; cj < 6; ++cj) {
+      for (int i : upper[j]) {
+        const int last = i == j ? cj : 5;  // diagonal block: upper part only
+        for (int ri = 0; ri <= last; ++ri) row_indices.push_back(6 * i + ri);
+      }
+      column_starts_[6 * j + cj + 1] = static_cast<int>(row_indices.size());
+    }
+  }
+  auto rank = [&](int i, int j) {
+    return static_cast<int>(std::lower_bound(upper[j].begin(), upper[j].end(), i) -
+                            upper[j].begin());
+  };
+  slots_.resize(problem.vertices.size());
+  for (size_t k = 0; k < problem.vertices.size(); ++k) {
+    const ContactVertex& v = problem.vertices[k];
+    VertexSlots& slot = slots_[k];
+    if (v.row_a >= 0) slot.aa = rank(v.row_a / 6, v.row_a / 6);
+    if (v.row_b >= 0) slot.bb = rank(v.row_b / 6, v.row_b / 6);
+    if (v.row_a >= 0 && v.row_b >= 0) {
+      const int a = v.row_a / 6, b = v.row_b / 6;
+      slot.ab_transposed = a > b;
+      slot.ab = rank(std::min(a, b), std::max(a, b));
+    }
+  }
+  if (problem.row_count > 0) {
+    cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices);
+  }
+}
+
+EquilibriumSolver::~EquilibriumSolver() = default;
+
+InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
+                                           const InteriorPointSettings& settings,
+                                           InteriorPointSolution& solution, bool warm_start) {
+  using Clock = std::chrono::steady_clock;
+  InteriorPointInfo info;
+  const int nv = static_cast<int>(problem.vertices.size());
+  const RowsMatrix& g = problem.vertex_rows;
+  const int m = static_cast<int>(g.rows());
+  const Vector4& h = problem.hessian_diagonal;
+  const Vector4& q = problem.linear;
+  const Eigen::VectorXd& b = problem.rhs;
+
+  Eigen::VectorXd& x = solution.x;
+  Eigen::VectorXd& y = solution.y;
+  Eigen::VectorXd& w = solution.w;
+  Eigen::VectorXd& z = solution.z;
+  const bool sizes_match = x.size() == 4 * nv && y.size() == size_ && w.size() == m * nv &&
+                           z.size() == m * nv;
+  if (warm_start && sizes_match) {
+    // Interior-point iterates must start strictly inside the cone.
+    constexpr double kMargin = 1e-2;
+    for (int k = 0; k < nv; ++k) {
+      w.segment(m * k, m) = (g * x.segment<4>(4 * k)).cwiseMax(kMargin);
+    }
+    z = z.cwiseMax(kMargin);
+  } else {
+    x = Eigen::VectorXd::Zero(4 * nv);
+    y = Eigen::VectorXd::Zero(size_);
+    w = Eigen::VectorXd::Ones(m * nv);
+    z = Eigen::VectorXd::Ones(m * nv);
+  }
+  if (nv == 0 && size_ == 0) {
+    info.status = SolverStatus::converged;
+    return info;
+  }
+  if (!cholesky_) {
+    info.status = SolverStatus::numerical_error;
+    return info;
+  }
+
+  const double rhs_scale = 1.0 + (b.size() ? b.lpNorm<Eigen::Infinity>() : 0.0);
+  const double dual_scale = 1.0 + q.lpNorm<Eigen::Infinity>();
+
+  Eigen::VectorXd r_p(size_), r_d(4 * nv), r_g(m * nv), r_c(m * nv);
+  std::vector<Matrix4> inverse_phi(nv);
+  Eigen::VectorXd dx(4 * nv), dy(size_), dw(m * nv), dz(m * nv);
+  Eigen::VectorXd dx_aff, dw_aff, dz_aff, rhs(size_);
+  double* values = cholesky_->values();
+  const int factorizations_before = cholesky_->factorizations();
+  const int value_count = cholesky_->nonzeros();
+
+  // A^T y at vertex k.
+  auto reaction = [&](int k, const Eigen::VectorXd& multipliers) {
+    const ContactVertex& v = problem.vertices[k];
+    Vector4 out = Vector4::Zero();
+    if (v.row_a >= 0) out += v.on_a.transpose() * multipliers.segment<6>(v.row_a);
+    if (v.row_b >= 0) out += v.on_b.transpose() * multipliers.segment<6>(v.row_b);
+    return out;
+  };
+
+  // Solves the Newton system for complementarity residual r_c (uses the
+  // current factorisation and inverse_phi); fills dx, dy, dw, dz.
+  auto newton_direction = [&](const Eigen::VectorXd& complementarity) {
+    const auto start = Clock::now();
+    rhs = -r_p;
+    for (int k = 0; k < nv; ++k) {
+      const ContactVertex& v = problem.vertices[k];
+      const Eigen::VectorXd inv_w = w.segment(m * k, m).cwiseInverse();
+      const Eigen::VectorXd d = z.segment(m * k, m).cwiseProduct(inv_w);
+      const Vector4 reduced =
+          -r_d.segment<4>(4 * k) -
+          g.transpose() * (complementarity.segment(m * k, m).cwiseProduct(inv_w) +
+                           d.cwiseProduct(r_g.segment(m * k, m)));
+      const Vector4 t = inverse_phi[k] * reduced;
+      dx.segment<4>(4 * k) = t;  // completed below with the A^T dy part
+      if (v.row_a >= 0) rhs.segment<6>(v.row_a) -= v.on_a * t;
+      if (v.row_b >= 0) rhs.segment<6>(v.row_b) -= v.on_b * t;
+    }
+    dy = cholesky_->solve(rhs);
+    for (int k = 0; k < nv; ++k) {
+      dx.segment<4>(4 * k) += inverse_phi[k] * reaction(k, dy);
+      const Eigen::VectorXd wk = w.segment(m * k, m);
+      dw.segment(m * k, m) = g * dx.segment<4>(4 * k) + r_g.segment(m * k, m);
+      dz.segment(m * k, m) =
+          -(complementarity.segment(m * k, m) + z.segment(m * k, m).cwiseProduct(dw.segment(m * k, m)))
+               .cwiseQuotient(wk);
+    }
+    info.solve_seconds += seconds_since(start);
+  };
+
+  for (int iteration = 0;; ++iteration) {
+    auto start = Clock::now();
+    // Residuals.
+    r_p = -b;
+    for (int k = 0; k < nv; ++k) {
+      const ContactVertex& v = problem.vertices[k];
+      const Vector4 xk = x.segment<4>(4 * k);
+      if (v.row_a >= 0) r_p.segment<6>(v.row_a) += v.on_a * xk;
+      if (v.row_b >= 0) r_p.segment<6>(v.row_b) += v.on_b * xk;
+      r_d.segment<4>(4 * k) = h.cwiseProduct(xk) + q - reaction(k, y) -
+                              g.transpose() * z.segment(m * k, m);
+      r_g.segment(m * k, m) = g * xk - w.segment(m * k, m);
+    }
+    const double mu = m * nv > 0 ? w.dot(z) / (m * nv) : 0.0;
+    info.iterations = iteration;
+    info.primal_residual = std::max(r_p.size() ? r_p.lpNorm<Eigen::Infinity>() : 0.0,
+                                    r_g.size() ? r_g.lpNorm<Eigen::Infinity>() : 0.0);
+    info.dual_residual = r_d.size() ? r_d.lpNorm<Eigen::Infinity>() : 0.0;
+    info.complementarity = mu;
+    if (!std::isfinite(mu) || !std::isfinite(info.primal_residual) ||
+        !std::isfinite(info.dual_residual)) {
+      info.status = SolverStatus::numerical_error;
+      break;
+    }
+    if (info.primal_residual <= settings.tolerance * rhs_scale &&
+        info.dual_residual <= settings.tolerance * dual_scale && mu <= settings.tolerance) {
+      info.status = SolverStatus::converged;
+      break;
+    }
+    if (iteration >= settings.max_iterations) {
+      info.status = SolverStatus::max_iterations;
+      break;
+    }
+
+    // Eliminate each vertex's unknowns and assemble the normal matrix.
+    std::fill_n(values, value_count, 0.0);
+    for (int k = 0; k < nv; ++k) {
+      const Eigen::VectorXd d = z.segment(m * k, m).cwiseQuotient(w.segment(m * k, m));
+      Matrix4 phi = g.transpose() * d.asDiagonal() * g;
+      phi.diagonal() += h;
+      inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
+      const ContactVertex& v = problem.vertices[k];
+      const VertexSlots& slot = slots_[k];
+      // Adds a 6 x 6 block to block column col_block at its rank-th block row.
+      auto add_block = [&](int col_block, int rank, const Matrix6& block, bool diagonal) {
+        for (int cj = 0; cj < 6; ++cj) {
+          double* column = values + column_starts_[6 * col_block + cj] + 6 * rank;
+          const int last = diagonal ? cj : 5;
+          for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
+        }
+      };
+      Matrix64 a_phi, b_phi;
+      if (v.row_a >= 0) {
+        a_phi = v.on_a * inverse_phi[k];
+        add_block(v.row_a / 6, slot.aa, a_phi * v.on_a.transpose(), true);
+      }
+      if (v.row_b >= 0) {
+        b_phi = v.on_b * inverse_phi[k];
+        add_block(v.row_b / 6, slot.bb, b_phi * v.on_b.transpose(), true);
+      }
+      if (slot.ab >= 0) {
+        const Matrix6 ab = a_phi * v.on_b.transpose();  // rows of a, columns of b
+        if (slot.ab_transposed) add_block(v.row_a / 6, slot.ab, ab.transpose(), false);
+        else add_block(v.row_b / 6, slot.ab, ab, false);
+      }
+    }
+    info.assembly_seconds += seconds_since(start);
+    start = Clock::now();
+    const bool factored = cholesky_->factorize();
+    info.factorization_seconds += seconds_since(start);
+    if (!factored) {
+      info.status = SolverStatus::numerical_error;
+      break;
+    }
+
+    // Predictor: the affine-scaling direction.
+    r_c = w.cwiseProduct(z);
+    newton_direction(r_c);
+    const double affine_step = std::min(step_to_boundary(w, dw), step_to_boundary(z, dz));
+    const double mu_affine =
+        (w + affine_step * dw).dot(z + affine_step * dz) / static_cast<double>(m * nv);
+    const double centering = std::pow(mu_affine / mu, 3);
+    dw_aff = dw;
+    dz_aff = dz;
+    // Corrector: second-order term and centring, same factorisation.
+    r_c = w.cwiseProduct(z) + dw_aff.cwiseProduct(dz_aff) -
+          Eigen::VectorXd::Constant(m * nv, centering * mu);
+    newton_direction(r_c);
+    const double step =
+        std::min(1.0, settings.step_fraction *
+                          std::min(step_to_boundary(w, dw), step_to_boundary(z, dz)));
+    if (!(step > 1e-12)) {
+      info.status = SolverStatus::numerical_error;
+      break;
+    }
+    x += step * dx;
+    y += step * dy;
+    w += step * dw;
+    z += step * dz;
+  }
+  info.factorizations = cholesky_->factorizations() - factorizations_before;
+  double objective = 0.0;
+  for (int k = 0; k < nv; ++k) {
+    const Vector4 xk = x.segment<4>(4 * k);
+    objective += 0.5 * xk.dot(h.cwiseProduct(xk)) + q.dot(xk);
+  }
+  info.objective = objective;
+  return info;
+}
+
+}  // namespace ashlar

@@ -1,0 +1,79 @@
+// Primal-dual interior-point solver (Mehrotra predictor-corrector) for the
+// equilibrium QP of equilibrium_problem.hpp.
+//
+// The Hessian is diagonal and every inequality row involves the unknowns of
+// one contact vertex, so eliminating the unknowns vertex by vertex (4 x 4
+// systems) leaves normal equations A Phi^-1 A^T dy = r of size 6 x (free
+// blocks), sparse with the contact graph's pattern. That matrix is analysed
+// once (EquilibriumSolver's constructor) and factorised once per iteration;
+// predictor and corrector share the factorisation.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/equilibrium_problem.hpp"
+
+namespace ashlar {
+
+class SparseCholesky;
+
+struct InteriorPointSettings {
+  int max_iterations = 100;   // Newton iterations before giving up
+  double tolerance = 1e-10;   // on scaled residuals and the complementarity gap
+  double step_fraction = 0.99;  // of the step to the boundary taken each iteration
+};
+
+enum class SolverStatus {
+  converged,
+  max_iterations,   // stopped at max_iterations without meeting the tolerance
+  numerical_error,  // a factorisation or step failed (e.g. loss of positive definiteness)
+};
+
+// "converged", "max_iterations" or "numerical_error".
+const char* status_name(SolverStatus status);
+
+struct InteriorPointInfo {
+  SolverStatus status = SolverStatus::numerical_error;
+  int iterations = 0;
+  int factorizations = 0;
+  double objective = 0.0;           // scaled, as in the QPS export
+  double primal_residual = 0.0;     // max |A x - b|, scaled
+  double dual_residual = 0.0;       // max |H x + q - A^T y - G^T z|
+  double complementarity = 0.0;     // mean w_i z_i
+  double assembly_seconds = 0.0;    // residuals, vertex eliminations, normal-matrix values
+  double factorization_seconds = 0.0;
+  double solve_seconds = 0.0;       // triangular solves and step updates
+};
+
+// Primal x (4 per vertex: c, s, f_u, f_v, scaled), equality multipliers y,
+// inequality slacks w and multipliers z (vertex_rows per vertex).
+struct InteriorPointSolution {
+  Eigen::VectorXd x, y, w, z;
+};
+
+class EquilibriumSolver {
+public:
+  // Builds and analyses the normal-equation pattern of `problem`.
+  explicit EquilibriumSolver(const EquilibriumProblem& problem);
+  ~EquilibriumSolver();
+
+  // Solves `problem` (same contacts as at construction). When `warm_start`
+  // is set and `solution` has matching sizes it is the starting point.
+  InteriorPointInfo solve(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
+                          InteriorPointSolution& solution, bool warm_start = false);
+
+private:
+  struct VertexSlots {
+    int aa = -1, bb = -1, ab = -1;  // pattern slots of the 6 x 6 blocks, -1 if absent
+    bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
+  };
+  std::vector<VertexSlots> slots_;
+  std::vector<int> column_starts_;
+  std::unique_ptr<SparseCholesky> cholesky_;
+  int size_ = 0;
+};
+
+}  // namespace ashlar

@@ -1,0 +1,164 @@
+// Equilibrium analysis against closed-form statics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/equilibrium.hpp"
+#include "core/error.hpp"
+#include "geometry/block_builders.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+BlockPtr box(const Vec3& size, const Vec3& center) {
+  return std::make_shared<const Block>(make_box(size, center));
+}
+
+Structure block_on_ground() {
+  Structure s;
+  s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
+  s.add(box({1, 1, 0.5}, {0, 0, 0.25}));
+  return s;
+}
+
+// A 1 x 1 x 0.5 block on the ground and a second one on it, offset by dx.
+Structure overhanging_stack(double dx) {
+  Structure s = block_on_ground();
+  s.add(box({1, 1, 0.5}, {dx, 0, 0.75}));
+  return s;
+}
+
+// A 2 x 1 x 0.3 block resting on a slab inclined by `angle` about y, rotated
+// about `turn` around z as a whole so that the slope need not follow x.
+Structure block_on_incline(double angle, double turn = 0.0) {
+  Structure s;
+  s.add(std::make_shared<const Block>(make_box({6, 3, 0.5}, {0, 0, -0.25})
+                                          .rotated(Vec3::UnitY(), -angle, Vec3::Zero())
+                                          .rotated(Vec3::UnitZ(), turn, Vec3::Zero())),
+        true);
+  s.add(std::make_shared<const Block>(make_box({2, 1, 0.3}, {0, 0, 0.15})
+                                          .rotated(Vec3::UnitY(), -angle, Vec3::Zero())
+                                          .rotated(Vec3::UnitZ(), turn, Vec3::Zero())));
+  return s;
+}
+
+AnalysisSettings with_friction(double mu) {
+  AnalysisSettings settings;
+  settings.problem.friction = mu;
+  return settings;
+}
+
+}  // namespace
+
+TEST(Equilibrium, BlockOnGroundCarriesItsWeightEvenly) {
+  const Structure s = block_on_ground();
+  const EquilibriumResult r = analyze_equilibrium(s, {});
+  ASSERT_EQ(r.status, SolverStatus::converged);
+  EXPECT_TRUE(r.stable);
+  EXPECT_EQ(r.infeasibility, 0.0);
+  const double weight = 0.5 * 2400 * kGravity;
+  ASSERT_EQ(r.interfaces.size(), 1u);
+  EXPECT_NEAR(r.interfaces[0].normal_force, weight, 1e-7 * weight);
+  EXPECT_NEAR(r.interfaces[0].tension, 0.0, 1e-7 * weight);
+  EXPECT_LE((r.interfaces[0].resultant - Vec3(0, 0, weight)).norm(), 1e-7 * weight);
+  EXPECT_LE(r.interfaces[0].center_of_pressure.head<2>().norm(), 1e-8);
+  ASSERT_EQ(r.vertex_forces.size(), 4u);
+  for (const Eigen::Vector4d& f : r.vertex_forces) {
+    EXPECT_NEAR(f(0), weight / 4, 1e-7 * weight);  // the regularisation spreads it evenly
+    EXPECT_NEAR(f(2), 0.0, 1e-7 * weight);
+  }
+  EXPECT_GT(r.factorizations, 0);
+  EXPECT_EQ(r.factorizations, r.iterations);
+}
+
+TEST(Equilibrium, PointLoadMovesTheCentreOfPressure) {
+  Structure s = block_on_ground();
+  const double weight = 0.5 * 2400 * kGravity;
+  // A downward load equal to the weight at x = 0.3 puts the resultant at x = 0.15.
+  s.add_load({1, {0, 0, -weight}, {0.3, 0, 0.5}});
+  const EquilibriumResult r = analyze_equilibrium(s, {});
+  EXPECT_TRUE(r.stable);
+  EXPECT_NEAR(r.interfaces[0].normal_force, 2 * weight, 1e-7 * weight);
+  EXPECT_NEAR(r.interfaces[0].center_of_pressure.x(), 0.15, 1e-7);
+}
+
+TEST(Equilibrium, OverhangTipsPastTheEdge) {
+  for (double dx : {0.0, 0.3, 0.49}) {
+    EXPECT_TRUE(analyze_equilibrium(overhanging_stack(dx), {}).stable) << dx;
+  }
+  for (double dx : {0.51, 0.6, 0.9}) {
+    const EquilibriumResult r = analyze_equilibrium(overhanging_stack(dx), {});
+    EXPECT_EQ(r.status, SolverStatus::converged);
+    EXPECT_FALSE(r.stable) << dx;
+    EXPECT_GT(r.infeasibility, 0.0) << dx;
+  }
+  // Infeasibility grows with the overhang.
+  const double a = analyze_equilibrium(overhanging_stack(0.6), {}).infeasibility;
+  const double b = analyze_equilibrium(overhanging_stack(0.8), {}).infeasibility;
+  EXPECT_LT(a, b);
+}
+
+TEST(Equilibrium, InclineSlidesWhenTangentExceedsFriction) {
+  const double mu = 0.5;
+  for (double turn : {0.0, 0.7}) {
+    EXPECT_TRUE(analyze_equilibrium(block_on_incline(std::atan(0.49), turn), with_friction(mu)).stable);
+    const EquilibriumResult r = analyze_equilibrium(block_on_incline(std::atan(0.51), turn), with_friction(mu));
+    EXPECT_FALSE(r.stable) << turn;
+    EXPECT_GT(r.infeasibility, 0.0);
+  }
+  // Without sliding the steep block stands.
+  EXPECT_TRUE(analyze_equilibrium(block_on_incline(std::atan(0.9)), with_friction(INFINITY)).stable);
+}
+
+TEST(Equilibrium, FreeBlockTouchingNothingIsUnstable) {
+  Structure s = block_on_ground();
+  s.add(box({1, 1, 1}, {10, 0, 5}));
+  const EquilibriumResult r = analyze_equilibrium(s, {});
+  EXPECT_FALSE(r.stable);
+  ASSERT_EQ(r.floating_blocks.size(), 1u);
+  EXPECT_EQ(r.floating_blocks[0], 2);
+  EXPECT_TRUE(std::isinf(r.infeasibility));
+}
+
+TEST(Equilibrium, UnitsAndRigidMotionDoNotChangeTheAnswer) {
+  const EquilibriumResult reference = analyze_equilibrium(overhanging_stack(0.7), {});
+  for (double scale : {1e-3, 1e3}) {
+    Structure scaled;
+    const Structure s = overhanging_stack(0.7);
+    for (int i = 0; i < s.size(); ++i) {
+      std::vector<Vec3> vertices = s.block(i).vertices();
+      for (Vec3& p : vertices) p *= scale;
+      scaled.add(std::make_shared<const Block>(vertices, s.block(i).faces()), s.is_support(i));
+    }
+    const EquilibriumResult r = analyze_equilibrium(scaled, {});
+    EXPECT_FALSE(r.stable);
+    EXPECT_NEAR(r.infeasibility, reference.infeasibility, 1e-6 * reference.infeasibility) << scale;
+  }
+  Structure moved;
+  const Structure s = overhanging_stack(0.7);
+  for (int i = 0; i < s.size(); ++i) {
+    moved.add(std::make_shared<const Block>(
+                  s.block(i).rotated(Vec3::UnitZ(), 0.4, Vec3(1, 2, 0)).translated({50, -20, 3})),
+              s.is_support(i));
+  }
+  const EquilibriumResult r = analyze_equilibrium(moved, {});
+  EXPECT_NEAR(r.infeasibility, reference.infeasibility, 1e-6 * reference.infeasibility);
+}
+
+TEST(Equilibrium, WarmStartConverges) {
+  const Structure s = overhanging_stack(0.7);
+  const EquilibriumResult cold = analyze_equilibrium(s, {});
+  const EquilibriumResult warm = analyze_equilibrium(s, {}, &cold);
+  EXPECT_EQ(warm.status, SolverStatus::converged);
+  EXPECT_NEAR(warm.objective, cold.objective, 1e-8 * std::abs(cold.objective));
+}
+
+TEST(Equilibrium, BadSettingsAreRejected) {
+  AnalysisSettings settings;
+  settings.problem.friction_sides = 2;
+  EXPECT_THROW(analyze_equilibrium(block_on_ground(), settings), InvalidArgument);
+  settings = {};
+  settings.problem.friction = -1;
+  EXPECT_THROW(analyze_equilibrium(block_on_ground(), settings), InvalidArgument);
+}
