@@ -10,6 +10,7 @@
 #include "io/mesh_io.hpp"
 #include "luax.hpp"
 #include "wrap_Block.hpp"
+#include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
 
 namespace ashlar::lua {
@@ -195,11 +196,13 @@ int ashlar_open_library(lua_State* L) {
   using namespace ashlar::lua;
   register_Block(L);
   register_Structure(L);
+  register_Result(L);
   lua_newtable(L);
   lua_pushstring(L, ashlar::version());
   lua_setfield(L, -2, "version");
   set_block_constructors(L);
   set_structure_functions(L);
+  set_analysis_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

@@ -1,0 +1,262 @@
+#include "wrap_Result.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "analysis/equilibrium.hpp"
+#include "analysis/qps_export.hpp"
+#include "luax.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+constexpr const char* kResultMeta = "ashlar.Result";
+
+// What a Lua Result holds: the engine result and what was derived from the
+// structure at analysis time (the structure may change afterwards).
+struct AnalysisRecord {
+  EquilibriumResult result;
+  std::vector<Vec3> thrust;
+  int block_count = 0;
+};
+
+void set_number(lua_State* L, const char* key, double value) {
+  lua_pushnumber(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_vec3(lua_State* L, const char* key, const Vec3& value) {
+  push_vec3(L, value);
+  lua_setfield(L, -2, key);
+}
+
+// Options table of ashlar.analyze / ashlar.export_qp at stack index arg.
+AnalysisSettings settings_from(lua_State* L, int arg) {
+  const OptionTable options(L, arg,
+                            {"friction", "friction_sides", "friction_model", "tension_weight",
+                             "force_weight", "tolerance", "max_iterations", "stable_tolerance",
+                             "contact_tolerance", "warm_start"});
+  AnalysisSettings settings;
+  EquilibriumOptions& problem = settings.problem;
+  if (options.push("friction") != LUA_TNIL) {
+    // math.huge (no sliding) is allowed here, unlike in other numbers.
+    if (lua_type(L, -1) != LUA_TNUMBER || std::isnan(lua_tonumber(L, -1)) ||
+        lua_tonumber(L, -1) < 0.0) {
+      throw ArgError(arg, "friction: expected a number >= 0 (math.huge: no sliding), got " +
+                              type_name(L, -1));
+    }
+    problem.friction = lua_tonumber(L, -1);
+  }
+  lua_pop(L, 1);
+  if (options.push("friction_sides") != LUA_TNIL) {
+    problem.friction_sides = static_cast<int>(check_integer(L, -1, "friction_sides"));
+  }
+  lua_pop(L, 1);
+  if (const std::optional<std::string> model = options.string("friction_model")) {
+    if (*model == "pyramid") problem.friction_model = FrictionModel::pyramid;
+    else if (*model == "box") problem.friction_model = FrictionModel::box;
+    else throw ArgError(arg, "friction_model: '" + *model + "' is not one of pyramid, box");
+  }
+  problem.tension_weight = options.positive("tension_weight", problem.tension_weight, true);
+  problem.force_weight = options.positive("force_weight", problem.force_weight);
+  problem.contact.tolerance = options.positive("contact_tolerance", 0.0, true);
+  settings.solver.tolerance = options.positive("tolerance", settings.solver.tolerance);
+  if (options.push("max_iterations") != LUA_TNIL) {
+    settings.solver.max_iterations = static_cast<int>(check_integer(L, -1, "max_iterations"));
+  }
+  lua_pop(L, 1);
+  settings.stable_tolerance = options.positive("stable_tolerance", settings.stable_tolerance);
+  return settings;
+}
+
+AnalysisRecord& check_record(lua_State* L, int idx) {
+  return *check_boxed<AnalysisRecord>(L, idx, kResultMeta, "Result");
+}
+
+int w_analyze(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const AnalysisSettings settings = settings_from(L, 2);
+    const AnalysisRecord* warm = nullptr;
+    if (lua_type(L, 2) == LUA_TTABLE && lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
+      if (!test_boxed<AnalysisRecord>(L, -1, kResultMeta)) {
+        throw ArgError(2, "warm_start: expected a Result of ashlar.analyze, got " +
+                              type_name(L, -1));
+      }
+      warm = &check_record(L, -1);
+      if (warm->block_count != s.size()) {
+        throw ArgError(2, "warm_start: that result is of a structure with " +
+                              std::to_string(warm->block_count) + " blocks, this one has " +
+                              std::to_string(s.size()));
+      }
+    }
+    auto record = std::make_shared<AnalysisRecord>();
+    record->result = analyze_equilibrium(s, settings, warm ? &warm->result : nullptr);
+    record->thrust = thrust_line(s, record->result);
+    record->block_count = s.size();
+    void* memory = lua_newuserdatauv(L, sizeof(Box<AnalysisRecord>), 1);
+    new (memory) Box<AnalysisRecord>{std::move(record)};
+    luaL_setmetatable(L, kResultMeta);
+    return 1;
+  });
+}
+
+int w_export_qp(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const std::string path = check_string(L, 2, "path");
+    const AnalysisSettings settings = settings_from(L, 3);
+    write_equilibrium_qps(build_equilibrium_problem(s, settings.problem), path);
+    return 0;
+  });
+}
+
+void push_interfaces(lua_State* L, const EquilibriumResult& result) {
+  lua_createtable(L, static_cast<int>(result.interfaces.size()), 0);
+  for (size_t i = 0; i < result.interfaces.size(); ++i) {
+    const InterfaceForces& f = result.interfaces[i];
+    lua_createtable(L, 0, 7);
+    lua_pushinteger(L, f.a + 1);
+    lua_setfield(L, -2, "a");
+    lua_pushinteger(L, f.b + 1);
+    lua_setfield(L, -2, "b");
+    set_number(L, "normal_force", f.normal_force);
+    set_number(L, "compression", f.compression);
+    set_number(L, "tension", f.tension);
+    set_vec3(L, "resultant", f.resultant);
+    set_vec3(L, "center_of_pressure", f.center_of_pressure);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+void push_blocks(lua_State* L, const EquilibriumResult& result) {
+  lua_createtable(L, static_cast<int>(result.block_tension.size()), 0);
+  std::vector<bool> floating(result.block_tension.size(), false);
+  for (int i : result.floating_blocks) floating[i] = true;
+  for (size_t i = 0; i < result.block_tension.size(); ++i) {
+    lua_createtable(L, 0, 2);
+    set_number(L, "tension", result.block_tension[i]);
+    lua_pushboolean(L, floating[i]);
+    lua_setfield(L, -2, "floating");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+void push_vertices(lua_State* L, const EquilibriumResult& result) {
+  lua_createtable(L, static_cast<int>(result.vertex_forces.size()), 0);
+  for (size_t k = 0; k < result.vertex_forces.size(); ++k) {
+    const Eigen::Vector4d& f = result.vertex_forces[k];
+    lua_createtable(L, 0, 6);
+    lua_pushinteger(L, result.vertex_interface[k] + 1);
+    lua_setfield(L, -2, "interface");
+    set_vec3(L, "position", result.vertex_positions[k]);
+    set_number(L, "compression", f(0));
+    set_number(L, "tension", f(1));
+    set_number(L, "friction_u", f(2));
+    set_number(L, "friction_v", f(3));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
+// Tables built on first access and kept in the userdata's user value.
+int push_cached_table(lua_State* L, const char* key, const EquilibriumResult& result,
+                      void (*build)(lua_State*, const EquilibriumResult&)) {
+  if (lua_getiuservalue(L, 1, 1) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_setiuservalue(L, 1, 1);
+  }
+  if (lua_getfield(L, -1, key) == LUA_TNIL) {
+    lua_pop(L, 1);
+    build(L, result);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, key);
+  }
+  return 1;
+}
+
+int w_Result_thrust_line(lua_State* L) {
+  return guard(L, [&] {
+    push_points(L, check_record(L, 1).thrust);
+    return 1;
+  });
+}
+
+int w_Result_index(lua_State* L) {
+  return guard(L, [&] {
+    const EquilibriumResult& r = check_record(L, 1).result;
+    const char* key = lua_tostring(L, 2);
+    if (!key) return 0;
+    auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
+    if (is("thrust_line")) lua_pushcfunction(L, w_Result_thrust_line);
+    else if (is("stable")) lua_pushboolean(L, r.stable);
+    else if (is("infeasibility")) lua_pushnumber(L, r.infeasibility);
+    else if (is("objective")) lua_pushnumber(L, r.objective);
+    else if (is("status")) lua_pushstring(L, status_name(r.status));
+    else if (is("iterations")) lua_pushinteger(L, r.iterations);
+    else if (is("factorizations")) lua_pushinteger(L, r.factorizations);
+    else if (is("seconds")) lua_pushnumber(L, r.seconds);
+    else if (is("imbalance_without_tension")) lua_pushnumber(L, r.imbalance_without_tension);
+    else if (is("timings")) {
+      lua_createtable(L, 0, 4);
+      set_number(L, "setup", r.timings.setup);
+      set_number(L, "assembly", r.timings.assembly);
+      set_number(L, "factorization", r.timings.factorization);
+      set_number(L, "solve", r.timings.solve);
+    } else if (is("floating")) {
+      lua_createtable(L, static_cast<int>(r.floating_blocks.size()), 0);
+      for (size_t i = 0; i < r.floating_blocks.size(); ++i) {
+        lua_pushinteger(L, r.floating_blocks[i] + 1);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+      }
+    } else if (is("interfaces")) return push_cached_table(L, "interfaces", r, push_interfaces);
+    else if (is("blocks")) return push_cached_table(L, "blocks", r, push_blocks);
+    else if (is("vertices")) return push_cached_table(L, "vertices", r, push_vertices);
+    else return 0;
+    return 1;
+  });
+}
+
+int w_Result_tostring(lua_State* L) {
+  return guard(L, [&] {
+    const EquilibriumResult& r = check_record(L, 1).result;
+    lua_pushfstring(L, "Result (%s, infeasibility %f, %s after %d iterations)",
+                    r.stable ? "stable" : "unstable", r.infeasibility, status_name(r.status),
+                    r.iterations);
+    return 1;
+  });
+}
+
+int w_Result_gc(lua_State* L) { return release_boxed<AnalysisRecord>(L, kResultMeta); }
+
+}  // namespace
+
+const EquilibriumResult* luax_testResult(lua_State* L, int idx) {
+  Box<AnalysisRecord>* box = test_boxed<AnalysisRecord>(L, idx, kResultMeta);
+  return box && box->ptr ? &box->ptr->result : nullptr;
+}
+
+void register_Result(lua_State* L) {
+  static const luaL_Reg methods[] = {{nullptr, nullptr}};
+  static const luaL_Reg metamethods[] = {{"__tostring", w_Result_tostring},
+                                         {"__gc", w_Result_gc},
+                                         {"__close", w_Result_gc},
+                                         {nullptr, nullptr}};
+  register_type(L, kResultMeta, methods, metamethods);
+  // Fields are computed on access, so __index is a function, not a table.
+  luaL_getmetatable(L, kResultMeta);
+  lua_pushcfunction(L, w_Result_index);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+}
+
+void set_analysis_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {
+      {"analyze", w_analyze}, {"export_qp", w_export_qp}, {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua

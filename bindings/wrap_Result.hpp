@@ -1,0 +1,17 @@
+// Lua type "ashlar.Result": the outcome of ashlar.analyze. Its fields
+// (stable, infeasibility, interfaces, ...) are computed on access.
+#pragma once
+
+#include <lua.hpp>
+
+#include "analysis/equilibrium.hpp"
+
+namespace ashlar::lua {
+
+// The engine result held by the Result at idx, or nullptr if it is not one.
+const EquilibriumResult* luax_testResult(lua_State* L, int idx);
+void register_Result(lua_State* L);
+// ashlar.analyze and ashlar.export_qp: set into the table on top of the stack.
+void set_analysis_functions(lua_State* L);
+
+}  // namespace ashlar::lua
