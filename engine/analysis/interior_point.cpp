@@ -157,15 +157,12 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   // current factorisation and inverse_phi); fills dx, dy, dw, dz.
   auto newton_direction = [&](const Eigen::VectorXd& complementarity) {
     const auto start = Clock::now();
+    // Per inequality row: (r_c + D r_g) / w, combined below as G^T (...).
+    const Eigen::VectorXd row_terms = (complementarity + z.cwiseProduct(r_g)).cwiseQuotient(w);
     rhs = -r_p;
     for (int k = 0; k < nv; ++k) {
       const ContactVertex& v = problem.vertices[k];
-      const Eigen::VectorXd inv_w = w.segment(m * k, m).cwiseInverse();
-      const Eigen::VectorXd d = z.segment(m * k, m).cwiseProduct(inv_w);
-      const Vector4 reduced =
-          -r_d.segment<4>(4 * k) -
-          g.transpose() * (complementarity.segment(m * k, m).cwiseProduct(inv_w) +
-                           d.cwiseProduct(r_g.segment(m * k, m)));
+      const Vector4 reduced = -r_d.segment<4>(4 * k) - g.transpose() * row_terms.segment(m * k, m);
       const Vector4 t = inverse_phi[k] * reduced;
       dx.segment<4>(4 * k) = t;  // completed below with the A^T dy part
       if (v.row_a >= 0) rhs.segment<6>(v.row_a) -= v.on_a * t;
@@ -174,12 +171,9 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     dy = cholesky_->solve(rhs);
     for (int k = 0; k < nv; ++k) {
       dx.segment<4>(4 * k) += inverse_phi[k] * reaction(k, dy);
-      const Eigen::VectorXd wk = w.segment(m * k, m);
       dw.segment(m * k, m) = g * dx.segment<4>(4 * k) + r_g.segment(m * k, m);
-      dz.segment(m * k, m) =
-          -(complementarity.segment(m * k, m) + z.segment(m * k, m).cwiseProduct(dw.segment(m * k, m)))
-               .cwiseQuotient(wk);
     }
+    dz = -(complementarity + z.cwiseProduct(dw)).cwiseQuotient(w);
     info.solve_seconds += seconds_since(start);
   };
 
@@ -219,10 +213,12 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
 
     // Eliminate each vertex's unknowns and assemble the normal matrix.
     std::fill_n(values, value_count, 0.0);
+    const Eigen::VectorXd scaling = z.cwiseQuotient(w);
     for (int k = 0; k < nv; ++k) {
-      const Eigen::VectorXd d = z.segment(m * k, m).cwiseQuotient(w.segment(m * k, m));
-      Matrix4 phi = g.transpose() * d.asDiagonal() * g;
-      phi.diagonal() += h;
+      Matrix4 phi = h.asDiagonal();
+      for (int i = 0; i < m; ++i) {
+        phi.noalias() += scaling(m * k + i) * g.row(i).transpose() * g.row(i);
+      }
       inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
       const ContactVertex& v = problem.vertices[k];
       const VertexSlots& slot = slots_[k];
