@@ -1,0 +1,376 @@
+// Turns a polygon soup (mesh files, CGAL outputs) into a Block: welds
+// vertices, drops what welding made degenerate, and merges coplanar faces
+// back into polygons so that a triangulated box has six faces again.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <queue>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+#include "core/error.hpp"
+#include "geometry/block_builders.hpp"
+#include "geometry/polygon.hpp"
+
+namespace ashlar {
+
+namespace {
+
+// Fractions of the mesh's bounding-box diagonal. Faces merge when they lie
+// within this distance of a common plane: far above rounding, and small
+// because a merged polygon that is not planar has a volume that depends on
+// how it is triangulated (splitting promises volumes exact to 1e-12).
+constexpr double kPlaneTolerance = 1e-9;
+// A vertex this close to the straight line through its two neighbours only
+// subdivides an edge; a face this narrow across its longest edge is flat.
+constexpr double kCollinear = 1e-9;
+
+using DirectedEdge = std::pair<int, int>;
+
+struct CellKey {
+  std::int64_t x, y, z;
+  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+struct CellKeyHash {
+  size_t operator()(const CellKey& k) const {
+    const auto mix = [](std::uint64_t h, std::int64_t v) {
+      return (h ^ static_cast<std::uint64_t>(v)) * 0x100000001b3ULL;
+    };
+    return static_cast<size_t>(mix(mix(mix(0xcbf29ce484222325ULL, k.x), k.y), k.z));
+  }
+};
+
+void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
+                 double weld_tolerance, const std::string& what) {
+  if (!std::isfinite(weld_tolerance) || weld_tolerance < 0.0) {
+    std::ostringstream message;
+    message << what << ": the weld tolerance must be a finite number >= 0 (m), got "
+            << weld_tolerance;
+    throw InvalidArgument(message.str());
+  }
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    if (!vertices[i].allFinite()) {
+      throw GeometryError(what + ": vertex " + std::to_string(i + 1) +
+                          " has a NaN or infinite coordinate");
+    }
+  }
+  const int count = static_cast<int>(vertices.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int index : faces[f]) {
+      if (index < 0 || index >= count) {
+        throw GeometryError(what + ": face " + std::to_string(f + 1) + " refers to vertex " +
+                            std::to_string(index + 1) + " but there are " +
+                            std::to_string(count) + " vertices");
+      }
+    }
+  }
+}
+
+// Maps every vertex to an earlier kept vertex within `tolerance`, or keeps
+// it: the first vertex of a cluster represents it, so callers can list the
+// points they want kept first. A hash grid with cells no smaller than the
+// tolerance finds the candidates among 27 cells.
+std::vector<int> weld(const std::vector<Vec3>& vertices, double tolerance) {
+  double largest = 0.0;
+  for (const Vec3& p : vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  // Cells bigger than the tolerance stay correct; this floor keeps the cell
+  // indices far inside int64 when the tolerance is 0 or tiny.
+  const double cell = std::max({tolerance, 1e-15 * largest, std::numeric_limits<double>::min()});
+  const auto key_of = [cell](const Vec3& p) {
+    return CellKey{static_cast<std::int64_t>(std::floor(p.x() / cell)),
+                   static_cast<std::int64_t>(std::floor(p.y() / cell)),
+                   static_cast<std::int64_t>(std::floor(p.z() / cell))};
+  };
+  std::unordered_map<CellKey, std::vector<int>, CellKeyHash> grid;
+  std::vector<int> representative(vertices.size());
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const Vec3& p = vertices[i];
+    const CellKey home = key_of(p);
+    int found = -1;
+    for (int dx = -1; dx <= 1 && found < 0; ++dx) {
+      for (int dy = -1; dy <= 1 && found < 0; ++dy) {
+        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+          const auto cell_points = grid.find({home.x + dx, home.y + dy, home.z + dz});
+          if (cell_points == grid.end()) continue;
+          for (int candidate : cell_points->second) {
+            if ((vertices[candidate] - p).norm() <= tolerance) {
+              found = candidate;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (found < 0) {
+      found = static_cast<int>(i);
+      grid[home].push_back(found);
+    }
+    representative[i] = found;
+  }
+  return representative;
+}
+
+std::vector<Vec3> loop_points(const std::vector<Vec3>& points, const FaceLoop& face) {
+  std::vector<Vec3> loop;
+  loop.reserve(face.size());
+  for (int index : face) loop.push_back(points[index]);
+  return loop;
+}
+
+// Re-indexes the faces through the weld and removes the repeats it created;
+// faces left with fewer than 3 vertices were edges or points.
+std::vector<FaceLoop> reindex_faces(const std::vector<FaceLoop>& faces,
+                                    const std::vector<int>& representative) {
+  std::vector<FaceLoop> result;
+  result.reserve(faces.size());
+  for (const FaceLoop& face : faces) {
+    FaceLoop cleaned;
+    for (int index : face) {
+      const int welded = representative[index];
+      if (cleaned.empty() || cleaned.back() != welded) cleaned.push_back(welded);
+    }
+    while (cleaned.size() > 1 && cleaned.front() == cleaned.back()) cleaned.pop_back();
+    if (cleaned.size() >= 3) result.push_back(std::move(cleaned));
+  }
+  return result;
+}
+
+// Drops flat faces (all vertices within kCollinear of a line; tiny faces
+// are not flat and merge into their plane's polygon later). A flat triangle,
+// a sliver whose middle vertex m lies on its longest edge, is glued to its
+// neighbour across that edge by inserting m into the neighbour, so the
+// surface stays closed.
+std::vector<FaceLoop> drop_flat_faces(const std::vector<Vec3>& points, std::vector<FaceLoop> faces,
+                                      double size) {
+  std::map<DirectedEdge, int> owner;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const FaceLoop& face = faces[f];
+    for (size_t i = 0; i < face.size(); ++i) {
+      owner[{face[i], face[(i + 1) % face.size()]}] = static_cast<int>(f);
+    }
+  }
+  std::vector<bool> dropped(faces.size(), false);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const FaceLoop& face = faces[f];
+    size_t longest_at = 0;
+    double longest = 0.0;
+    for (size_t i = 0; i < face.size(); ++i) {
+      const double length = (points[face[(i + 1) % face.size()]] - points[face[i]]).norm();
+      if (length > longest) {
+        longest = length;
+        longest_at = i;
+      }
+    }
+    const double twice_area = newell_normal(loop_points(points, face)).norm();
+    if (twice_area > kCollinear * size * longest) continue;
+    dropped[f] = true;
+    for (size_t i = 0; i < face.size(); ++i) {
+      const auto edge = owner.find({face[i], face[(i + 1) % face.size()]});
+      if (edge != owner.end() && edge->second == static_cast<int>(f)) owner.erase(edge);
+    }
+    if (face.size() != 3) continue;
+    // The longest edge runs next -> prev, and m sits between them.
+    const int next = face[longest_at], prev = face[(longest_at + 1) % 3],
+              m = face[(longest_at + 2) % 3];
+    const auto across = owner.find({prev, next});
+    if (across == owner.end()) continue;
+    const int g = across->second;
+    FaceLoop& neighbour = faces[g];
+    if (std::find(neighbour.begin(), neighbour.end(), m) != neighbour.end()) continue;
+    const auto at = std::find(neighbour.begin(), neighbour.end(), prev);
+    neighbour.insert(at + 1, m);
+    owner.erase(across);
+    owner[{prev, m}] = g;
+    owner[{m, next}] = g;
+  }
+  std::vector<FaceLoop> kept;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!dropped[f]) kept.push_back(std::move(faces[f]));
+  }
+  return kept;
+}
+
+// The single boundary loop of a patch of faces, or nothing when the boundary
+// is several loops (a hole) or pinched at a vertex.
+std::optional<FaceLoop> patch_outline(const std::vector<FaceLoop>& faces,
+                                      const std::vector<int>& members) {
+  std::map<DirectedEdge, int> boundary;  // an edge cancels against its reverse
+  for (int f : members) {
+    const FaceLoop& face = faces[f];
+    for (size_t i = 0; i < face.size(); ++i) {
+      const int from = face[i], to = face[(i + 1) % face.size()];
+      const auto reverse = boundary.find({to, from});
+      if (reverse != boundary.end()) {
+        if (--reverse->second == 0) boundary.erase(reverse);
+      } else {
+        ++boundary[{from, to}];
+      }
+    }
+  }
+  std::unordered_map<int, int> successor;
+  for (const auto& [edge, count] : boundary) {
+    if (count != 1 || !successor.emplace(edge.first, edge.second).second) return std::nullopt;
+  }
+  if (boundary.size() < 3) return std::nullopt;
+  FaceLoop outline;
+  const int start = boundary.begin()->first.first;
+  int at = start;
+  do {
+    outline.push_back(at);
+    const auto step = successor.find(at);
+    if (step == successor.end() || outline.size() > boundary.size()) return std::nullopt;
+    at = step->second;
+  } while (at != start);
+  if (outline.size() != boundary.size()) return std::nullopt;
+  return outline;
+}
+
+// Grows each patch from its largest face across edges shared by exactly two
+// faces, taking faces whose vertices all lie within `plane_tolerance` of the
+// seed's plane. Distance, not the angle between normals, decides: normals of
+// the slivers a clip leaves behind are too noisy to compare.
+std::vector<FaceLoop> merge_coplanar_faces(const std::vector<Vec3>& points,
+                                           const std::vector<FaceLoop>& faces,
+                                           double plane_tolerance) {
+  std::map<DirectedEdge, std::vector<int>> users;  // undirected edge -> faces
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const FaceLoop& face = faces[f];
+    for (size_t i = 0; i < face.size(); ++i) {
+      const int a = face[i], b = face[(i + 1) % face.size()];
+      users[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
+    }
+  }
+  std::vector<std::vector<int>> neighbours(faces.size());
+  for (const auto& [edge, list] : users) {
+    if (list.size() == 2 && list[0] != list[1]) {
+      neighbours[list[0]].push_back(list[1]);
+      neighbours[list[1]].push_back(list[0]);
+    }
+  }
+  std::vector<Vec3> normals(faces.size());
+  std::vector<double> areas(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const Vec3 n = newell_normal(loop_points(points, faces[f]));
+    areas[f] = n.norm();
+    normals[f] = n.normalized();
+  }
+  std::vector<int> order(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) order[f] = static_cast<int>(f);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return areas[a] > areas[b]; });
+
+  std::vector<bool> taken(faces.size(), false);
+  std::vector<FaceLoop> merged;
+  for (int seed : order) {
+    if (taken[seed]) continue;
+    taken[seed] = true;
+    const Vec3& normal = normals[seed];
+    const double offset = normal.dot(points[faces[seed][0]]);
+    const auto in_plane = [&](int f) {
+      if (normals[f].dot(normal) <= 0.0) return false;
+      for (int index : faces[f]) {
+        if (std::abs(normal.dot(points[index]) - offset) > plane_tolerance) return false;
+      }
+      return true;
+    };
+    std::vector<int> members{seed};
+    std::queue<int> frontier;
+    frontier.push(seed);
+    while (!frontier.empty()) {
+      const int f = frontier.front();
+      frontier.pop();
+      for (int g : neighbours[f]) {
+        if (taken[g] || !in_plane(g)) continue;
+        taken[g] = true;
+        members.push_back(g);
+        frontier.push(g);
+      }
+    }
+    const std::optional<FaceLoop> outline =
+        members.size() > 1 ? patch_outline(faces, members) : std::nullopt;
+    if (outline) {
+      merged.push_back(*outline);
+    } else {
+      for (int f : members) merged.push_back(faces[f]);
+    }
+  }
+  return merged;
+}
+
+// Removes vertices that only subdivide a straight edge between two faces
+// (clip points on the diagonals of triangulated faces, midpoints in mesh
+// files). The triangle each removal cuts off one face it adds to the other,
+// so the volume does not change.
+void remove_edge_midpoints(const std::vector<Vec3>& points, std::vector<FaceLoop>& faces,
+                           double tolerance) {
+  std::vector<std::vector<int>> users(points.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int index : faces[f]) users[index].push_back(static_cast<int>(f));
+  }
+  const auto neighbours_in = [](const FaceLoop& face, int v) {
+    const size_t at = std::find(face.begin(), face.end(), v) - face.begin();
+    return std::make_pair(face[(at + face.size() - 1) % face.size()],
+                          face[(at + 1) % face.size()]);
+  };
+  for (size_t v = 0; v < points.size(); ++v) {
+    if (users[v].size() != 2 || users[v][0] == users[v][1]) continue;
+    FaceLoop& first = faces[users[v][0]];
+    FaceLoop& second = faces[users[v][1]];
+    if (first.size() <= 3 || second.size() <= 3) continue;
+    const int vertex = static_cast<int>(v);
+    const auto [u, w] = neighbours_in(first, vertex);
+    if (neighbours_in(second, vertex) != std::make_pair(w, u)) continue;
+    const Vec3 along = points[w] - points[u];
+    const Vec3 offset = points[v] - points[u];
+    if (along.dot(offset) <= 0.0 || along.dot(points[w] - points[v]) <= 0.0) continue;
+    if (along.cross(offset).norm() > tolerance * along.norm()) continue;
+    first.erase(std::find(first.begin(), first.end(), vertex));
+    second.erase(std::find(second.begin(), second.end(), vertex));
+  }
+}
+
+// Keeps the vertices that faces use, in their original order.
+void drop_unused_vertices(std::vector<Vec3>& points, std::vector<FaceLoop>& faces) {
+  std::vector<int> new_index(points.size(), -1);
+  for (const FaceLoop& face : faces) {
+    for (int index : face) new_index[index] = 0;
+  }
+  std::vector<Vec3> used;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (new_index[i] < 0) continue;
+    new_index[i] = static_cast<int>(used.size());
+    used.push_back(points[i]);
+  }
+  for (FaceLoop& face : faces) {
+    for (int& index : face) index = new_index[index];
+  }
+  points = std::move(used);
+}
+
+}  // namespace
+
+Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
+                      double weld_tolerance, const BlockStyle& style, const std::string& what) {
+  check_input(vertices, faces, weld_tolerance, what);
+  Box3 box;
+  for (const Vec3& p : vertices) box.add(p);
+  const double size = box.diagonal();
+
+  std::vector<Vec3> points = vertices;
+  std::vector<FaceLoop> loops = reindex_faces(faces, weld(vertices, weld_tolerance));
+  loops = drop_flat_faces(points, std::move(loops), size);
+  loops = merge_coplanar_faces(points, loops, kPlaneTolerance * size);
+  remove_edge_midpoints(points, loops, kCollinear * size);
+  drop_unused_vertices(points, loops);
+  try {
+    return Block(std::move(points), std::move(loops), style.density, style.name);
+  } catch (const GeometryError& error) {
+    throw GeometryError(what + ": " + error.what());
+  }
+}
+
+}  // namespace ashlar
