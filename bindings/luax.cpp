@@ -179,6 +179,21 @@ void push_points(lua_State* L, const std::vector<Vec3>& points) {
   }
 }
 
+void set_field(lua_State* L, const char* key, double value) {
+  lua_pushnumber(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_field(lua_State* L, const char* key, const Vec3& value) {
+  push_vec3(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_index_field(lua_State* L, const char* key, int zero_based) {
+  lua_pushinteger(L, static_cast<lua_Integer>(zero_based) + 1);
+  lua_setfield(L, -2, key);
+}
+
 OptionTable::OptionTable(lua_State* L, int arg, std::initializer_list<const char*> allowed)
     : L_(L), arg_(arg), index_(0) {
   const int type = lua_type(L, arg);

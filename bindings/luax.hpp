@@ -69,6 +69,12 @@ std::vector<FaceLoop> to_faces(lua_State* L, int idx, int arg, const std::string
 void push_vec3(lua_State* L, const Vec3& v);
 void push_points(lua_State* L, const std::vector<Vec3>& points);
 
+// Fields of the table on top of the stack.
+void set_field(lua_State* L, const char* key, double value);
+void set_field(lua_State* L, const char* key, const Vec3& value);
+// A 0-based engine index stored as the 1-based Lua index.
+void set_index_field(lua_State* L, const char* key, int zero_based);
+
 // An option table argument. Construction checks that the argument is a table
 // (or absent/nil) and that every key is one of `allowed`, naming the unknown
 // key and the allowed ones otherwise. Readers name the key in their errors.

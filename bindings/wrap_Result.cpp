@@ -22,16 +22,6 @@ struct AnalysisRecord {
   int block_count = 0;
 };
 
-void set_number(lua_State* L, const char* key, double value) {
-  lua_pushnumber(L, value);
-  lua_setfield(L, -2, key);
-}
-
-void set_vec3(lua_State* L, const char* key, const Vec3& value) {
-  push_vec3(L, value);
-  lua_setfield(L, -2, key);
-}
-
 // Options table of ashlar.analyze / ashlar.export_qp at stack index arg.
 AnalysisSettings settings_from(lua_State* L, int arg) {
   const OptionTable options(L, arg,
@@ -118,15 +108,13 @@ void push_interfaces(lua_State* L, const EquilibriumResult& result) {
   for (size_t i = 0; i < result.interfaces.size(); ++i) {
     const InterfaceForces& f = result.interfaces[i];
     lua_createtable(L, 0, 7);
-    lua_pushinteger(L, f.a + 1);
-    lua_setfield(L, -2, "a");
-    lua_pushinteger(L, f.b + 1);
-    lua_setfield(L, -2, "b");
-    set_number(L, "normal_force", f.normal_force);
-    set_number(L, "compression", f.compression);
-    set_number(L, "tension", f.tension);
-    set_vec3(L, "resultant", f.resultant);
-    set_vec3(L, "center_of_pressure", f.center_of_pressure);
+    set_index_field(L, "a", f.a);
+    set_index_field(L, "b", f.b);
+    set_field(L, "normal_force", f.normal_force);
+    set_field(L, "compression", f.compression);
+    set_field(L, "tension", f.tension);
+    set_field(L, "resultant", f.resultant);
+    set_field(L, "center_of_pressure", f.center_of_pressure);
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
 }
@@ -137,7 +125,7 @@ void push_blocks(lua_State* L, const EquilibriumResult& result) {
   for (int i : result.floating_blocks) floating[i] = true;
   for (size_t i = 0; i < result.block_tension.size(); ++i) {
     lua_createtable(L, 0, 2);
-    set_number(L, "tension", result.block_tension[i]);
+    set_field(L, "tension", result.block_tension[i]);
     lua_pushboolean(L, floating[i]);
     lua_setfield(L, -2, "floating");
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
@@ -149,13 +137,12 @@ void push_vertices(lua_State* L, const EquilibriumResult& result) {
   for (size_t k = 0; k < result.vertex_forces.size(); ++k) {
     const Eigen::Vector4d& f = result.vertex_forces[k];
     lua_createtable(L, 0, 6);
-    lua_pushinteger(L, result.vertex_interface[k] + 1);
-    lua_setfield(L, -2, "interface");
-    set_vec3(L, "position", result.vertex_positions[k]);
-    set_number(L, "compression", f(0));
-    set_number(L, "tension", f(1));
-    set_number(L, "friction_u", f(2));
-    set_number(L, "friction_v", f(3));
+    set_index_field(L, "interface", result.vertex_interface[k]);
+    set_field(L, "position", result.vertex_positions[k]);
+    set_field(L, "compression", f(0));
+    set_field(L, "tension", f(1));
+    set_field(L, "friction_u", f(2));
+    set_field(L, "friction_v", f(3));
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
   }
 }
@@ -202,10 +189,10 @@ int w_Result_index(lua_State* L) {
     else if (is("imbalance_without_tension")) lua_pushnumber(L, r.imbalance_without_tension);
     else if (is("timings")) {
       lua_createtable(L, 0, 4);
-      set_number(L, "setup", r.timings.setup);
-      set_number(L, "assembly", r.timings.assembly);
-      set_number(L, "factorization", r.timings.factorization);
-      set_number(L, "solve", r.timings.solve);
+      set_field(L, "setup", r.timings.setup);
+      set_field(L, "assembly", r.timings.assembly);
+      set_field(L, "factorization", r.timings.factorization);
+      set_field(L, "solve", r.timings.solve);
     } else if (is("floating")) {
       lua_createtable(L, static_cast<int>(r.floating_blocks.size()), 0);
       for (size_t i = 0; i < r.floating_blocks.size(); ++i) {

@@ -12,27 +12,15 @@ namespace {
 
 constexpr const char* kStructureMeta = "ashlar.Structure";
 
-void set_number(lua_State* L, const char* key, double value) {
-  lua_pushnumber(L, value);
-  lua_setfield(L, -2, key);
-}
-
-void set_vec3(lua_State* L, const char* key, const Vec3& value) {
-  push_vec3(L, value);
-  lua_setfield(L, -2, key);
-}
-
 void push_interface(lua_State* L, const Interface& contact) {
   lua_createtable(L, 0, 10);
-  lua_pushinteger(L, contact.a + 1);
-  lua_setfield(L, -2, "a");
-  lua_pushinteger(L, contact.b + 1);
-  lua_setfield(L, -2, "b");
-  set_number(L, "area", contact.area);
-  set_vec3(L, "center", contact.center);
-  set_vec3(L, "normal", contact.normal);
-  set_vec3(L, "u", contact.u);
-  set_vec3(L, "v", contact.v);
+  set_index_field(L, "a", contact.a);
+  set_index_field(L, "b", contact.b);
+  set_field(L, "area", contact.area);
+  set_field(L, "center", contact.center);
+  set_field(L, "normal", contact.normal);
+  set_field(L, "u", contact.u);
+  set_field(L, "v", contact.v);
   push_points(L, contact.vertices);
   lua_setfield(L, -2, "vertices");
   lua_createtable(L, static_cast<int>(contact.holes.size()), 0);
@@ -142,10 +130,9 @@ int w_Structure_loads(lua_State* L) {
     for (size_t i = 0; i < s.loads().size(); ++i) {
       const PointLoad& load = s.loads()[i];
       lua_createtable(L, 0, 3);
-      lua_pushinteger(L, load.block + 1);
-      lua_setfield(L, -2, "block");
-      set_vec3(L, "force", load.force);
-      set_vec3(L, "at", load.at);
+      set_index_field(L, "block", load.block);
+      set_field(L, "force", load.force);
+      set_field(L, "at", load.at);
       lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
     }
     return 1;
