@@ -103,11 +103,29 @@ int w_export(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
     const std::string path = check_string(L, 2, "path");
-    const OptionTable options(L, 3, {"color", "interfaces", "tolerance"});
+    const OptionTable options(L, 3, {"color", "interfaces", "tolerance", "result", "forces",
+                                     "thrust", "force_scale", "opacity"});
     ExportOptions exported;
     exported.block_colors = block_colors(L, options, s.size());
     exported.interfaces = options.boolean("interfaces").value_or(false);
     exported.contact.tolerance = options.positive("tolerance", 0.0, true);
+    // The Result stays pushed, so it cannot be collected during the export.
+    if (options.push("result") != LUA_TNIL) {
+      exported.result = luax_testResult(L, -1);
+      if (!exported.result) {
+        throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " +
+                              type_name(L, -1));
+      }
+    }
+    exported.forces = options.boolean("forces").value_or(false);
+    exported.thrust = options.boolean("thrust").value_or(false);
+    exported.force_scale = options.positive("force_scale", 0.0, true);
+    if (const std::optional<double> opacity = options.number("opacity")) {
+      if (!(*opacity >= 0.0 && *opacity <= 1.0)) {
+        throw ArgError(3, "opacity: expected a number in [0, 1], got " + std::to_string(*opacity));
+      }
+      exported.block_opacity = opacity;
+    }
     export_structure(s, path, exported);
     return 0;
   });

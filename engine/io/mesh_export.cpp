@@ -7,7 +7,10 @@
 // asked for, are nodes "interface a-b" (1-based block numbers) holding the
 // outer boundary of the contact polygon twice, facing both ways, so that it
 // shows from either side in any viewer; holes in a contact polygon are not
-// drawn (the outer boundary is filled).
+// drawn (the outer boundary is filled). Force arrows and the thrust line,
+// from an analysis result, are closed solids from force_glyphs.hpp, each a
+// node with its own material; blocks turn translucent by default when they
+// are drawn, since they run inside the blocks.
 //
 // Axes: glTF is +Y up by specification, so positions and normals are
 // rotated (x, y, z) -> (x, z, -y) for .gltf/.glb; the import rotates back.
@@ -30,15 +33,18 @@
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
 #include <numeric>
 #include <sstream>
 
+#include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
 #include "io/atomic_file.hpp"
+#include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"
 
 namespace ashlar {
@@ -88,6 +94,32 @@ void check_color(const Rgb& color, const std::string& what) {
   }
 }
 
+void check_result(const Structure& structure, const ExportOptions& options) {
+  if ((options.forces || options.thrust) && !options.result) {
+    throw InvalidArgument(std::string("export: ") + (options.forces ? "forces" : "thrust") +
+                          " needs the result of an analysis of the structure (result = r)");
+  }
+  if (!options.result) return;
+  const EquilibriumResult& result = *options.result;
+  const size_t blocks = result.block_tension.size();
+  if (blocks != static_cast<size_t>(structure.size())) {
+    throw InvalidArgument("export: the result is of a structure with " + std::to_string(blocks) +
+                          " blocks, this one has " + std::to_string(structure.size()));
+  }
+  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
+  bool same = interfaces.size() == result.interfaces.size();
+  for (size_t i = 0; same && i < interfaces.size(); ++i) {
+    same = interfaces[i].a == result.interfaces[i].a && interfaces[i].b == result.interfaces[i].b;
+  }
+  if (!same) {
+    throw InvalidArgument("export: the result's " + std::to_string(result.interfaces.size()) +
+                          " interfaces are not this structure's " +
+                          std::to_string(interfaces.size()) +
+                          "; export the structure that was analysed, with the analysis's "
+                          "contact tolerance");
+  }
+}
+
 void check_options(const Structure& structure, const ExportOptions& options) {
   if (structure.size() == 0) throw InvalidArgument("export: the structure has no blocks");
   const auto colors = options.block_colors.size();
@@ -100,6 +132,20 @@ void check_options(const Structure& structure, const ExportOptions& options) {
     check_color(options.block_colors[i], "colour " + std::to_string(i + 1));
   }
   check_color(options.interface_color, "interface_color");
+  check_color(options.compression_color, "compression_color");
+  check_color(options.tension_color, "tension_color");
+  check_color(options.thrust_color, "thrust_color");
+  if (options.block_opacity && !(*options.block_opacity >= 0.0 && *options.block_opacity <= 1.0)) {
+    throw InvalidArgument("export: block_opacity must lie in [0, 1], got " +
+                          std::to_string(*options.block_opacity));
+  }
+  if (!(options.force_scale >= 0.0) || !std::isfinite(options.force_scale)) {
+    throw InvalidArgument("export: force_scale must be a finite number >= 0 (0: automatic)");
+  }
+  if (!(options.negligible_force >= 0.0 && options.negligible_force < 1.0)) {
+    throw InvalidArgument("export: negligible_force must lie in [0, 1)");
+  }
+  check_result(structure, options);
 }
 
 // ---------------------------------------------------------------------------
@@ -222,7 +268,8 @@ aiMesh* to_ai_mesh(const FlatMesh& flat, const std::string& name, unsigned mater
   return mesh.release();
 }
 
-aiMaterial* make_material(const std::string& name, const Rgb& rgb, bool two_sided) {
+aiMaterial* make_material(const std::string& name, const Rgb& rgb, double opacity,
+                          bool two_sided) {
   auto material = std::make_unique<aiMaterial>();
   const aiString material_name(name);
   material->AddProperty(&material_name, AI_MATKEY_NAME);
@@ -236,6 +283,9 @@ aiMaterial* make_material(const std::string& name, const Rgb& rgb, bool two_side
   material->AddProperty(&roughness, 1, AI_MATKEY_ROUGHNESS_FACTOR);
   const int two_sided_flag = two_sided ? 1 : 0;
   material->AddProperty(&two_sided_flag, 1, AI_MATKEY_TWOSIDED);
+  // The glTF writer turns opacity below 1 into alpha blending.
+  const ai_real alpha = static_cast<ai_real>(opacity);
+  material->AddProperty(&alpha, 1, AI_MATKEY_OPACITY);
   return material.release();
 }
 
@@ -246,9 +296,9 @@ public:
   explicit SceneBuilder(bool y_up) : y_up_(y_up) {}
 
   void add_object(const std::string& name, const FlatMesh& mesh, const Rgb& color,
-                  bool two_sided) {
+                  bool two_sided, double opacity = 1.0) {
     const auto index = static_cast<unsigned>(meshes_.size());
-    materials_.push_back(make_material(name, color, two_sided));
+    materials_.push_back(make_material(name, color, opacity, two_sided));
     meshes_.push_back(to_ai_mesh(mesh, name, index, y_up_));
     auto node = std::make_unique<aiNode>(name);
     node->mNumMeshes = 1;
@@ -301,9 +351,11 @@ FlatMesh block_mesh(const Block& block) {
 std::unique_ptr<aiScene> build_scene(const Structure& structure, const ExportOptions& options,
                                      bool y_up) {
   SceneBuilder builder(y_up);
+  const bool glyphs_inside = options.result && (options.forces || options.thrust);
+  const double opacity = options.block_opacity.value_or(glyphs_inside ? 0.35 : 1.0);
   for (int i = 0; i < structure.size(); ++i) {
     const Rgb color = options.block_colors.empty() ? Rgb{} : options.block_colors[i];
-    builder.add_object(structure.name(i), block_mesh(structure.block(i)), color, false);
+    builder.add_object(structure.name(i), block_mesh(structure.block(i)), color, false, opacity);
   }
   if (options.interfaces) {
     std::map<std::string, int> uses;
@@ -318,6 +370,13 @@ std::unique_ptr<aiScene> build_scene(const Structure& structure, const ExportOpt
       mesh.add_polygon(contact.vertices, contact.normal, true);
       builder.add_object(name, mesh, options.interface_color, true);
     }
+  }
+  for (const NamedGlyph& glyph : equilibrium_glyphs(structure, options)) {
+    FlatMesh mesh;
+    for (const std::vector<Vec3>& face : glyph.faces) {
+      mesh.add_polygon(face, newell_normal(face).normalized(), false);
+    }
+    builder.add_object(glyph.name, mesh, glyph.color, false);
   }
   return builder.finish();
 }

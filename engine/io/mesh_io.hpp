@@ -10,6 +10,8 @@
 
 namespace ashlar {
 
+struct EquilibriumResult;
+
 struct ImportOptions {
   double density = kDefaultDensity;  // kg/m^3 for every imported block
   // Vertices closer than this fraction of the scene's bounding-box diagonal
@@ -38,11 +40,40 @@ struct ExportOptions {
   bool interfaces = false;  // also write each contact polygon as a node
   Rgb interface_color{0.9, 0.2, 0.1};
   ContactOptions contact;
+
+  // An analysis of this very structure (same blocks, and interfaces found
+  // with the same `contact` options), needed by `forces` and `thrust`; not
+  // owned, it must outlive the call.
+  const EquilibriumResult* result = nullptr;
+  // One arrow per interface, node "force a-b" (1-based blocks): from the
+  // centre of pressure along the resultant acting on block b, its length
+  // proportional to the resultant's size. Interfaces whose resultant is
+  // below `negligible_force` of the largest get none.
+  bool forces = false;
+  // The thrust line (thrust_line(structure, *result)) as a thin tube, node
+  // "thrust line"; none when it has fewer than two points.
+  bool thrust = false;
+  // Arrow length per newton (m/N); 0 scales the largest arrow to a quarter
+  // of the mean size (bounding-box diagonal) of the free blocks. Give a
+  // value to compare arrows across several exports.
+  double force_scale = 0.0;
+  // Fraction of the largest resultant below which an interface gets no
+  // arrow and a tension counts as none (solver round-off).
+  double negligible_force = 1e-3;
+  Rgb compression_color{0.15, 0.35, 0.9};  // arrows of interfaces in compression only
+  Rgb tension_color{0.9, 0.1, 0.1};        // arrows of interfaces carrying tension
+  Rgb thrust_color{1.0, 0.65, 0.0};
+  // Opacity of the blocks in [0, 1] (glTF and OBJ; PLY and STL have no
+  // materials). Unset: opaque, except 0.35 when forces or the thrust line
+  // are drawn, since they run inside the blocks.
+  std::optional<double> block_opacity;
 };
 
 // Format from the extension: .glb, .gltf (glTF 2.0), .obj, .ply, .stl.
 // Each block is a node named after it; every file is written atomically.
-// Throws InvalidArgument for an unknown extension, IoError on failure.
+// Throws InvalidArgument for an unknown extension, bad options (forces or
+// thrust without a result, a result of another structure), IoError on
+// failure.
 void export_structure(const Structure& structure, const std::string& path,
                       const ExportOptions& options);
 

@@ -234,3 +234,39 @@ describe("utilities", function()
     assert.is_true(m.resident_mb > 0 and m.peak_mb >= m.resident_mb * 0.5)
   end)
 end)
+
+describe("export of an analysis", function()
+  it("exports forces and a thrust line", function()
+    local dir = tmpdir()
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 4, 2, 0.5 }, center = { 0, 0, -0.25 } }, { support = true, name = "ground" })
+    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 0.25 } }, { name = "base" })
+    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0.3, 0, 0.75 } }, { name = "overhang" })
+    local r = ashlar.analyze(s, { friction = math.huge })
+    assert.is_true(r.stable)
+    for _, ext in ipairs{ "glb", "gltf", "obj", "ply", "stl" } do
+      ashlar.export(s, dir .. "/a." .. ext, { result = r, forces = true, thrust = true })
+    end
+    local f = assert(io.open(dir .. "/a.gltf"))
+    local gltf = f:read("a")
+    f:close()
+    for _, node in ipairs{ "force 1-2", "force 2-3", "thrust line" } do
+      assert.is_truthy(gltf:find('"' .. node .. '"', 1, true), node)
+    end
+    assert.is_falsy(gltf:find('"force 1-3"', 1, true))
+
+    local function export_error(options)
+      local ok, message = pcall(ashlar.export, s, dir .. "/bad.glb", options)
+      assert.is_false(ok)
+      return message
+    end
+    assert.is_truthy(export_error{ forces = true }:find("needs the result", 1, true))
+    assert.is_truthy(export_error{ result = s, thrust = true }:find("result: expected a Result", 1, true))
+    assert.is_truthy(export_error{ result = r, forces = "yes" }:find("forces: expected a boolean", 1, true))
+    local unknown = export_error{ result = r, force = true }
+    assert.is_truthy(unknown:find("unknown option", 1, true) and unknown:find("forces", 1, true))
+    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 1.25 } })
+    assert.is_truthy(export_error{ result = r, forces = true }:find("3 blocks, this one has 4", 1, true))
+    os.execute("rm -rf " .. dir)
+  end)
+end)

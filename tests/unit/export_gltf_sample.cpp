@@ -1,13 +1,15 @@
 // Writes sample.glb and sample.gltf (with its sample.bin) into the folder
 // given as the only argument, for the gltf.validator test, which runs the
 // Khronos glTF Validator on them. The sample exercises what the exporter
-// does: coloured blocks, convex and non-convex faces, interfaces.
+// does: coloured translucent blocks, convex and non-convex faces,
+// interfaces, force arrows in compression and tension, a thrust line.
 #include <cstdio>
 #include <exception>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "analysis/equilibrium.hpp"
 #include "geometry/block_builders.hpp"
 #include "io/color_map.hpp"
 #include "io/mesh_io.hpp"
@@ -35,6 +37,8 @@ Structure sample_structure() {
   add(make_box({1.0, 0.5, 0.3}, {1.5, 0.0, 0.95}), false, "lintel");
   add(make_hull({{2.5, -0.5, 0}, {3, -0.5, 0}, {3, 0.5, 0}, {2.5, 0.5, 0}, {2.75, 0, 0.6}}), false,
       "pyramid");
+  // Overhanging its support by more than half: its interface needs tension.
+  add(make_box({1.0, 0.5, 0.2}, {-1.3, 0, 1.3}), false, "overhang");
   return s;
 }
 
@@ -52,6 +56,10 @@ int main(int argc, char** argv) {
     ExportOptions options;
     options.block_colors = map_colors(heights, -0.25, 1.0, "viridis");
     options.interfaces = true;
+    const EquilibriumResult result = analyze_equilibrium(structure, {});
+    options.result = &result;
+    options.forces = true;
+    options.thrust = true;
     const std::string folder = argv[1];
     for (const char* name : {"sample.glb", "sample.gltf"}) {
       export_structure(structure, folder + "/" + name, options);

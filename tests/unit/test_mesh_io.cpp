@@ -3,37 +3,28 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
 #include "io/atomic_file.hpp"
 #include "io/color_map.hpp"
+#include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"
-#include "temp_dir.hpp"
+#include "test_support.hpp"
 
 using namespace ashlar;
 
 namespace {
 
 const std::string kMeshData = std::string(ASHLAR_TEST_DATA) + "/mesh/";
-
-std::string error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 std::map<std::string, const Block*> by_name(const std::vector<ImportedBlock>& blocks) {
   std::map<std::string, const Block*> result;
@@ -304,7 +295,7 @@ TEST(MeshExport, RejectsBadColours) {
 }
 
 // ---------------------------------------------------------------------------
-// Colour maps
+// Forces and thrust lines
 
 TEST(ColorMap, EndsMiddleAndClamping) {
   const auto colors = map_colors({-5, 0, 5, 10, 20}, 0, 10, "viridis");

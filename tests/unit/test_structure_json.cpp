@@ -18,7 +18,7 @@
 #include "geometry/block_builders.hpp"
 #include "io/atomic_file.hpp"
 #include "io/structure_json.hpp"
-#include "temp_dir.hpp"
+#include "test_support.hpp"
 
 using namespace ashlar;
 

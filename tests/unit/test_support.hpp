@@ -1,4 +1,4 @@
-// A fresh folder under /tmp for one test, removed with its files afterwards.
+// Helpers shared by the unit tests.
 #pragma once
 
 #include <dirent.h>
@@ -6,8 +6,27 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "core/error.hpp"
+
+// The message of the ashlar::Error that action throws, or "(no error)".
+inline std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const ashlar::Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+inline bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// A fresh folder under /tmp for one test, removed with its files afterwards.
 
 class TempDir {
 public:

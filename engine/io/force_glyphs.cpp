@@ -1,0 +1,174 @@
+#include "io/force_glyphs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "analysis/equilibrium.hpp"
+
+namespace ashlar {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A unit vector perpendicular to the unit vector `axis`, built from the
+// coordinate axis least aligned with it so that it is well conditioned.
+Vec3 any_perpendicular(const Vec3& axis) {
+  Eigen::Index least = 0;
+  axis.cwiseAbs().minCoeff(&least);
+  return axis.cross(Vec3::Unit(least)).normalized();
+}
+
+// `sides` points on a circle about `center` in the plane normal to the unit
+// vector `axis`, counter-clockwise about it, the first along `first`.
+std::vector<Vec3> ring(const Vec3& center, const Vec3& axis, const Vec3& first, double radius,
+                       int sides) {
+  const Vec3 second = axis.cross(first);
+  std::vector<Vec3> points;
+  points.reserve(sides);
+  for (int j = 0; j < sides; ++j) {
+    const double angle = 2.0 * kPi * j / sides;
+    points.push_back(center + radius * (std::cos(angle) * first + std::sin(angle) * second));
+  }
+  return points;
+}
+
+// Outward faces facing back along the axis (reversed ring) and the sides
+// between two rings of the same orientation.
+void add_start_cap(const std::vector<Vec3>& start, GlyphFaces& faces) {
+  faces.emplace_back(start.rbegin(), start.rend());
+}
+
+void add_sides(const std::vector<Vec3>& start, const std::vector<Vec3>& end, GlyphFaces& faces) {
+  const size_t n = start.size();
+  for (size_t j = 0; j < n; ++j) {
+    const size_t next = (j + 1) % n;
+    faces.push_back({start[j], start[next], end[next], end[j]});
+  }
+}
+
+}  // namespace
+
+GlyphFaces arrow_faces(const Vec3& tail, const Vec3& tip, const ArrowShape& shape) {
+  const double length = (tip - tail).norm();
+  const Vec3 axis = (tip - tail) / length;
+  const Vec3 first = any_perpendicular(axis);
+  const Vec3 neck = tip - shape.head_length * axis;
+  const auto tail_ring = ring(tail, axis, first, shape.shaft_radius, shape.sides);
+  const auto neck_ring = ring(neck, axis, first, shape.shaft_radius, shape.sides);
+  const auto head_ring = ring(neck, axis, first, shape.head_radius, shape.sides);
+
+  GlyphFaces faces;
+  add_start_cap(tail_ring, faces);
+  add_sides(tail_ring, neck_ring, faces);
+  const size_t n = neck_ring.size();
+  for (size_t j = 0; j < n; ++j) {
+    const size_t next = (j + 1) % n;
+    // The flat ring under the head, facing back towards the tail.
+    faces.push_back({neck_ring[j], neck_ring[next], head_ring[next], head_ring[j]});
+    faces.push_back({head_ring[j], head_ring[next], tip});
+  }
+  return faces;
+}
+
+GlyphFaces tube_faces(const std::vector<Vec3>& points, double radius, int sides) {
+  GlyphFaces faces;
+  if (points.empty()) return faces;
+  // Slivers would be degenerate triangles once stored in single precision.
+  const double shortest = 1e-3 * radius;
+  Vec3 from = points.front();
+  Vec3 first = Vec3::Zero();
+  for (const Vec3& to : points) {
+    const Vec3 segment = to - from;
+    if (segment.norm() <= shortest) continue;
+    const Vec3 axis = segment.normalized();
+    // Carry the previous orientation over the bend (parallel transport).
+    const Vec3 carried = first - first.dot(axis) * axis;
+    first = carried.norm() > 1e-6 ? Vec3(carried.normalized()) : any_perpendicular(axis);
+    const auto start = ring(from, axis, first, radius, sides);
+    const auto end = ring(to, axis, first, radius, sides);
+    add_start_cap(start, faces);
+    add_sides(start, end, faces);
+    faces.push_back(end);
+    from = to;
+  }
+  return faces;
+}
+
+namespace {
+
+// Proportions of glyphs, as fractions of the mean free-block size or of
+// the largest arrow: thin enough not to hide each other at a joint, thick
+// enough to see in a whole-structure view.
+constexpr double kLargestArrowOfBlockSize = 0.25;
+constexpr double kShaftRadiusOfLargestArrow = 0.06;
+constexpr double kHeadRadiusOfLargestArrow = 0.16;
+constexpr double kHeadLengthOfLargestArrow = 0.35;
+// Thinner than a shaft: arrows run along the thrust line and must show.
+constexpr double kThrustRadiusOfBlockSize = 0.012;
+constexpr int kGlyphSides = 6;
+
+double mean_free_block_size(const Structure& structure) {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < structure.size(); ++i) {
+    if (structure.is_support(i)) continue;
+    sum += structure.block(i).bounds().diagonal();
+    ++count;
+  }
+  return count > 0 ? sum / count : structure.bounds().diagonal();
+}
+
+bool finite(const Vec3& v) { return v.allFinite(); }
+
+void add_force_arrows(const EquilibriumResult& result, const ExportOptions& options,
+                      double block_size, std::vector<NamedGlyph>& glyphs) {
+  double largest = 0.0;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (finite(f.resultant)) largest = std::max(largest, f.resultant.norm());
+  }
+  if (largest == 0.0) return;
+  const double largest_arrow = options.force_scale > 0.0 ? options.force_scale * largest
+                                                         : kLargestArrowOfBlockSize * block_size;
+  const double metres_per_newton = largest_arrow / largest;
+  const double negligible = options.negligible_force * largest;
+  std::map<std::string, int> uses;
+  for (const InterfaceForces& f : result.interfaces) {
+    const double size = f.resultant.norm();
+    if (!(size > negligible) || !finite(f.resultant) || !finite(f.center_of_pressure)) continue;
+    const double length = metres_per_newton * size;
+    ArrowShape shape;
+    shape.sides = kGlyphSides;
+    shape.shaft_radius = kShaftRadiusOfLargestArrow * largest_arrow;
+    shape.head_radius = kHeadRadiusOfLargestArrow * largest_arrow;
+    // Short arrows keep a shaft, so that their direction still reads.
+    shape.head_length = std::min(kHeadLengthOfLargestArrow * largest_arrow, 0.5 * length);
+    std::string name = "force " + std::to_string(f.a + 1) + "-" + std::to_string(f.b + 1);
+    const int use = ++uses[name];
+    if (use > 1) name += " #" + std::to_string(use);
+    const Vec3 tip = f.center_of_pressure + length * f.resultant / size;
+    const bool pulls = f.tension > negligible;
+    glyphs.push_back({std::move(name), arrow_faces(f.center_of_pressure, tip, shape),
+                      pulls ? options.tension_color : options.compression_color});
+  }
+}
+
+}  // namespace
+
+std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
+                                           const ExportOptions& options) {
+  std::vector<NamedGlyph> glyphs;
+  if (!options.result) return glyphs;
+  const double block_size = mean_free_block_size(structure);
+  if (options.forces) add_force_arrows(*options.result, options, block_size, glyphs);
+  if (options.thrust) {
+    std::vector<Vec3> points = thrust_line(structure, *options.result);
+    const auto not_finite = [](const Vec3& p) { return !finite(p); };
+    points.erase(std::remove_if(points.begin(), points.end(), not_finite), points.end());
+    GlyphFaces tube = tube_faces(points, kThrustRadiusOfBlockSize * block_size, kGlyphSides);
+    if (!tube.empty()) glyphs.push_back({"thrust line", std::move(tube), options.thrust_color});
+  }
+  return glyphs;
+}
+
+}  // namespace ashlar

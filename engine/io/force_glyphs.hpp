@@ -1,0 +1,49 @@
+// Solid glyphs that draw forces and lines of thrust in exported meshes.
+//
+// Glyphs are closed polyhedra given as planar polygons facing outwards, so
+// that every viewer shades them like the blocks and none needs lines (which
+// most mesh formats and renderers draw one pixel wide, if at all).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "io/mesh_io.hpp"
+
+namespace ashlar {
+
+// Planar faces of one or more closed solids, each counter-clockwise seen
+// from outside.
+using GlyphFaces = std::vector<std::vector<Vec3>>;
+
+struct ArrowShape {
+  double shaft_radius = 0.0;  // m
+  double head_radius = 0.0;   // m, larger than shaft_radius
+  double head_length = 0.0;   // m, at most the arrow's length
+  int sides = 6;              // of the shaft prism and the head pyramid, >= 3
+};
+
+// One closed solid from tail to tip: a prism shaft, then a pyramid head
+// whose base is joined to the shaft by a flat ring. The tip is the apex.
+GlyphFaces arrow_faces(const Vec3& tail, const Vec3& tip, const ArrowShape& shape);
+
+// A tube of `sides`-gonal prisms, one closed prism per segment of the
+// polyline; consecutive prisms keep their orientation about the line so
+// that their edges meet at gentle bends. A point within a thousandth of
+// the radius of the previous one is skipped.
+GlyphFaces tube_faces(const std::vector<Vec3>& points, double radius, int sides);
+
+struct NamedGlyph {
+  std::string name;
+  GlyphFaces faces;
+  Rgb color;
+};
+
+// The force arrows and the thrust line that `options` asks for (see
+// ExportOptions), in that order. Expects options already checked against
+// the structure: options.result set when forces or thrust are.
+std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
+                                           const ExportOptions& options);
+
+}  // namespace ashlar

@@ -1,0 +1,205 @@
+// Export of analysis results: force arrows and the thrust line.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "analysis/equilibrium.hpp"
+#include "core/error.hpp"
+#include "geometry/block_builders.hpp"
+#include "io/atomic_file.hpp"
+#include "io/force_glyphs.hpp"
+#include "io/mesh_io.hpp"
+#include "test_support.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+// A block on the ground and a second one on it, shifted by `overhang`
+// along x: it needs no tension up to 0.5, the first block's edge.
+Structure overhanging_structure(double overhang) {
+  Structure s;
+  s.add(std::make_shared<const Block>(make_box({4, 2, 0.5}, {0, 0, -0.25})), true, "ground");
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0, 0, 0.25})), false, "base");
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {overhang, 0, 0.75})), false, "top");
+  return s;
+}
+
+ExportOptions forces_and_thrust(const EquilibriumResult& result) {
+  ExportOptions options;
+  options.result = &result;
+  options.forces = true;
+  options.thrust = true;
+  return options;
+}
+
+// An exported .gltf with its .bin, read back node by node.
+struct GltfFile {
+  nlohmann::json json;
+  std::string bin;
+
+  GltfFile(const TempDir& dir, const std::string& name)
+      : json(nlohmann::json::parse(read_file(dir.file(name)))),
+        bin(read_file(dir.file(json["buffers"][0]["uri"].get<std::string>()))) {}
+
+  const nlohmann::json& primitive(const std::string& node_name) const {
+    for (const auto& node : json["nodes"]) {
+      if (node.value("name", "") == node_name) {
+        return json["meshes"][node["mesh"].get<int>()]["primitives"][0];
+      }
+    }
+    throw std::runtime_error("no node " + node_name);
+  }
+  const nlohmann::json& accessor(const nlohmann::json& index) const {
+    return json["accessors"][index.get<int>()];
+  }
+  int triangles(const std::string& node_name) const {
+    return accessor(primitive(node_name)["indices"])["count"].get<int>() / 3;
+  }
+  const nlohmann::json& base_color(const std::string& node_name) const {
+    return json["materials"][primitive(node_name)["material"].get<int>()]["pbrMetallicRoughness"]
+               ["baseColorFactor"];
+  }
+  // Vertex positions in ashlar's axes (glTF's y is ashlar's z).
+  std::vector<Vec3> positions(const std::string& node_name) const {
+    const auto& positions = accessor(primitive(node_name)["attributes"]["POSITION"]);
+    const auto& view = json["bufferViews"][positions["bufferView"].get<int>()];
+    const char* data = bin.data() + view.value("byteOffset", 0) + positions.value("byteOffset", 0);
+    std::vector<Vec3> points;
+    for (int k = 0; k < positions["count"].get<int>(); ++k) {
+      float xyz[3];
+      std::memcpy(xyz, data + sizeof xyz * k, sizeof xyz);
+      points.emplace_back(xyz[0], -xyz[2], xyz[1]);
+    }
+    return points;
+  }
+};
+
+// Checks that every directed edge has its reverse exactly once (a closed,
+// consistently oriented surface) and returns the enclosed volume.
+double closed_volume(const GlyphFaces& faces) {
+  std::map<std::pair<std::array<double, 3>, std::array<double, 3>>, int> edges;
+  auto key = [](const Vec3& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  double volume = 0.0;
+  for (const auto& face : faces) {
+    for (size_t j = 0; j < face.size(); ++j) {
+      const Vec3& p = face[j];
+      const Vec3& q = face[(j + 1) % face.size()];
+      ++edges[{key(p), key(q)}];
+      if (j > 0 && j + 1 < face.size()) volume += face[0].dot(p.cross(q)) / 6.0;
+    }
+  }
+  for (const auto& [edge, count] : edges) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(edges.count({edge.second, edge.first}), 1u);
+  }
+  return volume;
+}
+
+}  // namespace
+
+TEST(ForceGlyphs, ArrowAndTubeAreClosedSolids) {
+  ArrowShape shape;
+  shape.shaft_radius = 0.1;
+  shape.head_radius = 0.25;
+  shape.head_length = 0.5;
+  const GlyphFaces arrow = arrow_faces({1, 2, 3}, {1, 4, 3}, shape);  // length 2 along y
+  EXPECT_EQ(arrow.size(), 1u + 3u * shape.sides);
+  const double hexagon = 1.5 * std::sqrt(3.0);  // area per squared circumradius
+  EXPECT_NEAR(closed_volume(arrow), hexagon * (0.01 * 1.5 + 0.0625 * 0.5 / 3.0), 1e-12);
+
+  // An L-shaped line with a repeated point: two prisms, each closed.
+  const GlyphFaces tube = tube_faces({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 2}}, 0.05, 6);
+  EXPECT_EQ(tube.size(), 2u * (2 + 6));
+  EXPECT_NEAR(closed_volume(tube), hexagon * 0.0025 * 3.0, 1e-12);
+}
+
+TEST(MeshExport, ForceArrowsAndThrustLineAreNodes) {
+  const Structure s = overhanging_structure(0.3);
+  const EquilibriumResult result = analyze_equilibrium(s, {});
+  ASSERT_TRUE(result.stable);
+  TempDir dir;
+  export_structure(s, dir.file("s.gltf"), forces_and_thrust(result));
+  const GltfFile gltf(dir, "s.gltf");
+
+  std::vector<std::string> glyphs;
+  for (const auto& node : gltf.json["nodes"]) {
+    const std::string name = node.value("name", "");
+    if (name.rfind("force ", 0) == 0 || name == "thrust line") glyphs.push_back(name);
+  }
+  EXPECT_EQ(glyphs, (std::vector<std::string>{"force 1-2", "force 2-3", "thrust line"}));
+  EXPECT_EQ(gltf.triangles("force 1-2"), 34);  // 4 cap + 12 shaft + 12 ring + 6 head
+  EXPECT_EQ(gltf.triangles("thrust line"), 20);  // one hexagonal prism: two points
+
+  // The arrow on the top block starts at its centre of pressure and points
+  // along the resultant; the largest one (on the base, carrying both
+  // blocks) is a quarter of the blocks' diagonal, 1.5 m.
+  const InterfaceForces& top = result.interfaces[1];
+  ASSERT_EQ(top.b, 2);
+  Vec3 tip = top.center_of_pressure;
+  for (const Vec3& p : gltf.positions("force 2-3")) {
+    if ((p - top.center_of_pressure).norm() > (tip - top.center_of_pressure).norm()) tip = p;
+  }
+  const Vec3 arrow = tip - top.center_of_pressure;
+  EXPECT_GT(arrow.normalized().dot(top.resultant.normalized()), 1 - 1e-6);
+  const double largest = result.interfaces[0].resultant.norm();
+  EXPECT_NEAR(arrow.norm(), 0.25 * 1.5 * top.resultant.norm() / largest, 1e-6);
+
+  // Compression is blue; the blocks turn translucent to show the glyphs.
+  EXPECT_GT(gltf.base_color("force 2-3")[2].get<double>(), gltf.base_color("force 2-3")[0]);
+  EXPECT_NEAR(gltf.base_color("top")[3].get<double>(), 0.35, 1e-6);
+  EXPECT_EQ(gltf.base_color("force 2-3")[3].get<double>(), 1.0);
+
+  for (const std::string& extension : export_extensions()) {
+    export_structure(s, dir.file("all" + extension), forces_and_thrust(result));
+  }
+  EXPECT_EQ(dir.entries().size(), 2u + 7u);  // s.gltf, s.bin; all.* with .bin and .mtl
+}
+
+TEST(MeshExport, TensionGetsARedArrow) {
+  const Structure s = overhanging_structure(0.7);
+  const EquilibriumResult result = analyze_equilibrium(s, {});
+  ASSERT_FALSE(result.stable);
+  ASSERT_GT(result.interfaces[1].tension, 0.0);
+  TempDir dir;
+  ExportOptions options = forces_and_thrust(result);
+  options.block_opacity = 1.0;
+  export_structure(s, dir.file("s.gltf"), options);
+  const GltfFile gltf(dir, "s.gltf");
+  EXPECT_GT(gltf.base_color("force 2-3")[0].get<double>(), gltf.base_color("force 2-3")[2]);
+  EXPECT_EQ(gltf.base_color("top")[3].get<double>(), 1.0);
+}
+
+TEST(MeshExport, ForcesNeedAResultOfThisStructure) {
+  TempDir dir;
+  const Structure s = overhanging_structure(0.3);
+  ExportOptions options;
+  options.forces = true;
+  std::string message = error_of([&] { export_structure(s, dir.file("s.glb"), options); });
+  EXPECT_TRUE(contains(message, "forces needs the result")) << message;
+  options.forces = false;
+  options.thrust = true;
+  message = error_of([&] { export_structure(s, dir.file("s.glb"), options); });
+  EXPECT_TRUE(contains(message, "thrust needs the result")) << message;
+
+  Structure fewer;
+  fewer.add(std::make_shared<const Block>(s.block(0)), true);
+  fewer.add(std::make_shared<const Block>(s.block(1)));
+  const EquilibriumResult of_fewer = analyze_equilibrium(fewer, {});
+  message = error_of([&] { export_structure(s, dir.file("s.glb"), forces_and_thrust(of_fewer)); });
+  EXPECT_TRUE(contains(message, "2 blocks, this one has 3")) << message;
+
+  // As many blocks, but the third lifted off: other interfaces.
+  Structure lifted = fewer;
+  lifted.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0, 0, 2})));
+  const EquilibriumResult of_lifted = analyze_equilibrium(lifted, {});
+  message = error_of([&] { export_structure(s, dir.file("s.glb"), forces_and_thrust(of_lifted)); });
+  EXPECT_TRUE(contains(message, "interfaces")) << message;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// ---------------------------------------------------------------------------
+// Colour maps
