@@ -20,8 +20,8 @@ void check_options(const EquilibriumOptions& options) {
   if (!std::isfinite(options.tension_weight) || options.tension_weight < 0.0) {
     throw InvalidArgument("tension_weight must be a finite number >= 0");
   }
-  if (!std::isfinite(options.force_weight) || options.force_weight <= 0.0) {
-    throw InvalidArgument("force_weight must be a finite number > 0");
+  if (!std::isfinite(options.force_weight) || options.force_weight < 0.0) {
+    throw InvalidArgument("force_weight must be a finite number >= 0");
   }
 }
 
@@ -160,8 +160,14 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
     problem.vertex_rows(2 + j, 2) = friction(j, 1);
     problem.vertex_rows(2 + j, 3) = friction(j, 2);
   }
-  problem.hessian_diagonal << options.force_weight, options.tension_weight, options.force_weight,
-      options.force_weight;
+  // The regularisation's pull on the multipliers grows with the forces,
+  // which grow with the number of blocks sharing the load (an arch's thrust
+  // is a fraction of its whole weight). Dividing it by the block count keeps
+  // the tension penalty exact on large structures, while staying far above
+  // the scale at which near-free friction unknowns spoil the factorisation.
+  const double regularisation = options.force_weight / std::max(analysed, 1);
+  problem.hessian_diagonal << regularisation, options.tension_weight, regularisation,
+      regularisation;
   problem.linear << 0.0, 1.0, 0.0, 0.0;
   return problem;
 }

@@ -1,0 +1,125 @@
+-- Benchmark: the minimum thickness of semicircular arches, found by bisection
+-- on t/R with the equilibrium analysis (no sliding), against Milankovitch's
+-- limit 0.1075 for infinitely many voussoirs.
+--   ashlar scripts/bench_arch_min_thickness.lua [output folder, default "."]
+-- Prints a table and writes arch_min_thickness.csv, .png and .svg (a log-log
+-- chart of the error against the wall time of each bisection) in the folder.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+
+local LIMIT = 0.1075
+local VOUSSOIRS = { 4, 8, 16, 32, 64, 128, 256, 512, 1024 }
+local RADIUS = 5
+-- Every count of voussoirs falls at the first ratio and stands at the second.
+local BRACKET = { 0.05, 0.15 }
+-- Far below the smallest error measured (about 2e-5), so that the error is
+-- the model's and the analysis', not the bisection's.
+local TOLERANCE = 1e-7
+
+local output = arg[1] or "."
+local base = output .. "/arch_min_thickness"
+
+local function shell_quoted(text)
+  return "'" .. text:gsub("'", "'\\''") .. "'"
+end
+
+-- Bisection between a ratio at which the arch falls and one at which it
+-- stands; returns the midpoint (nil if the bracket does not hold) and
+-- figures about the analyses it ran.
+local function minimum_thickness_ratio(voussoirs)
+  local run = { voussoirs = voussoirs, analyses = 0, analysis_seconds = 0, iterations = 0, not_converged = 0 }
+  local function stands(ratio)
+    local s = models.arch{ radius = RADIUS, thickness = ratio * RADIUS, voussoirs = voussoirs }
+    local r = ashlar.analyze(s, { friction = math.huge })
+    run.analyses = run.analyses + 1
+    run.analysis_seconds = run.analysis_seconds + r.seconds
+    run.iterations = run.iterations + r.iterations
+    if r.status ~= "converged" then run.not_converged = run.not_converged + 1 end
+    return r.stable
+  end
+  local start = ashlar.clock()
+  local falling, standing = BRACKET[1], BRACKET[2]
+  if not stands(falling) and stands(standing) then
+    while standing - falling > TOLERANCE do
+      local middle = (falling + standing) / 2
+      if stands(middle) then standing = middle else falling = middle end
+    end
+    run.ratio = (falling + standing) / 2
+    run.error = run.ratio - LIMIT
+  end
+  run.seconds = ashlar.clock() - start
+  return run
+end
+
+local function write_atomically(path, text)
+  local file = assert(io.open(path .. ".tmp", "w"))
+  file:write(text)
+  file:close()
+  assert(os.rename(path .. ".tmp", path))
+end
+
+-- The chart through gnuplot, each image written under a temporary name and
+-- renamed when gnuplot has finished it.
+local function chart(runs)
+  local points = {}
+  for _, run in ipairs(runs) do
+    if run.ratio then
+      points[#points + 1] = ("%.9g %.9g %d"):format(run.seconds, math.abs(run.error), run.voussoirs)
+    end
+  end
+  local data = base .. ".chart.tmp"
+  write_atomically(data, table.concat(points, "\n") .. "\n")
+  local plot = ([[
+set logscale xy
+set format x "10^{%%L}"
+set format y "10^{%%L}"
+set title "Semicircular arch: minimum thickness t/R by bisection (no sliding)\nerror against Milankovitch's limit 0.1075, labels: number of voussoirs N"
+set xlabel "wall time of the bisection (s)"
+set ylabel "|t/R - 0.1075| (t: thickness, R: centreline radius; dimensionless)"
+set grid xtics ytics mxtics mytics lc rgb "#dddddd"
+set key off
+set offsets graph 0.08, graph 0.12, graph 0.1, graph 0.1
+plot %s using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4", \
+     %s using 1:2:("N = ".strcol(3)) with labels offset char 1.2, char 0.6 left font ",10"
+]]):format(("%q"):format(data), ("%q"):format(data))
+  local png_terminal = [[
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
+  set terminal pngcairo size 1000,700 font "Sans,11"
+} else {
+  set terminal png size 1000,700
+}
+]]
+  local script = base .. ".gnuplot.tmp"
+  write_atomically(script, png_terminal .. ("set output %q\n"):format(base .. ".png.tmp") .. plot ..
+    "set terminal svg size 1000,700 dynamic font \"Sans,11\"\n" ..
+    ("set output %q\n"):format(base .. ".svg.tmp") .. "replot\nset output\n")
+  local ok = os.execute("gnuplot " .. shell_quoted(script))
+  os.remove(script)
+  os.remove(data)
+  assert(ok, "gnuplot failed on " .. script)
+  assert(os.rename(base .. ".png.tmp", base .. ".png"))
+  assert(os.rename(base .. ".svg.tmp", base .. ".svg"))
+end
+
+assert(os.execute("mkdir -p " .. shell_quoted(output)), "cannot create " .. output)
+local columns = "%9s %12s %14s %13s %9s %16s %15s %14s"
+print(columns:format("voussoirs", "t/R found", "error", "bisection s", "analyses", "mean analysis s",
+  "mean iterations", "not converged"))
+local runs = {}
+local csv = { "voussoirs,ratio,error_vs_0.1075,bisection_seconds,analyses,mean_analysis_seconds,"
+              .. "mean_iterations,not_converged" }
+for _, voussoirs in ipairs(VOUSSOIRS) do
+  local run = minimum_thickness_ratio(voussoirs)
+  runs[#runs + 1] = run
+  local mean_seconds, mean_iterations = run.analysis_seconds / run.analyses, run.iterations / run.analyses
+  local ratio_text = run.ratio and ("%.7f"):format(run.ratio) or "bracket fails"
+  local error_text = run.error and ("%+.2e"):format(run.error) or ""
+  print(columns:format(voussoirs, ratio_text, error_text, ("%.3f"):format(run.seconds), run.analyses,
+    ("%.5f"):format(mean_seconds), ("%.1f"):format(mean_iterations), run.not_converged))
+  csv[#csv + 1] = ("%d,%s,%s,%.6f,%d,%.6f,%.2f,%d"):format(voussoirs, run.ratio and ("%.9f"):format(run.ratio) or "",
+    run.error and ("%.9e"):format(run.error) or "", run.seconds, run.analyses, mean_seconds, mean_iterations,
+    run.not_converged)
+end
+write_atomically(base .. ".csv", table.concat(csv, "\n") .. "\n")
+chart(runs)
+print(("wrote %s.csv, %s.png, %s.svg"):format(base, base, base))
