@@ -258,4 +258,17 @@ describe("semicircular arch equilibrium", function()
       end
     end
   end)
+
+  -- A regularisation that grew with the thrust once made long arches need
+  -- tension: 1024 voussoirs at t/R 0.11 were reported unstable.
+  it("keeps the exact answer for 2048 voussoirs just above the limit", function()
+    local s = models.arch{ radius = 5, thickness = 0.1076 * 5, voussoirs = 2048 }
+    local r = ashlar.analyze(s, { friction = math.huge })
+    assert.equal("converged", r.status)
+    assert.is_true(r.stable)
+    assert.equal(0, r.infeasibility)
+    local thin = ashlar.analyze(models.arch{ radius = 5, thickness = 0.1070 * 5, voussoirs = 2048 },
+      { friction = math.huge })
+    assert.is_false(thin.stable)
+  end)
 end)
