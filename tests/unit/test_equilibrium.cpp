@@ -121,6 +121,21 @@ TEST(Equilibrium, FreeBlockTouchingNothingIsUnstable) {
   EXPECT_TRUE(std::isinf(r.infeasibility));
 }
 
+TEST(Equilibrium, BlockTouchingOnlyAtAnEdgeIsUnstable) {
+  // A cube standing on one of its edges in the middle of the block below:
+  // a line contact, not a face, so no interface, and it is reported as
+  // resting on nothing (edge-to-face contacts are not modelled).
+  Structure s = block_on_ground();
+  s.add(std::make_shared<const Block>(
+      make_box({0.5, 0.5, 0.5}, {0, 0, 0}).rotated(Vec3::UnitY(), M_PI / 4, Vec3::Zero())
+          .translated({0.2, 0, 0.5 + 0.25 * std::sqrt(2.0)})));
+  const EquilibriumResult r = analyze_equilibrium(s, {});
+  EXPECT_EQ(s.interfaces().size(), 1u);
+  EXPECT_FALSE(r.stable);
+  ASSERT_EQ(r.floating_blocks.size(), 1u);
+  EXPECT_EQ(r.floating_blocks[0], 2);
+}
+
 TEST(Equilibrium, UnitsAndRigidMotionDoNotChangeTheAnswer) {
   const EquilibriumResult reference = analyze_equilibrium(overhanging_stack(0.7), {});
   for (double scale : {1e-3, 1e3}) {
