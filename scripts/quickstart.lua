@@ -1,5 +1,6 @@
 -- ashlar quickstart: builds a small scene, finds its contact interfaces,
--- exports it as glTF and prints a summary.
+-- analyses the equilibrium of an arch, exports both as glTF and prints a
+-- summary.
 --   ashlar scripts/quickstart.lua [output folder]
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
@@ -39,3 +40,21 @@ local f = interfaces[#interfaces]
 print(("  last contact: blocks %d-%d ('%s' on '%s'), area %.3f m^2, %d vertices"):format(
   f.a, f.b, s:name(f.b), s:name(f.a), f.area, #f.vertices))
 print(("  wrote %s and %s/quickstart.json"):format(glb, out))
+
+-- A semicircular arch of 31 voussoirs: does it stand, and how thin could it be?
+local arch = models.arch{ radius = 5, thickness = 0.6, voussoirs = 31, depth = 1 }
+local r = ashlar.analyze(arch, { friction = 0.7 })
+local thrust = r:thrust_line()
+print(("  arch: %d voussoirs, t/R = %.3f: %s (infeasibility %g, %s in %d iterations, %.1f ms)"):format(
+  #arch - 2, 0.6 / 5, r.stable and "stands" or "falls", r.infeasibility, r.status, r.iterations, r.seconds * 1e3))
+print(("        thrust line through %d joints, at z = %.3f m beside the keystone"):format(#thrust, thrust[(#thrust + 1) // 2][3]))
+local thin, thick = 0.09, 0.12
+while thick - thin > 1e-4 do
+  local ratio = (thin + thick) / 2
+  local stands = ashlar.analyze(models.arch{ radius = 5, thickness = ratio * 5, voussoirs = 31 },
+                                { friction = math.huge }).stable
+  if stands then thick = ratio else thin = ratio end
+end
+print(("        minimum thickness without sliding: t/R = %.4f (limit for many voussoirs: 0.1075)"):format(thick))
+ashlar.export(arch, out .. "/arch.glb", { result = r, forces = true, thrust = true })
+print(("  wrote %s/arch.glb with force arrows and the thrust line"):format(out))
