@@ -177,6 +177,15 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     info.solve_seconds += seconds_since(start);
   };
 
+  auto objective_value = [&] {
+    double sum = 0.0;
+    for (int k = 0; k < nv; ++k) {
+      const Vector4 xk = x.segment<4>(4 * k);
+      sum += 0.5 * xk.dot(h.cwiseProduct(xk)) + q.dot(xk);
+    }
+    return sum;
+  };
+
   for (int iteration = 0;; ++iteration) {
     auto start = Clock::now();
     // Residuals.
@@ -190,7 +199,9 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
                               g.transpose() * z.segment(m * k, m);
       r_g.segment(m * k, m) = g * xk - w.segment(m * k, m);
     }
-    const double mu = m * nv > 0 ? w.dot(z) / (m * nv) : 0.0;
+    // The total gap, not its mean, bounds the objective's error.
+    const double duality_gap = w.dot(z);
+    const double mu = m * nv > 0 ? duality_gap / (m * nv) : 0.0;
     info.iterations = iteration;
     info.primal_residual = std::max(r_p.size() ? r_p.lpNorm<Eigen::Infinity>() : 0.0,
                                     r_g.size() ? r_g.lpNorm<Eigen::Infinity>() : 0.0);
@@ -202,7 +213,8 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       break;
     }
     if (info.primal_residual <= settings.tolerance * rhs_scale &&
-        info.dual_residual <= settings.tolerance * dual_scale && mu <= settings.tolerance) {
+        info.dual_residual <= settings.tolerance * dual_scale &&
+        duality_gap <= settings.tolerance * (1.0 + std::abs(objective_value()))) {
       info.status = SolverStatus::converged;
       break;
     }
@@ -247,7 +259,23 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     }
     info.assembly_seconds += seconds_since(start);
     start = Clock::now();
-    const bool factored = cholesky_->factorize();
+    // Near the optimum the scales of z/w spread over many orders and the
+    // matrix can lose positive definiteness in rounding; a small diagonal
+    // shift, raised until the factorisation succeeds, restores it, and the
+    // next iterations correct the slightly perturbed step.
+    bool factored = cholesky_->factorize();
+    if (!factored) {
+      std::vector<double> unshifted(values, values + value_count);
+      double largest = 0.0;
+      for (int col = 0; col < size_; ++col) {
+        largest = std::max(largest, std::abs(values[column_starts_[col + 1] - 1]));
+      }
+      for (double shift = 1e-14; !factored && shift <= 1e-8; shift *= 100.0) {
+        std::copy(unshifted.begin(), unshifted.end(), values);
+        for (int col = 0; col < size_; ++col) values[column_starts_[col + 1] - 1] += shift * largest;
+        factored = cholesky_->factorize();
+      }
+    }
     info.factorization_seconds += seconds_since(start);
     if (!factored) {
       info.status = SolverStatus::numerical_error;
@@ -280,12 +308,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     z += step * dz;
   }
   info.factorizations = cholesky_->factorizations() - factorizations_before;
-  double objective = 0.0;
-  for (int k = 0; k < nv; ++k) {
-    const Vector4 xk = x.segment<4>(4 * k);
-    objective += 0.5 * xk.dot(h.cwiseProduct(xk)) + q.dot(xk);
-  }
-  info.objective = objective;
+  info.objective = objective_value();
   return info;
 }
 

@@ -22,7 +22,7 @@ class SparseCholesky;
 
 struct InteriorPointSettings {
   int max_iterations = 100;   // Newton iterations before giving up
-  double tolerance = 1e-10;   // on scaled residuals and the complementarity gap
+  double tolerance = 1e-10;   // on scaled residuals, and on the total duality gap relative to 1 + |objective|
   double step_fraction = 0.99;  // of the step to the boundary taken each iteration
 };
 
@@ -42,7 +42,7 @@ struct InteriorPointInfo {
   double objective = 0.0;           // scaled, as in the QPS export
   double primal_residual = 0.0;     // max |A x - b|, scaled
   double dual_residual = 0.0;       // max |H x + q - A^T y - G^T z|
-  double complementarity = 0.0;     // mean w_i z_i
+  double complementarity = 0.0;     // mean w_i z_i (the total is the duality gap)
   double assembly_seconds = 0.0;    // residuals, vertex eliminations, normal-matrix values
   double factorization_seconds = 0.0;
   double solve_seconds = 0.0;       // triangular solves and step updates
