@@ -11,10 +11,10 @@ cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")"
 
 readonly DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
+  libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libopenblas0-pthread libcgal-dev libgmp-dev libmpfr-dev
   libassimp-dev liblbfgspp-dev libsqlite3-dev nlohmann-json3-dev
   googletest libgtest-dev lua-busted
-  nodejs npm gnuplot-nox python3
+  nodejs npm gnuplot-nox python3 python3-cvxopt python3-numpy
 )
 # Node.js may come from outside Debian (NodeSource's nodejs bundles npm and
 # conflicts with Debian's npm): for these a working command is enough.
