@@ -15,7 +15,8 @@
 // weight / free blocks) and lengths in units of the mean free-block size L,
 // so the QP is the same in millimetres or kilometres and its numbers are
 // O(1) per block whatever the model size. The objective is
-//     sum_k [ s_k + tension_weight/2 s_k^2 + force_weight/2 (c_k^2 + f_uk^2 + f_vk^2) ]
+//     sum_k [ s_k + tension_weight/2 s_k^2 + force_weight/(2n) (c_k^2 + f_uk^2 + f_vk^2) ]
+// with n the number of free blocks analysed.
 // The linear tension term is an exact penalty: when a compression-only
 // equilibrium exists, the optimum has no tension at all (the tiny
 // force_weight regularisation only picks the most even force distribution).
@@ -41,7 +42,7 @@ struct EquilibriumOptions {
   int friction_sides = 4;           // sides of the friction pyramid, >= 3
   FrictionModel friction_model = FrictionModel::pyramid;
   double tension_weight = 1.0;      // quadratic tension penalty (scaled units)
-  double force_weight = 1e-4;       // regularisation of compression and friction
+  double force_weight = 1e-4;       // regularisation of compression and friction (over n)
   ContactOptions contact;           // how interfaces are found
 };
 
