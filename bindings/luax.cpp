@@ -202,25 +202,35 @@ OptionTable::OptionTable(lua_State* L, int arg, std::initializer_list<const char
     throw ArgError(arg, "expected an option table, got " + type_name(L, arg));
   }
   index_ = lua_absindex(L, arg);
-  lua_pushnil(L);
-  while (lua_next(L, index_) != 0) {
-    lua_pop(L, 1);  // value; the key stays for lua_next
-    const bool string_key = lua_type(L, -1) == LUA_TSTRING;
+  check_keys(allowed);
+}
+
+OptionTable::OptionTable(lua_State* L, int idx, int arg, std::string prefix,
+                         std::initializer_list<const char*> allowed)
+    : L_(L), arg_(arg), index_(lua_absindex(L, idx)), prefix_(std::move(prefix)) {
+  check_keys(allowed);
+}
+
+void OptionTable::check_keys(std::initializer_list<const char*> allowed) const {
+  lua_pushnil(L_);
+  while (lua_next(L_, index_) != 0) {
+    lua_pop(L_, 1);  // value; the key stays for lua_next
+    const bool string_key = lua_type(L_, -1) == LUA_TSTRING;
     // lua_tostring would turn a number key into a string in place and break lua_next.
-    const std::string key = string_key ? lua_tostring(L, -1) : type_name(L, -1);
+    const std::string key = string_key ? lua_tostring(L_, -1) : type_name(L_, -1);
     const bool known = string_key && std::any_of(allowed.begin(), allowed.end(),
                                                  [&](const char* name) { return key == name; });
     if (!known) {
       std::vector<std::string> names(allowed.begin(), allowed.end());
       std::sort(names.begin(), names.end());
-      const std::string shown = string_key ? "'" + key + "'" : "(a " + key + " key)";
-      throw ArgError(arg, "unknown option " + shown + " (allowed: " + join(names) + ")");
+      const std::string shown = string_key ? "'" + prefix_ + key + "'" : "(a " + key + " key)";
+      throw ArgError(arg_, "unknown option " + shown + " (allowed: " + join(names) + ")");
     }
   }
 }
 
 void OptionTable::fail(const char* key, const std::string& message) const {
-  throw ArgError(arg_, std::string(key) + ": " + message);
+  throw ArgError(arg_, prefix_ + key + ": " + message);
 }
 
 int OptionTable::push(const char* key) const {
@@ -271,7 +281,7 @@ std::optional<Vec3> OptionTable::vec3(const char* key) const {
     return std::nullopt;
   }
   try {
-    const Vec3 v = to_vec3(L_, -1, arg_, key);
+    const Vec3 v = to_vec3(L_, -1, arg_, prefix_ + key);
     lua_pop(L_, 1);
     return v;
   } catch (...) {

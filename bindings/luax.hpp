@@ -81,6 +81,10 @@ void set_index_field(lua_State* L, const char* key, int zero_based);
 class OptionTable {
 public:
   OptionTable(lua_State* L, int arg, std::initializer_list<const char*> allowed);
+  // A table nested in argument `arg` at stack index idx; errors name `prefix`
+  // (e.g. "color.") before its keys.
+  OptionTable(lua_State* L, int idx, int arg, std::string prefix,
+              std::initializer_list<const char*> allowed);
 
   bool has(const char* key) const;
   std::optional<double> number(const char* key) const;
@@ -98,9 +102,12 @@ public:
 private:
   [[noreturn]] void fail(const char* key, const std::string& message) const;
 
+  void check_keys(std::initializer_list<const char*> allowed) const;
+
   lua_State* L_;
   int arg_;
   int index_;  // absolute stack index, 0 when the argument was absent
+  std::string prefix_;
 };
 
 // Calls the function at stack index idx with `nargs` values already pushed

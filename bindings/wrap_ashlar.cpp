@@ -57,7 +57,7 @@ std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int bloc
       lua_pop(L, 1);
     }
   } else {
-    const OptionTable mapped(L, color, {"values", "map", "range"});
+    const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
     if (mapped.push("values") != LUA_TTABLE) {
       throw ArgError(arg, "color.values: expected a list of numbers, one per block");
     }

@@ -100,6 +100,10 @@ describe("argument errors", function()
     expect_error({ "color.values: needs one value per block (1), got 2" }, ashlar.export, s, "x.glb",
       { color = { values = { 1, 2 } } })
     expect_error({ "support: expected a name pattern" }, ashlar.import, "x.obj", { support = 3 })
+    expect_error({ "bad argument #3 to ", "unknown option 'color.value'" }, ashlar.export, s, "x.glb",
+      { color = { value = { 1 } } })
+    expect_error({ "bad argument #3 to ", "color.map: expected a string" }, ashlar.export, s, "x.glb",
+      { color = { values = { 1 }, map = 5 } })
   end)
 
   it("rejects bad model options with the generator's name", function()
