@@ -2,17 +2,8 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
-local function tmpdir()
-  local path = os.tmpname()
-  os.remove(path)
-  assert(os.execute("mkdir -p " .. path))
-  return path
-end
-
-local function near(actual, expected, tolerance)
-  assert(math.abs(actual - expected) <= tolerance,
-    ("expected %.17g, got %.17g (tolerance %g)"):format(expected, actual, tolerance))
-end
+local support = require "spec_support"
+local near, tmpdir = support.near, support.temp_folder
 
 local function stack()
   local s = ashlar.structure()
@@ -167,7 +158,7 @@ describe("structures", function()
       assert.equal(s:block(i):density(), t:block(i):density())
     end
     assert.same(s:loads(), t:loads())
-    os.execute("rm -rf " .. dir)
+    support.remove_folder(dir)
   end)
 
   it("exports glTF and OBJ, and imports them back block by block", function()
@@ -185,7 +176,7 @@ describe("structures", function()
       near(volume, 0.4 + 1.5, 1e-6)  -- mesh files store float32 coordinates
       assert.equal(3, #t:interfaces(), ext)
     end
-    os.execute("rm -rf " .. dir)
+    support.remove_folder(dir)
   end)
 
   it("exports PLY and STL, which hold one mesh, and imports a single solid back", function()
@@ -200,7 +191,7 @@ describe("structures", function()
       near(t:block(1):volume(), 10, 1e-5)
       assert.equal(8, #t:block(1):faces(), ext)  -- triangles merged back into polygons
     end
-    os.execute("rm -rf " .. dir)
+    support.remove_folder(dir)
   end)
 
   it("chooses supports on import with a function", function()
@@ -212,7 +203,7 @@ describe("structures", function()
     local supports = 0
     for i = 1, #t do if t:is_support(i) then supports = supports + 1 end end
     assert.equal(1, supports)
-    os.execute("rm -rf " .. dir)
+    support.remove_folder(dir)
   end)
 
   it("colours blocks from values and a colour map", function()
@@ -222,7 +213,7 @@ describe("structures", function()
     local f = assert(io.open(dir .. "/v.glb", "rb"))
     assert.equal("glTF", f:read(4))
     f:close()
-    os.execute("rm -rf " .. dir)
+    support.remove_folder(dir)
   end)
 end)
 
@@ -267,6 +258,6 @@ describe("export of an analysis", function()
     assert.is_truthy(unknown:find("unknown option", 1, true) and unknown:find("forces", 1, true))
     s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 1.25 } })
     assert.is_truthy(export_error{ result = r, forces = true }:find("3 blocks, this one has 4", 1, true))
-    os.execute("rm -rf " .. dir)
+    support.remove_folder(dir)
   end)
 end)

@@ -3,23 +3,7 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
--- Calls f from a Lua function (so that the error has a Lua caller to blame)
--- and returns its error message, failing if it did not raise.
-local function error_of(f, ...)
-  local args = table.pack(...)
-  -- Not a tail call: the wrapper must stay on the stack as the caller.
-  local ok, message = pcall(function() f(table.unpack(args, 1, args.n)) end)
-  assert(not ok, "expected an error")
-  return tostring(message)
-end
-
-local function expect_error(fragments, f, ...)
-  local message = error_of(f, ...)
-  assert(message:match("errors_spec%.lua:%d+:"), "no file:line in: " .. message)
-  for _, fragment in ipairs(fragments) do
-    assert(message:find(fragment, 1, true), ("'%s' not in: %s"):format(fragment, message))
-  end
-end
+local expect_error = require("spec_support").expect_error
 
 local cube_vertices = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 },
                         { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 }, { 1, 1, 1 } }

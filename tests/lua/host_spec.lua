@@ -3,15 +3,8 @@
 local ashlar_bin = assert(os.getenv("ASHLAR_BIN"), "set ASHLAR_BIN to the ashlar binary")
 local module_dir = os.getenv("ASHLAR_MODULE_DIR")
 
-local function quote(text)
-  return "'" .. text:gsub("'", [['\'']]) .. "'"
-end
-
-local function write_file(path, text)
-  local file = assert(io.open(path, "w"))
-  assert(file:write(text))
-  assert(file:close())
-end
+local support = require "spec_support"
+local quote, write_file = support.quote, support.write_file
 
 -- Runs shell commands with stdout and stderr together, and `input` (if any)
 -- on stdin; returns the output and the exit code of the last command.
@@ -42,15 +35,8 @@ describe("the ashlar host", function()
   local folder
 
   -- Scripts go in a fresh folder per test, so paths in messages are known.
-  before_each(function()
-    folder = os.tmpname()
-    os.remove(folder)
-    assert(os.execute("mkdir " .. quote(folder)))
-  end)
-
-  after_each(function()
-    os.execute("rm -rf " .. quote(folder))
-  end)
+  before_each(function() folder = support.temp_folder() end)
+  after_each(function() support.remove_folder(folder) end)
 
   local function script(name, text)
     local path = folder .. "/" .. name

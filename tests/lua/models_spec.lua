@@ -4,25 +4,8 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
-local function near(actual, expected, tolerance, what)
-  assert(math.abs(actual - expected) <= tolerance,
-    ("%sexpected %.17g, got %.17g (tolerance %g)"):format(what and what .. ": " or "", expected, actual,
-      tolerance))
-end
-
--- Calls f from a Lua function (so that the error has a Lua caller to blame)
--- and checks that its message has this file's line and every fragment.
-local function expect_error(fragments, f, ...)
-  local args = table.pack(...)
-  -- Not a tail call: the wrapper must stay on the stack as the caller.
-  local ok, message = pcall(function() f(table.unpack(args, 1, args.n)) end)
-  assert(not ok, "expected an error")
-  message = tostring(message)
-  assert(message:match("models_spec%.lua:%d+:"), "no file:line in: " .. message)
-  for _, fragment in ipairs(fragments) do
-    assert(message:find(fragment, 1, true), ("'%s' not in: %s"):format(fragment, message))
-  end
-end
+local support = require "spec_support"
+local near, expect_error = support.near, support.expect_error
 
 -- Volume of N voussoirs whose intrados and extrados are straight chords
 -- between radial joints: N trapezoids of the annulus, times the depth.

@@ -7,16 +7,8 @@ local python = "/usr/bin/python3"  -- Debian's, which has python3-cvxopt
 local spec_folder = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."
 local solver_script = spec_folder .. "/../tools/solve_qps.py"
 
-local function quote(text)
-  return "'" .. text:gsub("'", [['\'']]) .. "'"
-end
-
-local function read_file(path)
-  local file = assert(io.open(path))
-  local text = file:read("a")
-  file:close()
-  return text
-end
+local support = require "spec_support"
+local quote, read_file = support.quote, support.read_file
 
 -- Runs solve_qps.py on `path`; returns its JSON's status and objective.
 local function cvxopt_solution(path)
@@ -128,15 +120,8 @@ local structures = {
 describe("ashlar.export_qp", function()
   local folder
 
-  before_each(function()
-    folder = os.tmpname()
-    os.remove(folder)
-    assert(os.execute("mkdir " .. quote(folder)))
-  end)
-
-  after_each(function()
-    os.execute("rm -rf " .. quote(folder))
-  end)
+  before_each(function() folder = support.temp_folder() end)
+  after_each(function() support.remove_folder(folder) end)
 
   for _, case in ipairs(structures) do
     describe(case.name, function()

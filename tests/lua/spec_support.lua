@@ -1,0 +1,58 @@
+-- Helpers shared by the busted specs (found on package.path through the
+-- specs' working folder, tests/lua).
+local support = {}
+
+-- Quotes a string for the shell.
+function support.quote(text)
+  return "'" .. text:gsub("'", [['\'']]) .. "'"
+end
+
+function support.near(actual, expected, tolerance, what)
+  assert(math.abs(actual - expected) <= tolerance,
+    ("%sexpected %.17g, got %.17g (tolerance %g)"):format(what and what .. ": " or "", expected,
+      actual, tolerance))
+end
+
+-- Calls f with the arguments from a Lua function, so that the error has a
+-- Lua caller to blame, and checks that its message starts with a Lua
+-- file:line (this file's, or the spec's when f is a closure there) and holds
+-- every fragment (plain text).
+function support.expect_error(fragments, f, ...)
+  local args = table.pack(...)
+  -- Not a tail call: the wrapper must stay on the stack as the caller.
+  local ok, message = pcall(function() f(table.unpack(args, 1, args.n)) end)
+  assert(not ok, "expected an error")
+  message = tostring(message)
+  assert(message:match("^[^:]+%.lua:%d+: "), "no file:line in: " .. message)
+  for _, fragment in ipairs(fragments) do
+    assert(message:find(fragment, 1, true), ("'%s' not in: %s"):format(fragment, message))
+  end
+  return message
+end
+
+-- A new empty folder under /tmp, and its removal.
+function support.temp_folder()
+  local path = os.tmpname()
+  os.remove(path)
+  assert(os.execute("mkdir " .. support.quote(path)))
+  return path
+end
+
+function support.remove_folder(path)
+  os.execute("rm -rf " .. support.quote(path))
+end
+
+function support.read_file(path)
+  local file = assert(io.open(path, "rb"))
+  local text = file:read("a")
+  file:close()
+  return text
+end
+
+function support.write_file(path, text)
+  local file = assert(io.open(path, "w"))
+  assert(file:write(text))
+  assert(file:close())
+end
+
+return support
