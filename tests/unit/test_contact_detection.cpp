@@ -6,15 +6,12 @@
 #include <map>
 
 #include "geometry/block_builders.hpp"
+#include "test_support.hpp"
 #include "structure/structure.hpp"
 
 using namespace ashlar;
 
 namespace {
-
-BlockPtr box(const Vec3& size, const Vec3& center) {
-  return std::make_shared<const Block>(make_box(size, center));
-}
 
 // The stack from the foundation issue: a ground slab and three offset boxes.
 Structure three_block_stack() {

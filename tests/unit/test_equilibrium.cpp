@@ -6,14 +6,11 @@
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
+#include "test_support.hpp"
 
 using namespace ashlar;
 
 namespace {
-
-BlockPtr box(const Vec3& size, const Vec3& center) {
-  return std::make_shared<const Block>(make_box(size, center));
-}
 
 Structure block_on_ground() {
   Structure s;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "geometry/block_builders.hpp"
 
 // The message of the ashlar::Error that action throws, or "(no error)".
 inline std::string error_of(const std::function<void()>& action) {
@@ -20,6 +21,11 @@ inline std::string error_of(const std::function<void()>& action) {
     return e.what();
   }
   return "(no error)";
+}
+
+// A shared axis-aligned box block of default density, for building structures.
+inline ashlar::BlockPtr box(const ashlar::Vec3& size, const ashlar::Vec3& center) {
+  return std::make_shared<const ashlar::Block>(ashlar::make_box(size, center));
 }
 
 inline bool contains(const std::string& text, const std::string& part) {
