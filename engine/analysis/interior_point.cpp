@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "analysis/sparse_cholesky.hpp"
 
@@ -16,6 +17,10 @@ using Vector4 = Eigen::Vector4d;
 using Matrix64 = Eigen::Matrix<double, 6, 4>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
+
+// Iterations without a more accurate iterate, once one is within the
+// inaccurate tolerance, after which the solve stops.
+constexpr int kStallIterations = 8;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -36,6 +41,8 @@ const char* status_name(SolverStatus status) {
   switch (status) {
     case SolverStatus::converged:
       return "converged";
+    case SolverStatus::inaccurate:
+      return "inaccurate";
     case SolverStatus::max_iterations:
       return "max_iterations";
     case SolverStatus::numerical_error:
@@ -186,6 +193,16 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     return sum;
   };
 
+  // The most accurate iterate so far: when rounding stops the iterations
+  // short of the tolerance (active constraints whose slacks fall to 1e-12),
+  // it is the answer, reported as inaccurate.
+  struct Iterate {
+    double error = std::numeric_limits<double>::infinity();
+    int iteration = 0;
+    Eigen::VectorXd x, y, w, z;
+    InteriorPointInfo info;
+  } best;
+
   for (int iteration = 0;; ++iteration) {
     auto start = Clock::now();
     // Residuals.
@@ -212,10 +229,16 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       info.status = SolverStatus::numerical_error;
       break;
     }
-    if (info.primal_residual <= settings.tolerance * rhs_scale &&
-        info.dual_residual <= settings.tolerance * dual_scale &&
-        duality_gap <= settings.tolerance * (1.0 + std::abs(objective_value()))) {
+    const double error = std::max({info.primal_residual / rhs_scale,
+                                   info.dual_residual / dual_scale,
+                                   duality_gap / (1.0 + std::abs(objective_value()))});
+    if (error <= settings.tolerance) {
       info.status = SolverStatus::converged;
+      break;
+    }
+    if (error < best.error) best = {error, iteration, x, y, w, z, info};
+    if (best.error <= settings.inaccurate_tolerance && iteration - best.iteration > kStallIterations) {
+      info.status = SolverStatus::max_iterations;
       break;
     }
     if (iteration >= settings.max_iterations) {
@@ -306,6 +329,16 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     y += step * dy;
     w += step * dw;
     z += step * dz;
+  }
+  if (info.status != SolverStatus::converged && best.error <= settings.inaccurate_tolerance) {
+    const int iterations = info.iterations;
+    info = best.info;
+    info.iterations = iterations;
+    info.status = SolverStatus::inaccurate;
+    x = std::move(best.x);
+    y = std::move(best.y);
+    w = std::move(best.w);
+    z = std::move(best.z);
   }
   info.factorizations = cholesky_->factorizations() - factorizations_before;
   info.objective = objective_value();

@@ -24,15 +24,20 @@ struct InteriorPointSettings {
   int max_iterations = 100;   // Newton iterations before giving up
   double tolerance = 1e-10;   // on scaled residuals, and on the total duality gap relative to 1 + |objective|
   double step_fraction = 0.99;  // of the step to the boundary taken each iteration
+  // When the iterations stop short of `tolerance` (rounding, or the
+  // iteration limit), the best iterate is still returned, with status
+  // inaccurate, if its residuals and gap are within this.
+  double inaccurate_tolerance = 1e-5;
 };
 
 enum class SolverStatus {
   converged,
+  inaccurate,       // stopped short of the tolerance; the best iterate meets inaccurate_tolerance
   max_iterations,   // stopped at max_iterations without meeting the tolerance
   numerical_error,  // a factorisation or step failed (e.g. loss of positive definiteness)
 };
 
-// "converged", "max_iterations" or "numerical_error".
+// "converged", "inaccurate", "max_iterations" or "numerical_error".
 const char* status_name(SolverStatus status);
 
 struct InteriorPointInfo {

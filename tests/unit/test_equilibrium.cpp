@@ -108,6 +108,32 @@ TEST(Equilibrium, InclineSlidesWhenTangentExceedsFriction) {
   EXPECT_TRUE(analyze_equilibrium(block_on_incline(std::atan(0.9)), with_friction(INFINITY)).stable);
 }
 
+TEST(Equilibrium, SlidingNeedsTheTensionThatMakesUpTheFriction) {
+  // A flat slab pushed sideways along its contact's edge direction: friction
+  // mu c must carry the push H, so sum c = H / mu and the tension that keeps
+  // vertical balance is H / mu - W, i.e. infeasibility H / (mu W) - 1.
+  const double mu = 0.7;
+  for (double ratio : {0.69, 0.8, 1.0, 2.0}) {
+    Structure s;
+    s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
+    s.add(std::make_shared<const Block>(make_box({2, 1, 0.1}, {0, 0, 0.05})));
+    const double weight = 2 * 1 * 0.1 * 2400 * kGravity;
+    s.add_load({1, {ratio * weight, 0, 0}, {0, 0, 0.05}});
+    const EquilibriumResult r = analyze_equilibrium(s, with_friction(mu));
+    if (ratio < mu) {
+      EXPECT_EQ(r.status, SolverStatus::converged);
+      EXPECT_TRUE(r.stable);
+      continue;
+    }
+    // Rounding can stop a sliding solve short of 1e-10 (status inaccurate);
+    // the answer is still within the inaccurate tolerance.
+    EXPECT_TRUE(r.status == SolverStatus::converged || r.status == SolverStatus::inaccurate);
+    EXPECT_FALSE(r.stable);
+    const double expected = ratio / mu - 1.0;
+    EXPECT_NEAR(r.infeasibility, expected, 1e-5 * expected) << ratio;
+  }
+}
+
 TEST(Equilibrium, FreeBlockTouchingNothingIsUnstable) {
   Structure s = block_on_ground();
   s.add(box({1, 1, 1}, {10, 0, 5}));
