@@ -103,7 +103,10 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   result.imbalance_without_tension = imbalance_without_tension(problem, x);
   result.stable = result.status == SolverStatus::converged && result.floating_blocks.empty() &&
                   result.imbalance_without_tension <= settings.stable_tolerance;
-  if (!result.floating_blocks.empty()) {
+  // Floating blocks cannot be balanced at all; a numerical failure (also what
+  // a problem with no equilibrium even with tension, e.g. no friction under
+  // a sideways load, ends in) leaves no usable equilibrium either.
+  if (!result.floating_blocks.empty() || result.status == SolverStatus::numerical_error) {
     result.infeasibility = std::numeric_limits<double>::infinity();
   } else if (result.stable) {
     result.infeasibility = 0.0;

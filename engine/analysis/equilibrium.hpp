@@ -42,7 +42,8 @@ struct EquilibriumResult {
   bool stable = false;
   // Total tension of the best equilibrium over the total free weight
   // (dimensionless); exactly 0 when stable. Infinite when a free block has
-  // no chain of contacts to a support.
+  // no chain of contacts to a support, or when the solver failed
+  // (numerical_error); approximate after max_iterations.
   double infeasibility = 0.0;
   double objective = 0.0;      // the QP's optimum, scaled as in the QPS export
   SolverStatus status = SolverStatus::numerical_error;

@@ -134,6 +134,16 @@ TEST(Equilibrium, SlidingNeedsTheTensionThatMakesUpTheFriction) {
   }
 }
 
+TEST(Equilibrium, NoEquilibriumAtAllIsUnstableWithInfiniteInfeasibility) {
+  // Without friction nothing can resist a sideways push, tension or not.
+  Structure s = block_on_ground();
+  s.add_load({1, {500, 0, 0}, {0, 0, 0.25}});
+  const EquilibriumResult r = analyze_equilibrium(s, with_friction(0.0));
+  EXPECT_EQ(r.status, SolverStatus::numerical_error);
+  EXPECT_FALSE(r.stable);
+  EXPECT_TRUE(std::isinf(r.infeasibility));
+}
+
 TEST(Equilibrium, FreeBlockTouchingNothingIsUnstable) {
   Structure s = block_on_ground();
   s.add(box({1, 1, 1}, {10, 0, 5}));
