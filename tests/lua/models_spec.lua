@@ -115,8 +115,8 @@ describe("models.arch", function()
     expect_error({ "models.arch: voussoirs: expected an integer, got 8.5" }, models.arch, { voussoirs = 8.5 })
     expect_error({ "models.arch: radius: must be > 0" }, models.arch, { radius = -1 })
     expect_error({ "models.arch: depth: expected a finite number" }, models.arch, { depth = 0 / 0 })
-    expect_error({ "models.arch: shape: 'pointed' is not one of semicircular" }, models.arch,
-      { shape = "pointed" })
+    expect_error({ "models.arch: shape: 'gothic' is not one of semicircular, pointed" }, models.arch,
+      { shape = "gothic" })
     expect_error({ "models.arch: expected an option table, got number" }, models.arch, 5)
   end)
 end)
