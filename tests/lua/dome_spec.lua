@@ -5,6 +5,7 @@ local ashlar = require "ashlar"
 local dome = require "ashlar.models.dome"
 
 local support = require "spec_support"
+local total_volume = support.free_volume
 local near, expect_error = support.near, support.expect_error
 
 local half_pi = math.pi / 2
@@ -55,14 +56,6 @@ end
 local function zone_volume(o)
   local inner, outer = o.radius - o.thickness / 2, o.radius + o.thickness / 2
   return 2 / 3 * math.pi * (outer ^ 3 - inner ^ 3) * (math.cos(o.oculus or 0) - math.cos(o.cap or half_pi))
-end
-
-local function total_volume(s)
-  local volume = 0
-  for i = 1, #s do
-    if not s:is_support(i) then volume = volume + s:block(i):volume() end
-  end
-  return volume
 end
 
 local function with_defaults(o)

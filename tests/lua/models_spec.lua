@@ -5,6 +5,7 @@ local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
 local support = require "spec_support"
+local total_volume = support.free_volume
 local near, expect_error = support.near, support.expect_error
 
 -- Volume of N voussoirs whose intrados and extrados are straight chords
@@ -12,14 +13,6 @@ local near, expect_error = support.near, support.expect_error
 local function polyhedral_arch_volume(radius, thickness, voussoirs, depth)
   local inner, outer = radius - thickness / 2, radius + thickness / 2
   return voussoirs * 0.5 * (outer ^ 2 - inner ^ 2) * math.sin(math.pi / voussoirs) * depth
-end
-
-local function total_volume(s)
-  local volume = 0
-  for i = 1, #s do
-    if not s:is_support(i) then volume = volume + s:block(i):volume() end
-  end
-  return volume
 end
 
 local function is_stable(s, friction)

@@ -9,15 +9,8 @@ local post_and_lintel = require "ashlar.models.post_and_lintel"
 local h_frame = require "ashlar.models.h_frame"
 
 local support = require "spec_support"
+local total_volume = support.free_volume
 local near, expect_error = support.near, support.expect_error
-
-local function total_volume(s)
-  local volume = 0
-  for i = 1, #s do
-    if not s:is_support(i) then volume = volume + s:block(i):volume() end
-  end
-  return volume
-end
 
 -- Every block here is a box, so two overlap exactly when their bounding
 -- boxes share a volume.

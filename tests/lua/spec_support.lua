@@ -30,6 +30,15 @@ function support.expect_error(fragments, f, ...)
   return message
 end
 
+-- Total volume of a structure's free blocks (supports left out).
+function support.free_volume(s)
+  local volume = 0
+  for i = 1, #s do
+    if not s:is_support(i) then volume = volume + s:block(i):volume() end
+  end
+  return volume
+end
+
 -- A new empty folder under /tmp, and its removal.
 function support.temp_folder()
   local path = os.tmpname()
