@@ -3,10 +3,13 @@
 return {
   arch = require "ashlar.models.arch",
   barrel_vault = require "ashlar.models.barrel_vault",
+  groin_vault = require "ashlar.models.groin_vault",
   dome = require "ashlar.models.dome",
   wall = require "ashlar.models.wall",
   column = require "ashlar.models.column",
   stack = require "ashlar.models.stack",
   post_and_lintel = require "ashlar.models.post_and_lintel",
   h_frame = require "ashlar.models.h_frame",
+  flying_buttress = require "ashlar.models.flying_buttress",
+  arch_bridge = require "ashlar.models.arch_bridge",
 }
