@@ -165,6 +165,24 @@ int w_Structure_interfaces(lua_State* L) {
   });
 }
 
+int w_Structure_set_planar(lua_State* L) {
+  return guard(L, [&] {
+    Structure& s = *luax_checkStructure(L, 1);
+    if (!lua_isboolean(L, 2)) {
+      throw ArgError(2, "planar: expected true or false, got " + type_name(L, 2));
+    }
+    s.set_planar(lua_toboolean(L, 2));
+    return 0;
+  });
+}
+
+int w_Structure_is_planar(lua_State* L) {
+  return guard(L, [&] {
+    lua_pushboolean(L, luax_checkStructure(L, 1)->planar());
+    return 1;
+  });
+}
+
 int w_Structure_save(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
@@ -229,6 +247,8 @@ void register_Structure(lua_State* L) {
                                      {"loads", w_Structure_loads},
                                      {"bounds", w_Structure_bounds},
                                      {"interfaces", w_Structure_interfaces},
+                                     {"set_planar", w_Structure_set_planar},
+                                     {"is_planar", w_Structure_is_planar},
                                      {"save", w_Structure_save},
                                      {nullptr, nullptr}};
   static const luaL_Reg metamethods[] = {{"__len", w_Structure_len},

@@ -37,13 +37,15 @@ double distance_from_compression_only_equilibrium(const EquilibriumProblem& prob
     const ContactVertex& v = problem.vertices[k];
     Eigen::Vector4d forces = x.segment<4>(4 * static_cast<Eigen::Index>(k));
     forces(1) = 0.0;
-    if (v.row_a >= 0) imbalance.segment<6>(v.row_a) += v.on_a * forces;
-    if (v.row_b >= 0) imbalance.segment<6>(v.row_b) += v.on_b * forces;
+    const int d = problem.block_rows;
+    if (v.row_a >= 0) imbalance.segment(v.row_a, d) += v.on_a.topRows(d) * forces;
+    if (v.row_b >= 0) imbalance.segment(v.row_b, d) += v.on_b.topRows(d) * forces;
     worst = std::max(worst, -(problem.vertex_rows * forces).minCoeff());
   }
-  for (int row = 0; row < problem.row_count; row += 6) {
-    const double load = std::max(1.0, problem.rhs.segment<6>(row).lpNorm<Eigen::Infinity>());
-    worst = std::max(worst, imbalance.segment<6>(row).lpNorm<Eigen::Infinity>() / load);
+  const int d = problem.block_rows;
+  for (int row = 0; row < problem.row_count; row += d) {
+    const double load = std::max(1.0, problem.rhs.segment(row, d).lpNorm<Eigen::Infinity>());
+    worst = std::max(worst, imbalance.segment(row, d).lpNorm<Eigen::Infinity>() / load);
   }
   return worst;
 }

@@ -1,5 +1,6 @@
 #include "analysis/equilibrium_problem.hpp"
 
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -53,11 +54,17 @@ std::vector<bool> grounded_blocks(const Structure& structure,
   return grounded;
 }
 
+// The balance rows a problem keeps, in order: all six, or for a planar
+// structure (x-z plane) the in-plane force and moment Fx, Fz, My.
+const std::array<int, 6> kAllRows = {0, 1, 2, 3, 4, 5};
+const std::array<int, 6> kPlanarRowsFirst = {0, 2, 4, 1, 3, 5};
+
 // Columns (c, s, f_u, f_v) of the balance rows of a block with centroid
-// `centroid` for a force acting on it at `position` (sign +1 for block b).
+// `centroid` for a force acting on it at `position` (sign +1 for block b),
+// rows in the order `rows`.
 Eigen::Matrix<double, 6, 4> vertex_effect(const Interface& contact, const Vec3& position,
                                           const Vec3& centroid, double length_unit,
-                                          double sign) {
+                                          double sign, const std::array<int, 6>& rows) {
   const Vec3 arm = (position - centroid) / length_unit;
   Eigen::Matrix<double, 6, 4> effect;
   const Vec3 directions[3] = {contact.normal, contact.u, contact.v};
@@ -67,7 +74,24 @@ Eigen::Matrix<double, 6, 4> vertex_effect(const Interface& contact, const Vec3& 
     effect.block<3, 1>(3, columns[k]) = sign * arm.cross(directions[k]);
   }
   effect.col(1) = -effect.col(0);  // tension pulls where compression pushes
-  return effect;
+  Eigen::Matrix<double, 6, 4> ordered;
+  for (int r = 0; r < 6; ++r) ordered.row(r) = effect.row(rows[r]);
+  return ordered;
+}
+
+void check_planar_loads(const Structure& structure) {
+  for (size_t k = 0; k < structure.loads().size(); ++k) {
+    const PointLoad& load = structure.loads()[k];
+    const Block& block = structure.block(load.block);
+    const double size = block.bounds().diagonal();
+    if (std::abs(load.force.y()) > 1e-12 * load.force.norm() ||
+        std::abs(load.at.y() - block.centroid().y()) > 1e-9 * size) {
+      throw InvalidArgument("planar structure: load " + std::to_string(k + 1) + " on block " +
+                            std::to_string(load.block + 1) +
+                            " is out of the x-z plane (a y force, or applied off the block's "
+                            "mid-plane y = " + std::to_string(block.centroid().y()) + ")");
+    }
+  }
 }
 
 }  // namespace
@@ -99,6 +123,11 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   const std::vector<bool> grounded = grounded_blocks(structure, interfaces);
 
   EquilibriumProblem problem;
+  const bool planar = structure.planar();
+  if (planar) check_planar_loads(structure);
+  const std::array<int, 6>& rows = planar ? kPlanarRowsFirst : kAllRows;
+  problem.block_rows = planar ? 3 : 6;
+  const int d = problem.block_rows;
   const int n = structure.size();
   problem.row_of_block.assign(n, -1);
   double size_sum = 0.0;
@@ -109,28 +138,30 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
       continue;
     }
     problem.row_of_block[i] = problem.row_count;
-    problem.row_count += 6;
+    problem.row_count += d;
     problem.total_weight += structure.block(i).mass() * kGravity;
     size_sum += structure.block(i).bounds().diagonal();
   }
-  const int analysed = problem.row_count / 6;
+  const int analysed = problem.row_count / d;
   if (analysed > 0) {
     problem.weight_unit = problem.total_weight / analysed;
     problem.length_unit = size_sum / analysed;
   }
   const double wu = problem.weight_unit, lu = problem.length_unit;
 
+  // Each block's external force and moment, then the rows the problem keeps.
+  std::vector<Eigen::Matrix<double, 6, 1>> external(n, Eigen::Matrix<double, 6, 1>::Zero());
+  for (int i = 0; i < n; ++i) external[i](2) = structure.block(i).mass() * kGravity / wu;
+  for (const PointLoad& load : structure.loads()) {
+    const Vec3 arm = (load.at - structure.block(load.block).centroid()) / lu;
+    external[load.block].head<3>() -= load.force / wu;
+    external[load.block].tail<3>() -= arm.cross(load.force / wu);
+  }
   problem.rhs = Eigen::VectorXd::Zero(problem.row_count);
   for (int i = 0; i < n; ++i) {
     const int row = problem.row_of_block[i];
-    if (row >= 0) problem.rhs(row + 2) = structure.block(i).mass() * kGravity / wu;
-  }
-  for (const PointLoad& load : structure.loads()) {
-    const int row = problem.row_of_block[load.block];
     if (row < 0) continue;
-    const Vec3 arm = (load.at - structure.block(load.block).centroid()) / lu;
-    problem.rhs.segment<3>(row) -= load.force / wu;
-    problem.rhs.segment<3>(row + 3) -= arm.cross(load.force / wu);
+    for (int r = 0; r < d; ++r) problem.rhs(row + r) = external[i](rows[r]);
   }
 
   for (size_t k = 0; k < interfaces.size(); ++k) {
@@ -145,8 +176,10 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
       vertex.row_a = row_a;
       vertex.row_b = row_b;
       vertex.position = p;
-      vertex.on_b = vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0);
-      vertex.on_a = vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0);
+      vertex.on_b =
+          vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0, rows);
+      vertex.on_a =
+          vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0, rows);
       problem.vertices.push_back(vertex);
     }
   }
@@ -179,7 +212,7 @@ Eigen::SparseMatrix<double> EquilibriumProblem::equality_matrix() const {
     const ContactVertex& v = vertices[k];
     for (int col = 0; col < 4; ++col) {
       const int variable = 4 * static_cast<int>(k) + col;
-      for (int r = 0; r < 6; ++r) {
+      for (int r = 0; r < block_rows; ++r) {
         if (v.row_b >= 0 && v.on_b(r, col) != 0.0) {
           entries.emplace_back(v.row_b + r, variable, v.on_b(r, col));
         }

@@ -52,8 +52,9 @@ struct ContactVertex {
   int block_a = -1, block_b = -1;
   int row_a = -1, row_b = -1;  // first of the 6 balance rows, -1 for supports
   Vec3 position = Vec3::Zero();  // m
-  // Scaled effect of (c, s, f_u, f_v) on the balance rows of block b (force,
-  // then moment about b's centroid / L) and of block a.
+  // Scaled effect of (c, s, f_u, f_v) on the balance rows of block b and of
+  // block a: force, then moment about the block's centroid / L. Only the
+  // first block_rows rows count: for planar problems they are Fx, Fz, My.
   Eigen::Matrix<double, 6, 4> on_b, on_a;
 };
 
@@ -61,7 +62,8 @@ struct EquilibriumProblem {
   std::vector<ContactVertex> vertices;  // 4 unknowns each: c, s, f_u, f_v
   std::vector<int> row_of_block;        // first balance row per block, -1 if none
   std::vector<int> floating_blocks;     // free blocks with no path of contacts to a support
-  int row_count = 0;                    // 6 per analysed free block
+  int block_rows = 6;                   // balance rows per block: 6, or 3 for planar structures
+  int row_count = 0;                    // block_rows per analysed free block
   Eigen::VectorXd rhs;                  // balance: sum of contact effects = rhs
   // Inequality rows shared by every vertex, over (c, s, f_u, f_v): each row
   // r gives r . x_k >= 0. The first two are c >= 0 and s >= 0.
@@ -78,7 +80,8 @@ struct EquilibriumProblem {
   Eigen::SparseMatrix<double> equality_matrix() const;
 };
 
-// Builds the problem. Throws InvalidArgument for bad options (naming them).
+// Builds the problem. Throws InvalidArgument for bad options (naming them),
+// and for a planar structure with a load out of its plane.
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options);
 

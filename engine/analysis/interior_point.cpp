@@ -14,8 +14,9 @@ namespace {
 
 using Matrix4 = Eigen::Matrix4d;
 using Vector4 = Eigen::Vector4d;
-using Matrix64 = Eigen::Matrix<double, 6, 4>;
-using Matrix6 = Eigen::Matrix<double, 6, 6>;
+// A block's balance rows: 6, or 3 for planar problems (no heap either way).
+using BlockByVertex = Eigen::Matrix<double, Eigen::Dynamic, 4, 0, 6, 4>;
+using BlockByBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 
 // Iterations without a more accurate iterate, once one is within the
@@ -51,14 +52,16 @@ const char* status_name(SolverStatus status) {
   return "numerical_error";
 }
 
-EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem) : size_(problem.row_count) {
-  const int blocks = problem.row_count / 6;
+EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
+    : size_(problem.row_count), block_rows_(problem.block_rows) {
+  const int d = block_rows_;
+  const int blocks = problem.row_count / d;
   // Upper-triangle block pattern: for block column J, the block rows I <= J.
   std::vector<std::vector<int>> upper(blocks);
   for (int j = 0; j < blocks; ++j) upper[j].push_back(j);
   for (const ContactVertex& v : problem.vertices) {
     if (v.row_a >= 0 && v.row_b >= 0) {
-      const int a = v.row_a / 6, b = v.row_b / 6;
+      const int a = v.row_a / d, b = v.row_b / d;
       upper[std::max(a, b)].push_back(std::min(a, b));
     }
   }
@@ -69,12 +72,12 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem) : size_(
   column_starts_.assign(problem.row_count + 1, 0);
   std::vector<int> row_indices;
   for (int j = 0; j < blocks; ++j) {
-    for (int cj = 0; cj < 6; ++cj) {
+    for (int cj = 0; cj < d; ++cj) {
       for (int i : upper[j]) {
-        const int last = i == j ? cj : 5;  // diagonal block: upper part only
-        for (int ri = 0; ri <= last; ++ri) row_indices.push_back(6 * i + ri);
+        const int last = i == j ? cj : d - 1;  // diagonal block: upper part only
+        for (int ri = 0; ri <= last; ++ri) row_indices.push_back(d * i + ri);
       }
-      column_starts_[6 * j + cj + 1] = static_cast<int>(row_indices.size());
+      column_starts_[d * j + cj + 1] = static_cast<int>(row_indices.size());
     }
   }
   auto rank = [&](int i, int j) {
@@ -85,10 +88,10 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem) : size_(
   for (size_t k = 0; k < problem.vertices.size(); ++k) {
     const ContactVertex& v = problem.vertices[k];
     VertexSlots& slot = slots_[k];
-    if (v.row_a >= 0) slot.aa = rank(v.row_a / 6, v.row_a / 6);
-    if (v.row_b >= 0) slot.bb = rank(v.row_b / 6, v.row_b / 6);
+    if (v.row_a >= 0) slot.aa = rank(v.row_a / d, v.row_a / d);
+    if (v.row_b >= 0) slot.bb = rank(v.row_b / d, v.row_b / d);
     if (v.row_a >= 0 && v.row_b >= 0) {
-      const int a = v.row_a / 6, b = v.row_b / 6;
+      const int a = v.row_a / d, b = v.row_b / d;
       slot.ab_transposed = a > b;
       slot.ab = rank(std::min(a, b), std::max(a, b));
     }
@@ -109,6 +112,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   const RowsMatrix& g = problem.vertex_rows;
   const int m = static_cast<int>(g.rows());
   const Vector4& h = problem.hessian_diagonal;
+  const int d = block_rows_;
   const Vector4& q = problem.linear;
   const Eigen::VectorXd& b = problem.rhs;
 
@@ -155,8 +159,8 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   auto reaction = [&](int k, const Eigen::VectorXd& multipliers) {
     const ContactVertex& v = problem.vertices[k];
     Vector4 out = Vector4::Zero();
-    if (v.row_a >= 0) out += v.on_a.transpose() * multipliers.segment<6>(v.row_a);
-    if (v.row_b >= 0) out += v.on_b.transpose() * multipliers.segment<6>(v.row_b);
+    if (v.row_a >= 0) out += v.on_a.topRows(d).transpose() * multipliers.segment(v.row_a, d);
+    if (v.row_b >= 0) out += v.on_b.topRows(d).transpose() * multipliers.segment(v.row_b, d);
     return out;
   };
 
@@ -172,8 +176,8 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       const Vector4 reduced = -r_d.segment<4>(4 * k) - g.transpose() * row_terms.segment(m * k, m);
       const Vector4 t = inverse_phi[k] * reduced;
       dx.segment<4>(4 * k) = t;  // completed below with the A^T dy part
-      if (v.row_a >= 0) rhs.segment<6>(v.row_a) -= v.on_a * t;
-      if (v.row_b >= 0) rhs.segment<6>(v.row_b) -= v.on_b * t;
+      if (v.row_a >= 0) rhs.segment(v.row_a, d) -= v.on_a.topRows(d) * t;
+      if (v.row_b >= 0) rhs.segment(v.row_b, d) -= v.on_b.topRows(d) * t;
     }
     dy = cholesky_->solve(rhs);
     for (int k = 0; k < nv; ++k) {
@@ -210,8 +214,8 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     for (int k = 0; k < nv; ++k) {
       const ContactVertex& v = problem.vertices[k];
       const Vector4 xk = x.segment<4>(4 * k);
-      if (v.row_a >= 0) r_p.segment<6>(v.row_a) += v.on_a * xk;
-      if (v.row_b >= 0) r_p.segment<6>(v.row_b) += v.on_b * xk;
+      if (v.row_a >= 0) r_p.segment(v.row_a, d) += v.on_a.topRows(d) * xk;
+      if (v.row_b >= 0) r_p.segment(v.row_b, d) += v.on_b.topRows(d) * xk;
       r_d.segment<4>(4 * k) = h.cwiseProduct(xk) + q - reaction(k, y) -
                               g.transpose() * z.segment(m * k, m);
       r_g.segment(m * k, m) = g * xk - w.segment(m * k, m);
@@ -257,27 +261,27 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
       const ContactVertex& v = problem.vertices[k];
       const VertexSlots& slot = slots_[k];
-      // Adds a 6 x 6 block to block column col_block at its rank-th block row.
-      auto add_block = [&](int col_block, int rank, const Matrix6& block, bool diagonal) {
-        for (int cj = 0; cj < 6; ++cj) {
-          double* column = values + column_starts_[6 * col_block + cj] + 6 * rank;
-          const int last = diagonal ? cj : 5;
+      // Adds a d x d block to block column col_block at its rank-th block row.
+      auto add_block = [&](int col_block, int rank, const BlockByBlock& block, bool diagonal) {
+        for (int cj = 0; cj < d; ++cj) {
+          double* column = values + column_starts_[d * col_block + cj] + d * rank;
+          const int last = diagonal ? cj : d - 1;
           for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
         }
       };
-      Matrix64 a_phi, b_phi;
+      BlockByVertex a_phi, b_phi;
       if (v.row_a >= 0) {
-        a_phi = v.on_a * inverse_phi[k];
-        add_block(v.row_a / 6, slot.aa, a_phi * v.on_a.transpose(), true);
+        a_phi = v.on_a.topRows(d) * inverse_phi[k];
+        add_block(v.row_a / d, slot.aa, a_phi * v.on_a.topRows(d).transpose(), true);
       }
       if (v.row_b >= 0) {
-        b_phi = v.on_b * inverse_phi[k];
-        add_block(v.row_b / 6, slot.bb, b_phi * v.on_b.transpose(), true);
+        b_phi = v.on_b.topRows(d) * inverse_phi[k];
+        add_block(v.row_b / d, slot.bb, b_phi * v.on_b.topRows(d).transpose(), true);
       }
       if (slot.ab >= 0) {
-        const Matrix6 ab = a_phi * v.on_b.transpose();  // rows of a, columns of b
-        if (slot.ab_transposed) add_block(v.row_a / 6, slot.ab, ab.transpose(), false);
-        else add_block(v.row_b / 6, slot.ab, ab, false);
+        const BlockByBlock ab = a_phi * v.on_b.topRows(d).transpose();  // rows of a, columns of b
+        if (slot.ab_transposed) add_block(v.row_a / d, slot.ab, ab.transpose(), false);
+        else add_block(v.row_b / d, slot.ab, ab, false);
       }
     }
     info.assembly_seconds += seconds_since(start);

@@ -4,7 +4,7 @@
 // The Hessian is diagonal and every inequality row involves the unknowns of
 // one contact vertex, so eliminating the unknowns vertex by vertex (4 x 4
 // systems) leaves normal equations A Phi^-1 A^T dy = r of size 6 x (free
-// blocks), sparse with the contact graph's pattern. That matrix is analysed
+// blocks) (3 x for planar problems), sparse with the contact graph's pattern. That matrix is analysed
 // once (EquilibriumSolver's constructor) and factorised once per iteration;
 // predictor and corrector share the factorisation.
 #pragma once
@@ -79,6 +79,7 @@ private:
   std::vector<int> column_starts_;
   std::unique_ptr<SparseCholesky> cholesky_;
   int size_ = 0;
+  int block_rows_ = 6;
 };
 
 }  // namespace ashlar

@@ -45,6 +45,8 @@ namespace {
 
 constexpr char kColumnPrefix[4] = {'C', 'S', 'U', 'V'};  // c, s, f_u, f_v
 constexpr char kComponentName[6][3] = {"F1", "F2", "F3", "M1", "M2", "M3"};
+// A planar problem's rows: Fx, Fz, My.
+constexpr char kPlanarComponentName[3][3] = {"F1", "F3", "M2"};
 
 void append_number(std::string& out, double value) {
   char buffer[32];
@@ -66,8 +68,10 @@ std::vector<std::string> balance_row_names(const EquilibriumProblem& problem) {
   for (size_t block = 0; block < problem.row_of_block.size(); ++block) {
     const int first = problem.row_of_block[block];
     if (first < 0) continue;
-    for (int component = 0; component < 6; ++component) {
-      names[first + component] = "B" + std::to_string(block + 1) + kComponentName[component];
+    for (int component = 0; component < problem.block_rows; ++component) {
+      names[first + component] = "B" + std::to_string(block + 1) +
+                                 (problem.block_rows == 3 ? kPlanarComponentName[component]
+                                                          : kComponentName[component]);
     }
   }
   return names;

@@ -287,6 +287,7 @@ std::string structure_to_json(const Structure& structure) {
   root["format"] = kFormatName;
   root["version"] = kStructureFormatVersion;
   root["units"] = {{"length", "m"}, {"mass", "kg"}, {"force", "N"}};
+  if (structure.planar()) root["planar"] = true;
   root["blocks"] = std::move(blocks);
   root["loads"] = std::move(loads);
   std::string text;
@@ -312,10 +313,14 @@ Structure structure_from_json(const std::string& text, const std::string& source
   // Format and version first: a file of another kind or a later version is
   // reported as such, not by its first unknown field.
   check_header(reader, root);
-  reader.reject_unknown_keys(root, {"format", "version", "units", "blocks", "loads"},
+  reader.reject_unknown_keys(root, {"format", "version", "units", "planar", "blocks", "loads"},
                              "top level");
 
   Structure structure;
+  if (const auto planar = root.find("planar"); planar != root.end()) {
+    if (!planar->is_boolean()) reader.fail("planar", "expected true or false");
+    structure.set_planar(planar->get<bool>());
+  }
   const json& blocks = reader.member(root, "blocks", "");
   reader.expect_array(blocks, "blocks");
   for (size_t i = 0; i < blocks.size(); ++i) {

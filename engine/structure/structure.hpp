@@ -45,6 +45,12 @@ public:
   const std::vector<PointLoad>& loads() const { return loads_; }
   Box3 bounds() const;
 
+  // A planar structure lies in the x-z plane as an extrusion along y, with
+  // every load in that plane: the analysis then balances only the in-plane
+  // force and moment of each block (3 equations instead of 6).
+  void set_planar(bool planar) { planar_ = planar; }
+  bool planar() const { return planar_; }
+
   // Contact interfaces; recomputed only when blocks were added or the
   // options differ from the cached call.
   const std::vector<Interface>& interfaces(const ContactOptions& options = {}) const;
@@ -53,6 +59,7 @@ private:
   std::vector<StructureBlock> blocks_;
   std::vector<PointLoad> loads_;
   std::unordered_map<std::string, int> index_by_name_;
+  bool planar_ = false;
 
   struct InterfaceCache {
     bool valid = false;

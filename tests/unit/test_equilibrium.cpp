@@ -194,6 +194,35 @@ TEST(Equilibrium, UnitsAndRigidMotionDoNotChangeTheAnswer) {
   EXPECT_NEAR(r.infeasibility, reference.infeasibility, 1e-6 * reference.infeasibility);
 }
 
+TEST(Equilibrium, PlanarEquationsGiveTheSameAnswer) {
+  // The overhanging stack is an extrusion along y with in-plane loads: its
+  // 3-equation planar problem has the same optimum as the 6-equation one.
+  for (double dx : {0.3, 0.7}) {
+    Structure s = overhanging_stack(dx);
+    s.add_load({2, {-300, 0, -500}, {dx + 0.2, 0, 1.0}});
+    const EquilibriumResult spatial = analyze_equilibrium(s, {});
+    s.set_planar(true);
+    const EquilibriumProblem problem = build_equilibrium_problem(s, {});
+    EXPECT_EQ(problem.block_rows, 3);
+    EXPECT_EQ(problem.row_count, 6);
+    const EquilibriumResult planar = analyze_equilibrium(s, {});
+    EXPECT_EQ(planar.stable, spatial.stable) << dx;
+    EXPECT_NEAR(planar.infeasibility, spatial.infeasibility, 1e-6 * (1 + spatial.infeasibility));
+    EXPECT_NEAR(planar.objective, spatial.objective, 1e-6 * std::abs(spatial.objective));
+  }
+}
+
+TEST(Equilibrium, PlanarStructuresRejectOutOfPlaneLoads) {
+  Structure s = overhanging_stack(0.2);
+  s.set_planar(true);
+  s.add_load({1, {0, 100, 0}, {0, 0, 0.25}});
+  EXPECT_THROW(analyze_equilibrium(s, {}), InvalidArgument);
+  Structure off_plane = overhanging_stack(0.2);
+  off_plane.set_planar(true);
+  off_plane.add_load({1, {100, 0, 0}, {0, 0.3, 0.25}});
+  EXPECT_THROW(analyze_equilibrium(off_plane, {}), InvalidArgument);
+}
+
 TEST(Equilibrium, WarmStartConverges) {
   const Structure s = overhanging_stack(0.7);
   const EquilibriumResult cold = analyze_equilibrium(s, {});

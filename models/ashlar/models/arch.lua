@@ -143,5 +143,7 @@ return function(opts)
                       center = { side[1] * (inner + width / 2), 0, top - o.thickness / 2 },
                       density = o.density }, { support = true, name = side[2] })
   end
+  -- An extrusion along y with no out-of-plane load: in-plane equations suffice.
+  s:set_planar(true)
   return s
 end
