@@ -30,6 +30,9 @@ local function minimum_thickness_ratio(voussoirs)
   local run = { voussoirs = voussoirs, analyses = 0, analysis_seconds = 0, iterations = 0, not_converged = 0 }
   local function stands(ratio)
     local s = models.arch{ radius = RADIUS, thickness = ratio * RADIUS, voussoirs = voussoirs }
+    -- The general 6-equation solve, as in the committed figure; the planar
+    -- one (the model's default) gives the same t/R about 1.5x faster.
+    s:set_planar(false)
     local r = ashlar.analyze(s, { friction = math.huge })
     run.analyses = run.analyses + 1
     run.analysis_seconds = run.analysis_seconds + r.seconds
