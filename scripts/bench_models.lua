@@ -15,7 +15,7 @@ local REFINED = {
   column = { drums = 60 },
   dome = { meridians = 160, parallels = 160 },
   flying_buttress = { voussoirs = 480, pier_blocks = 40 },
-  groin_vault = { voussoirs = 160 },
+  groin_vault = { voussoirs = 160, courses = 40 },
   h_frame = { courses = 49 },
   post_and_lintel = nil,
   stack = { blocks = 50, offset = 0.01 },

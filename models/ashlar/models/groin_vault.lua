@@ -9,19 +9,34 @@
 -- quarter turns. Each web has the arch section of models.arch (radial
 -- joints, straight chords for intrados and extrados) and an even number of
 -- voussoirs, so that the crown joint is the vertical plane through the
--- axis and every voussoir lies on one side of it: each voussoir is then
--- one block, its section extruded from the groin plane (y = |x|, on which
--- it ends with a planar face) to the bay's face. The two webs meeting on a
--- groin have the same section mirrored, so their faces on the diagonal
--- plane coincide voussoir by voussoir. Courses along the webs are not cut
--- (one block per voussoir and web).
+-- axis and every voussoir row lies on one side of it: its section then
+-- ends on the groin plane (y = |x|) with a planar face. The two webs
+-- meeting on a groin have the same section mirrored, so their faces on the
+-- diagonal plane coincide row by row.
+--
+-- Each row is cut into courses by vertical joints perpendicular to the
+-- web's axis (v = const), counted from the bay's face: the course length is
+-- (side / 2 - outer * sin(pi / voussoirs)) / courses, so that the crown
+-- rows hold `courses` whole courses. With bond = "running", every second
+-- row (counted from the springings, so that rows i and N + 1 - i are
+-- mirror images and the crown joint stays a plane of symmetry) starts at
+-- the face with a half course. Near the groin the rows are shorter: a cut
+-- is made only if it leaves the groin piece at least half a course long
+-- where it is shortest, and the groin piece (from the groin face to its
+-- first cut, of varying length with height) takes the rest of the row.
+-- Every piece is a loft between two joint quads (groin face or vertical
+-- cut, vertical cut or bay face); bed joints between rows are the radial
+-- planes, shared by pieces whose extents along the axis overlap.
 --
 -- Minimum thickness (friction 0.7, default side, bisection with analyze's
 -- tolerance = 1e-7): t/R = 0.1411 with 16, 24, 32 and 64 voussoirs (0.1412
--- with 128). Hinges form only at joints, so coarser or odd multiples miss
--- it: 4, 6, 8, 10, 12, 14, 20 give 0.1151, 0.1372, 0.1415, 0.1388, 0.1365,
--- 0.1404, 0.1396. The default 16 is within 0.05 %. The defaults (t/R = 0.1)
--- do not stand; t/R = 0.2 does.
+-- with 128) and one course. Hinges form only at joints, so coarser or odd
+-- multiples miss it: 4, 6, 8, 10, 12, 14, 20 give 0.1151, 0.1372, 0.1415,
+-- 0.1388, 0.1365, 0.1404, 0.1396. The default 16 is within 0.05 %. With 16
+-- voussoirs, 1, 2 and 4 stacked courses and 4 and 8 courses in running
+-- bond all give 0.1411 (bisection to 1e-5: 0.14115); 8 stacked courses
+-- give 0.1465. The defaults (t/R = 0.1) do not stand; t/R = 0.2 does,
+-- stacked and in running bond.
 local ashlar = require "ashlar"
 local options = require "ashlar.models.options"
 local semicircle = require "ashlar.models.semicircle"
@@ -31,6 +46,8 @@ local spec = {
   thickness = { type = "number", default = 0.3, above = 0 },  -- m, radial
   voussoirs = { type = "number", default = 16, integer = true, min = 2 },  -- per web, even
   side = { type = "number", above = 0 },                      -- m, of the square bay; 2 * (radius + thickness)
+  courses = { type = "number", default = 4, integer = true, min = 1 },  -- along each web, at the crown
+  bond = { type = "string", default = "stacked", one_of = { "stacked", "running" } },
   density = { type = "number", default = 2400, above = 0 },   -- kg/m^3
 }
 
@@ -61,6 +78,10 @@ return function(opts)
     fail(("side must be > 2 * (radius + thickness / 2) (%g), got %g"):format(2 * outer, o.side))
   end
   local n = o.voussoirs
+  -- The course length: `courses` whole courses between the bay's face and
+  -- the crown rows' furthest groin corner (u = outer * sin(pi / n)).
+  local crown_reach = outer * semicircle.joint_direction(n / 2 + 1, n)
+  local course = (half - crown_reach) / o.courses
   local s = ashlar.structure()
   for _, web in ipairs(webs) do
     for i = 1, n do
@@ -76,15 +97,44 @@ return function(opts)
       section = { section[1], section[2], section[4], section[3] }
       -- Every corner has |u| on the groin: the section is on one side of
       -- u = 0, so the groin face lies in one diagonal plane.
-      local groin, face = {}, {}
+      local reach = 0   -- the row's furthest groin point from the axis
+      for _, p in ipairs(section) do reach = math.max(reach, math.abs(p[1])) end
+      -- Course joints v = const, counted from the bay's face: whole courses,
+      -- or (running bond) a half course at the face then whole ones. Rows
+      -- i and n + 1 - i are mirror images (the crown joint is a plane of
+      -- symmetry), so rows alternate by their distance from the springing.
+      -- A cut is made only if it leaves the groin piece at least half a
+      -- course long where it is shortest (at the row's furthest groin
+      -- corner); the groin piece takes the rest of the row, so no piece is
+      -- shorter than half a course (bar a row with no cut at all).
+      local offset = (o.bond == "running" and math.min(i, n + 1 - i) % 2 == 0) and 0.5 or 0
+      local cuts = {}
+      for k = 1, o.courses do
+        local v = half - (k - offset) * course
+        if v - reach < course / 2 * (1 - 1e-9) then break end
+        table.insert(cuts, 1, v)
+      end
+      cuts[#cuts + 1] = half
+      local function joint(v)   -- the section's quad on the plane v = const
+        local quad = {}
+        for j, p in ipairs(section) do
+          local x, y = web.map(p[1], v)
+          quad[j] = { x, y, p[2] }
+        end
+        return quad
+      end
+      local groin = {}
       for j, p in ipairs(section) do
         local x, y = web.map(p[1], math.abs(p[1]))
         groin[j] = { x, y, p[2] }
-        x, y = web.map(p[1], half)
-        face[j] = { x, y, p[2] }
       end
-      s:add(ashlar.loft(groin, face, { density = o.density }),
-            { name = ("%s voussoir %d"):format(web.name, i) })
+      local from = groin
+      for c, v in ipairs(cuts) do
+        local to = joint(v)
+        s:add(ashlar.loft(from, to, { density = o.density }),
+              { name = ("%s voussoir %d course %d"):format(web.name, i, c) })
+        from = to
+      end
     end
   end
   -- Corner supports: from the intrados springing (|x|, |y| >= inner) to the
