@@ -20,8 +20,10 @@ using BlockByBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6,
 using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 
 // Iterations without a more accurate iterate, once one is within the
-// inaccurate tolerance, after which the solve stops.
+// inaccurate tolerance, after which the solve stops; and at any accuracy,
+// after which more iterations are not going to help.
 constexpr int kStallIterations = 8;
+constexpr int kHopelessIterations = 20;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -241,7 +243,9 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       break;
     }
     if (error < best.error) best = {error, iteration, x, y, w, z, info};
-    if (best.error <= settings.inaccurate_tolerance && iteration - best.iteration > kStallIterations) {
+    const int stalled = iteration - best.iteration;
+    if ((best.error <= settings.inaccurate_tolerance && stalled > kStallIterations) ||
+        stalled > kHopelessIterations) {
       info.status = SolverStatus::max_iterations;
       break;
     }
@@ -334,11 +338,14 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     w += step * dw;
     z += step * dz;
   }
-  if (info.status != SolverStatus::converged && best.error <= settings.inaccurate_tolerance) {
+  // Short of convergence the most accurate iterate is the answer: within
+  // the inaccurate tolerance it says so, else the status stays.
+  if (info.status != SolverStatus::converged && std::isfinite(best.error)) {
     const int iterations = info.iterations;
+    const SolverStatus status = info.status;
     info = best.info;
     info.iterations = iterations;
-    info.status = SolverStatus::inaccurate;
+    info.status = best.error <= settings.inaccurate_tolerance ? SolverStatus::inaccurate : status;
     x = std::move(best.x);
     y = std::move(best.y);
     w = std::move(best.w);

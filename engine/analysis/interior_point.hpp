@@ -33,7 +33,7 @@ struct InteriorPointSettings {
 enum class SolverStatus {
   converged,
   inaccurate,       // stopped short of the tolerance; the best iterate meets inaccurate_tolerance
-  max_iterations,   // stopped at max_iterations without meeting the tolerance
+  max_iterations,   // stopped at max_iterations, or after 20 iterations without progress
   numerical_error,  // a factorisation or step failed (e.g. loss of positive definiteness)
 };
 
