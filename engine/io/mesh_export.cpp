@@ -68,14 +68,7 @@ std::string extensions_list() {
 }
 
 const ExportFormat& format_for(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  std::string extension;
-  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) {
-    extension = path.substr(dot + 1);
-  }
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = file_extension(path);
   for (const ExportFormat& format : kFormats) {
     if (extension == format.extension) return format;
   }
@@ -477,6 +470,26 @@ void export_structure(const Structure& structure, const std::string& path,
     throw IoError("cannot export '" + path + "': " + exporter.GetErrorString());
   }
   commit(*pending, path);
+}
+
+std::string file_extension(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  std::string extension;
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) {
+    extension = path.substr(dot + 1);
+  }
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+bool is_y_up_file(const std::string& path) {
+  const std::string extension = file_extension(path);
+  for (const ExportFormat& format : kFormats) {
+    if (extension == format.extension) return format.y_up;
+  }
+  return false;
 }
 
 const std::vector<std::string>& export_extensions() {

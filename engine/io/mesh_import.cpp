@@ -11,9 +11,7 @@
 #include <assimp/scene.h>
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <assimp/Importer.hpp>
-#include <cctype>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -37,21 +35,6 @@ Eigen::Matrix4d to_matrix(const aiMatrix4x4& m) {
   result << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
       m.d3, m.d4;
   return result;
-}
-
-std::string lower_case(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-bool is_gltf(const std::string& path) {
-  const std::string lower = lower_case(path);
-  auto ends_with = [&](const std::string& suffix) {
-    return lower.size() >= suffix.size() &&
-           lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
-  };
-  return ends_with(".gltf") || ends_with(".glb");
 }
 
 // Assimp names nodes it had to invent "<STL_BINARY>", "<PLY_Root>" and the
@@ -157,7 +140,7 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
     throw IoError("cannot import '" + path + "': the file holds no complete scene");
   }
 
-  std::vector<RawObject> objects = SceneWalker(*scene, is_gltf(path)).objects(*scene->mRootNode);
+  std::vector<RawObject> objects = SceneWalker(*scene, is_y_up_file(path)).objects(*scene->mRootNode);
   if (objects.empty()) throw IoError("cannot import '" + path + "': it contains no polygon mesh");
   make_names_unique(objects);
 

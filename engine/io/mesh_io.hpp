@@ -80,4 +80,12 @@ void export_structure(const Structure& structure, const std::string& path,
 // Names of the supported export extensions, for error messages.
 const std::vector<std::string>& export_extensions();
 
+// The extension of path after its last dot, lower case, without the dot;
+// empty when there is none.
+std::string file_extension(const std::string& path);
+
+// True for files whose format is +Y up by specification (glTF); ashlar is
+// +Z up, so import and export rotate their coordinates.
+bool is_y_up_file(const std::string& path);
+
 }  // namespace ashlar
