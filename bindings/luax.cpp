@@ -336,9 +336,11 @@ void register_type(lua_State* L, const char* metatable, const luaL_Reg* methods,
                    const luaL_Reg* metamethods) {
   luaL_newmetatable(L, metatable);
   luaL_setfuncs(L, metamethods, 0);
-  lua_newtable(L);
-  luaL_setfuncs(L, methods, 0);
-  lua_setfield(L, -2, "__index");
+  if (methods) {
+    lua_newtable(L);
+    luaL_setfuncs(L, methods, 0);
+    lua_setfield(L, -2, "__index");
+  }
   lua_pop(L, 1);
 }
 

@@ -151,7 +151,8 @@ int release_boxed(lua_State* L, const char* metatable) {
   return 0;
 }
 
-// Registers a metatable with methods (as __index) and metamethods.
+// Registers a metatable with methods (as the __index table; nullptr when the
+// metamethods give their own __index) and metamethods.
 void register_type(lua_State* L, const char* metatable, const luaL_Reg* methods,
                    const luaL_Reg* metamethods);
 

@@ -227,17 +227,13 @@ const EquilibriumResult* luax_testResult(lua_State* L, int idx) {
 }
 
 void register_Result(lua_State* L) {
-  static const luaL_Reg methods[] = {{nullptr, nullptr}};
-  static const luaL_Reg metamethods[] = {{"__tostring", w_Result_tostring},
+  // Fields are computed on access, so __index is a function, not a table.
+  static const luaL_Reg metamethods[] = {{"__index", w_Result_index},
+                                         {"__tostring", w_Result_tostring},
                                          {"__gc", w_Result_gc},
                                          {"__close", w_Result_gc},
                                          {nullptr, nullptr}};
-  register_type(L, kResultMeta, methods, metamethods);
-  // Fields are computed on access, so __index is a function, not a table.
-  luaL_getmetatable(L, kResultMeta);
-  lua_pushcfunction(L, w_Result_index);
-  lua_setfield(L, -2, "__index");
-  lua_pop(L, 1);
+  register_type(L, kResultMeta, nullptr, metamethods);
 }
 
 void set_analysis_functions(lua_State* L) {
