@@ -37,9 +37,7 @@ double distance_from_compression_only_equilibrium(const EquilibriumProblem& prob
     const ContactVertex& v = problem.vertices[k];
     Eigen::Vector4d forces = x.segment<4>(4 * static_cast<Eigen::Index>(k));
     forces(1) = 0.0;
-    const int d = problem.block_rows;
-    if (v.row_a >= 0) imbalance.segment(v.row_a, d) += v.on_a.topRows(d) * forces;
-    if (v.row_b >= 0) imbalance.segment(v.row_b, d) += v.on_b.topRows(d) * forces;
+    problem.add_effect(v, forces, imbalance);
     worst = std::max(worst, -(problem.vertex_rows * forces).minCoeff());
   }
   const int d = problem.block_rows;

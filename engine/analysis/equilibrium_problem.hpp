@@ -75,6 +75,21 @@ struct EquilibriumProblem {
   double total_weight = 0.0;         // N: weight of the free blocks analysed
 
   int variable_count() const { return 4 * static_cast<int>(vertices.size()); }
+  // rows += A_k forces: the effect of vertex k's unknowns on the balance rows.
+  void add_effect(const ContactVertex& v, const Eigen::Vector4d& forces,
+                  Eigen::VectorXd& rows) const {
+    const int d = block_rows;
+    if (v.row_a >= 0) rows.segment(v.row_a, d).noalias() += v.on_a.topRows(d) * forces;
+    if (v.row_b >= 0) rows.segment(v.row_b, d).noalias() += v.on_b.topRows(d) * forces;
+  }
+  // A_k^T multipliers: what the balance rows' multipliers say to vertex k.
+  Eigen::Vector4d reaction(const ContactVertex& v, const Eigen::VectorXd& multipliers) const {
+    const int d = block_rows;
+    Eigen::Vector4d out = Eigen::Vector4d::Zero();
+    if (v.row_a >= 0) out.noalias() += v.on_a.topRows(d).transpose() * multipliers.segment(v.row_a, d);
+    if (v.row_b >= 0) out.noalias() += v.on_b.topRows(d).transpose() * multipliers.segment(v.row_b, d);
+    return out;
+  }
   // The equality constraint matrix (row_count x variable_count), for export
   // and residual checks; the solver works with the per-vertex blocks.
   Eigen::SparseMatrix<double> equality_matrix() const;

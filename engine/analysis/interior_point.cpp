@@ -157,14 +157,6 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   const int factorizations_before = cholesky_->factorizations();
   const int value_count = cholesky_->nonzeros();
 
-  // A^T y at vertex k.
-  auto reaction = [&](int k, const Eigen::VectorXd& multipliers) {
-    const ContactVertex& v = problem.vertices[k];
-    Vector4 out = Vector4::Zero();
-    if (v.row_a >= 0) out += v.on_a.topRows(d).transpose() * multipliers.segment(v.row_a, d);
-    if (v.row_b >= 0) out += v.on_b.topRows(d).transpose() * multipliers.segment(v.row_b, d);
-    return out;
-  };
 
   // Solves the Newton system for complementarity residual r_c (uses the
   // current factorisation and inverse_phi); fills dx, dy, dw, dz.
@@ -178,12 +170,11 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       const Vector4 reduced = -r_d.segment<4>(4 * k) - g.transpose() * row_terms.segment(m * k, m);
       const Vector4 t = inverse_phi[k] * reduced;
       dx.segment<4>(4 * k) = t;  // completed below with the A^T dy part
-      if (v.row_a >= 0) rhs.segment(v.row_a, d) -= v.on_a.topRows(d) * t;
-      if (v.row_b >= 0) rhs.segment(v.row_b, d) -= v.on_b.topRows(d) * t;
+      problem.add_effect(v, -t, rhs);
     }
     dy = cholesky_->solve(rhs);
     for (int k = 0; k < nv; ++k) {
-      dx.segment<4>(4 * k) += inverse_phi[k] * reaction(k, dy);
+      dx.segment<4>(4 * k) += inverse_phi[k] * problem.reaction(problem.vertices[k], dy);
       dw.segment(m * k, m) = g * dx.segment<4>(4 * k) + r_g.segment(m * k, m);
     }
     dz = -(complementarity + z.cwiseProduct(dw)).cwiseQuotient(w);
@@ -216,9 +207,8 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     for (int k = 0; k < nv; ++k) {
       const ContactVertex& v = problem.vertices[k];
       const Vector4 xk = x.segment<4>(4 * k);
-      if (v.row_a >= 0) r_p.segment(v.row_a, d) += v.on_a.topRows(d) * xk;
-      if (v.row_b >= 0) r_p.segment(v.row_b, d) += v.on_b.topRows(d) * xk;
-      r_d.segment<4>(4 * k) = h.cwiseProduct(xk) + q - reaction(k, y) -
+      problem.add_effect(v, xk, r_p);
+      r_d.segment<4>(4 * k) = h.cwiseProduct(xk) + q - problem.reaction(problem.vertices[k], y) -
                               g.transpose() * z.segment(m * k, m);
       r_g.segment(m * k, m) = g * xk - w.segment(m * k, m);
     }
