@@ -105,13 +105,7 @@ if arg[1] == "--measure" then
   return
 end
 
-local function write_atomically(path, text)
-  local temporary = path .. ".tmp"
-  local file = assert(io.open(temporary, "w"))
-  assert(file:write(text))
-  assert(file:close())
-  assert(os.rename(temporary, path))
-end
+local write_atomically = require("script_support").write_atomically
 
 local function split_csv(line)
   local fields = {}

@@ -6,6 +6,8 @@
 -- chart of the error against the wall time of each bisection) in the folder.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
+local script_support = require "script_support"
+local shell_quoted, write_atomically = script_support.shell_quoted, script_support.write_atomically
 
 local LIMIT = 0.1075
 local VOUSSOIRS = { 4, 8, 16, 32, 64, 128, 256, 512, 1024 }
@@ -18,10 +20,6 @@ local TOLERANCE = 1e-7
 
 local output = arg[1] or "."
 local base = output .. "/arch_min_thickness"
-
-local function shell_quoted(text)
-  return "'" .. text:gsub("'", "'\\''") .. "'"
-end
 
 -- Bisection between a ratio at which the arch falls and one at which it
 -- stands; returns the midpoint (nil if the bracket does not hold) and
@@ -54,15 +52,7 @@ local function minimum_thickness_ratio(voussoirs)
   return run
 end
 
-local function write_atomically(path, text)
-  local file = assert(io.open(path .. ".tmp", "w"))
-  file:write(text)
-  file:close()
-  assert(os.rename(path .. ".tmp", path))
-end
-
--- The chart through gnuplot, each image written under a temporary name and
--- renamed when gnuplot has finished it.
+-- The chart: error against bisection time, labelled by count.
 local function chart(runs)
   local points = {}
   for _, run in ipairs(runs) do
@@ -70,38 +60,21 @@ local function chart(runs)
       points[#points + 1] = ("%.9g %.9g %d"):format(run.seconds, math.abs(run.error), run.voussoirs)
     end
   end
-  local data = base .. ".chart.tmp"
-  write_atomically(data, table.concat(points, "\n") .. "\n")
-  local plot = ([[
+  -- Inline data: gnuplot reads it twice (points and labels).
+  local data = "$points << EOD\n" .. table.concat(points, "\n") .. "\nEOD\n"
+  script_support.chart(base, data .. [[
 set logscale xy
-set format x "10^{%%L}"
-set format y "10^{%%L}"
+set format x "10^{%L}"
+set format y "10^{%L}"
 set title "Semicircular arch: minimum thickness t/R by bisection (no sliding)\nerror against Milankovitch's limit 0.1075, labels: number of voussoirs N"
 set xlabel "wall time of the bisection (s)"
 set ylabel "|t/R - 0.1075| (t: thickness, R: centreline radius; dimensionless)"
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
 set key off
 set offsets graph 0.08, graph 0.12, graph 0.1, graph 0.1
-plot %s using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4", \
-     %s using 1:2:("N = ".strcol(3)) with labels offset char 1.2, char 0.6 left font ",10"
-]]):format(("%q"):format(data), ("%q"):format(data))
-  local png_terminal = [[
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-  set terminal pngcairo size 1000,700 font "Sans,11"
-} else {
-  set terminal png size 1000,700
-}
-]]
-  local script = base .. ".gnuplot.tmp"
-  write_atomically(script, png_terminal .. ("set output %q\n"):format(base .. ".png.tmp") .. plot ..
-    "set terminal svg size 1000,700 dynamic font \"Sans,11\"\n" ..
-    ("set output %q\n"):format(base .. ".svg.tmp") .. "replot\nset output\n")
-  local ok = os.execute("gnuplot " .. shell_quoted(script))
-  os.remove(script)
-  os.remove(data)
-  assert(ok, "gnuplot failed on " .. script)
-  assert(os.rename(base .. ".png.tmp", base .. ".png"))
-  assert(os.rename(base .. ".svg.tmp", base .. ".svg"))
+plot $points using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4", \
+     $points using 1:2:("N = ".strcol(3)) with labels offset char 1.2, char 0.6 left font ",10"
+]])
 end
 
 assert(os.execute("mkdir -p " .. shell_quoted(output)), "cannot create " .. output)

@@ -41,9 +41,7 @@ local VIEWS = {
 
 local RESOLUTION = "800,600"
 
-local function shell_quoted(text)
-  return "'" .. text:gsub("'", [['\'']]) .. "'"
-end
+local shell_quoted = require("script_support").shell_quoted
 
 local function exists(command)
   return os.execute("command -v " .. command .. " > /dev/null 2>&1") == true
