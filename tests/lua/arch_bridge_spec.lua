@@ -106,7 +106,7 @@ local function closed_volume(o)
   return o.depth * (length * (o.pier_height + H + deck) - S * opening), H
 end
 
-local defaults = { spans = 3, span = 8, rise = 3, thickness = 0.6, depth = 4, voussoirs = 21,
+local defaults = { spans = 3, span = 8, rise = 3, thickness = 0.6, depth = 4, voussoirs = 26,
                    pier_width = 1.5, pier_height = 4, pier_courses = 4, abutment_width = 3 }
 local function with(changes)
   local o = {}
@@ -119,12 +119,12 @@ describe("models.arch_bridge (defaults)", function()
   local s = arch_bridge()
 
   it("has the arches, spandrels, piers, fills, abutments, deck and one ground support", function()
-    -- 3 x 21 voussoirs, 3 x 21 spandrels, 2 piers x 4 courses, 2 pier fills,
-    -- 2 abutments, 67 deck blocks, the ground.
-    assert.equal(63 + 63 + 8 + 2 + 2 + 67 + 1, #s)
+    -- 3 x 26 voussoirs, 3 x 26 spandrels, 2 piers x 4 courses, 2 pier fills,
+    -- 2 abutments, 82 deck blocks, the ground.
+    assert.equal(78 + 78 + 8 + 2 + 2 + 82 + 1, #s)
     for p = 1, 3 do
-      for k = 1, 21 do
-        assert.equal((p - 1) * 21 + k, s:find(("span %d voussoir %d"):format(p, k)))
+      for k = 1, 26 do
+        assert.equal((p - 1) * 26 + k, s:find(("span %d voussoir %d"):format(p, k)))
         assert.truthy(s:find(("spandrel %d %d"):format(p, k)))
       end
     end
@@ -132,20 +132,20 @@ describe("models.arch_bridge (defaults)", function()
       for c = 1, 4 do assert.truthy(s:find(("pier %d course %d"):format(p, c))) end
       assert.truthy(s:find(("pier %d fill"):format(p)))
     end
-    for i = 1, 67 do assert.truthy(s:find(("deck %d"):format(i))) end
+    for i = 1, 82 do assert.truthy(s:find(("deck %d"):format(i))) end
     assert.truthy(s:find("abutment left")); assert.truthy(s:find("abutment right"))
     for i = 1, #s do assert.equal(s:name(i) == "ground", s:is_support(i)) end
     -- Spans left to right, voussoirs left to right within a span.
-    for i = 2, 63 do assert.is_true(s:block(i):centroid()[1] > s:block(i - 1):centroid()[1]) end
+    for i = 2, 78 do assert.is_true(s:block(i):centroid()[1] > s:block(i - 1):centroid()[1]) end
   end)
 
-  it("has exactly the contacts of the construction (340)", function()
-    local found, count, decks = check_topology(s, 3, 21, 4, true, true)
-    assert.equal(67, decks)
-    assert.equal(340, count)
+  it("has exactly the contacts of the construction (415)", function()
+    local found, count, decks = check_topology(s, 3, 26, 4, true, true)
+    assert.equal(82, decks)
+    assert.equal(415, count)
     -- Each spandrel block rests on the whole extrados face of its voussoir.
     for p = 1, 3 do
-      for k = 1, 21 do
+      for k = 1, 26 do
         local v = ("span %d voussoir %d"):format(p, k)
         local f = found[v .. "|" .. ("spandrel %d %d"):format(p, k)]
         local block = s:block(v)
@@ -184,16 +184,16 @@ describe("models.arch_bridge (defaults)", function()
   it("is symmetric about x = 0", function()
     local function mirror(name)
       local p, k = name:match("^span (%d+) voussoir (%d+)$")
-      if p then return ("span %d voussoir %d"):format(4 - p, 22 - k) end
+      if p then return ("span %d voussoir %d"):format(4 - p, 27 - k) end
       p, k = name:match("^spandrel (%d+) (%d+)$")
-      if p then return ("spandrel %d %d"):format(4 - p, 22 - k) end
+      if p then return ("spandrel %d %d"):format(4 - p, 27 - k) end
       local c
       p, c = name:match("^pier (%d+) course (%d+)$")
       if p then return ("pier %d course %d"):format(3 - p, c) end
       p = name:match("^pier (%d+) fill$")
       if p then return ("pier %d fill"):format(3 - p) end
       p = name:match("^deck (%d+)$")
-      if p then return ("deck %d"):format(68 - p) end
+      if p then return ("deck %d"):format(83 - p) end
       return ({ ["abutment left"] = "abutment right", ["abutment right"] = "abutment left", ground = "ground" })[name]
     end
     for i = 1, #s do
@@ -238,10 +238,10 @@ describe("models.arch_bridge variants", function()
 
   it("without spandrels: bare rings on piers and box abutments, no deck", function()
     local s = arch_bridge{ spandrel = false }
-    assert.equal(63 + 8 + 2 + 1, #s)
+    assert.equal(78 + 8 + 2 + 1, #s)
     assert.is_nil(s:find("deck 1")); assert.is_nil(s:find("spandrel 1 1")); assert.is_nil(s:find("pier 1 fill"))
-    local _, count = check_topology(s, 3, 21, 4, false, false)
-    assert.equal(76, count)
+    local _, count = check_topology(s, 3, 26, 4, false, false)
+    assert.equal(91, count)
     -- Ring: the segment under the extrados chords minus the one under the
     -- intrados chords (each a fan from the centre less the triangle under
     -- the springing line), joints equal in angle between the intrados
@@ -251,10 +251,10 @@ describe("models.arch_bridge variants", function()
     local ri, ro = r - 0.3, r + 0.3
     local xi, xe = math.sqrt(ri * ri - zc * zc), math.sqrt(ro * ro - zc * zc)
     local phi0 = math.atan(-zc, -xi)
-    local step = 2 * (phi0 - math.pi / 2) / 21
-    local under_intrados = 21 * 0.5 * ri * ri * math.sin(step) - xi * (-zc)
+    local step = 2 * (phi0 - math.pi / 2) / 26
+    local under_intrados = 26 * 0.5 * ri * ri * math.sin(step) - xi * (-zc)
     local end_angle = math.atan(-zc, -xe) - (phi0 - step) -- from e0 to joint 1
-    local under_extrados = ro * ro * math.sin(end_angle) + 19 * 0.5 * ro * ro * math.sin(step) - xe * (-zc)
+    local under_extrados = ro * ro * math.sin(end_angle) + 24 * 0.5 * ro * ro * math.sin(step) - xe * (-zc)
     local expected = 4 * (3 * (under_extrados - under_intrados) + 2 * 1.5 * 4 + 2 * 3 * 4)
     near(support.free_volume(s), expected, 1e-9 * expected)
   end)

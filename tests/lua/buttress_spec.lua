@@ -22,7 +22,7 @@ end
 
 describe("models.flying_buttress", function()
   local cases = {
-    { radius = 6, thickness = 0.8, voussoirs = 48, depth = 1, pier_width = 1.4, pier_height = 12,
+    { radius = 6, thickness = 0.8, voussoirs = 60, depth = 1, pier_width = 1.4, pier_height = 12,
       pier_blocks = 4, pinnacle_height = 4 },                                 -- the defaults
     { radius = 3, thickness = 0.5, voussoirs = 5, depth = 0.7, pier_width = 1.3, pier_height = 7,
       pier_blocks = 6, pinnacle_height = 0 },

@@ -59,7 +59,7 @@ local function zone_volume(o)
 end
 
 local function with_defaults(o)
-  local full = { radius = 5, thickness = 0.5, meridians = 16, parallels = 16, bond = "stacked" }
+  local full = { radius = 5, thickness = 0.5, meridians = 16, parallels = 18, bond = "stacked" }
   for k, v in pairs(o) do full[k] = v end
   return full
 end

@@ -82,7 +82,7 @@ end
 -- joints within a row, bed joints between overlapping pieces of adjacent
 -- rows (with their areas), groins, springings. Returns the contact count.
 local function check_topology(s, o)
-  local radius, thickness, n = o.radius or 3, o.thickness or 0.3, o.voussoirs or 16
+  local radius, thickness, n = o.radius or 3, o.thickness or 0.6, o.voussoirs or 22
   local inner, outer = radius - thickness / 2, radius + thickness / 2
   local half = (o.side or 2 * (radius + thickness)) / 2
   local course = (half - outer * math.sin(math.pi / n)) / (o.courses or 4)
@@ -172,7 +172,7 @@ local function check_topology(s, o)
 end
 
 describe("models.groin_vault", function()
-  local radius, thickness, voussoirs = 3, 0.3, 16
+  local radius, thickness, voussoirs = 3, 0.6, 22
   local side = 2 * (radius + thickness)
   local s = groin_vault()
   local running = groin_vault{ bond = "running" }
@@ -180,8 +180,8 @@ describe("models.groin_vault", function()
   it("has four webs of voussoir rows cut into courses, then four corner supports", function()
     -- Pieces per row from the springing on the left to the right, at the
     -- defaults: the rows are shorter towards the springings.
-    local counts = { stacked = { 1, 1, 1, 1, 2, 2, 3, 4, 4, 3, 2, 2, 1, 1, 1, 1 },
-                     running = { 1, 1, 1, 2, 2, 3, 3, 5, 5, 3, 3, 2, 2, 1, 1, 1 } }
+    local counts = { stacked = { 1, 1, 1, 1, 1, 1, 2, 2, 3, 3, 4, 4, 3, 3, 2, 2, 1, 1, 1, 1, 1, 1 },
+                     running = { 1, 1, 1, 1, 1, 2, 2, 3, 3, 4, 4, 4, 4, 3, 3, 2, 2, 1, 1, 1, 1, 1 } }
     for bond, vault in pairs{ stacked = s, running = running } do
       local index = 0
       for _, web in ipairs(webs) do
@@ -193,7 +193,7 @@ describe("models.groin_vault", function()
           end
         end
       end
-      assert.equal(bond == "stacked" and 120 or 144, index)
+      assert.equal(bond == "stacked" and 160 or 184, index)
       assert.equal(index + 4, #vault)
       for k, corner in ipairs{ "northwest", "southwest", "southeast", "northeast" } do
         assert.equal(index + k, vault:find("support " .. corner))
@@ -203,8 +203,8 @@ describe("models.groin_vault", function()
   end)
 
   it("has exactly the contacts of the topology, stacked and in running bond", function()
-    assert.equal(224, check_topology(s, {}))
-    assert.equal(324, check_topology(running, { bond = "running" }))
+    assert.equal(292, check_topology(s, {}))
+    assert.equal(412, check_topology(running, { bond = "running" }))
     -- One course: one block per voussoir and web.
     local one = groin_vault{ courses = 1 }
     assert.equal(4 * voussoirs + 4, #one)
@@ -305,8 +305,8 @@ describe("models.groin_vault", function()
     expect_error({ "models.groin_vault: bond: expected a string, got number" }, groin_vault, { bond = 1 })
     expect_error({ "models.groin_vault: thickness must be < 2 * radius (6), got 6" }, groin_vault,
       { thickness = 6 })
-    expect_error({ "models.groin_vault: side must be > 2 * (radius + thickness / 2) (6.3), got 6.3" },
-      groin_vault, { side = 6.3 })
+    expect_error({ "models.groin_vault: side must be > 2 * (radius + thickness / 2) (6.6), got 6.6" },
+      groin_vault, { side = 6.6 })
     expect_error({ "models.groin_vault: side: must be > 0" }, groin_vault, { side = -1 })
     expect_error({ "models.groin_vault: radius: expected a finite number" }, groin_vault, { radius = 1 / 0 })
   end)

@@ -30,6 +30,17 @@ function support.expect_error(fragments, f, ...)
   return message
 end
 
+-- The smallest value at which stands(value) holds, by bisection between a
+-- value that fails and one that stands, to an absolute tolerance.
+function support.threshold(stands, failing, standing, tolerance)
+  assert(not stands(failing) and stands(standing), "the bracket does not hold the threshold")
+  while standing - failing > tolerance do
+    local middle = (failing + standing) / 2
+    if stands(middle) then standing = middle else failing = middle end
+  end
+  return (failing + standing) / 2
+end
+
 -- Total volume of a structure's free blocks (supports left out).
 function support.free_volume(s)
   local volume = 0

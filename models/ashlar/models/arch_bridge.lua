@@ -27,8 +27,9 @@
 --   * ground: one support slab under the piers and abutments.
 -- Blocks, in order: "span P voussoir K", "spandrel P K", "pier P course C"
 -- (C from the bottom), "pier P fill", "abutment left", "abutment right",
--- "deck I" (left to right), "ground" (the only support). The default 21
--- voussoirs give the bare rings' minimum thickness within 1 % (docs/api.md).
+-- "deck I" (left to right), "ground" (the only support). The bare ring's
+-- minimum thickness stays within 1% from 26 voussoirs on, the default
+-- (scripts/model_discretisation.lua).
 local ashlar = require "ashlar"
 local options = require "ashlar.models.options"
 local arch_shapes = require "ashlar.models.arch_shapes"
@@ -43,7 +44,7 @@ local spec = {
   rise = { type = "number", above = 0 },                       -- m, of the centreline; by shape
   thickness = { type = "number", default = 0.6, above = 0 },   -- m, of the arch ring
   depth = { type = "number", default = 4, above = 0 },         -- m, the bridge's width (y)
-  voussoirs = { type = "number", default = 21, integer = true, min = 2 },
+  voussoirs = { type = "number", default = 26, integer = true, min = 2 },
   pier_width = { type = "number", default = 1.5, above = 0 },  -- m, clear between springings
   pier_height = { type = "number", default = 4, above = 0 },   -- m, z = 0 down to the ground
   pier_courses = { type = "number", default = 4, integer = true, min = 1 },

@@ -8,9 +8,12 @@ local semicircle = require "ashlar.models.semicircle"
 
 local spec = {
   radius = { type = "number", default = 3, above = 0 },       -- m, of the centreline
-  thickness = { type = "number", default = 0.3, above = 0 },  -- m, radial
+  -- t/R = 0.15: the minimum for a semicircular vault is about 0.1075.
+  thickness = { type = "number", default = 0.45, above = 0 },  -- m, radial
   -- One voussoir would span the whole half circle with a flat chord: no solid.
-  voussoirs = { type = "number", default = 15, integer = true, min = 2 },
+  -- Within 1% of the minimum thickness from 24 voussoirs on
+  -- (scripts/model_discretisation.lua).
+  voussoirs = { type = "number", default = 24, integer = true, min = 2 },
   length = { type = "number", default = 3, above = 0 },       -- m, along y
   courses = { type = "number", default = 6, integer = true, min = 1 },
   bond = { type = "string", default = "stacked", one_of = { "stacked", "running" } },

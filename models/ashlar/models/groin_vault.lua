@@ -32,19 +32,21 @@
 -- tolerance = 1e-7): t/R = 0.1411 with 16, 24, 32 and 64 voussoirs (0.1412
 -- with 128) and one course. Hinges form only at joints, so coarser or odd
 -- multiples miss it: 4, 6, 8, 10, 12, 14, 20 give 0.1151, 0.1372, 0.1415,
--- 0.1388, 0.1365, 0.1404, 0.1396. The default 16 is within 0.05 %. With 16
+-- 0.1388, 0.1365, 0.1404, 0.1396; the answer stays within 1% of its value
+-- at 128 from 22 voussoirs on, the default (scripts/model_discretisation.lua,
+-- which lets the default side follow the thickness as here). With 16
 -- voussoirs, 1, 2 and 4 stacked courses and 4 and 8 courses in running
 -- bond all give 0.1411 (bisection to 1e-5: 0.14115); 8 stacked courses
--- give 0.1465. The defaults (t/R = 0.1) do not stand; t/R = 0.2 does,
--- stacked and in running bond.
+-- give 0.1465. The default t/R = 0.2 stands, stacked and in running bond;
+-- t/R = 0.1 does not.
 local ashlar = require "ashlar"
 local options = require "ashlar.models.options"
 local semicircle = require "ashlar.models.semicircle"
 
 local spec = {
   radius = { type = "number", default = 3, above = 0 },       -- m, of the centreline
-  thickness = { type = "number", default = 0.3, above = 0 },  -- m, radial
-  voussoirs = { type = "number", default = 16, integer = true, min = 2 },  -- per web, even
+  thickness = { type = "number", default = 0.6, above = 0 },  -- m, radial
+  voussoirs = { type = "number", default = 22, integer = true, min = 2 },  -- per web, even
   side = { type = "number", above = 0 },                      -- m, of the square bay; 2 * (radius + thickness)
   courses = { type = "number", default = 4, integer = true, min = 1 },  -- along each web, at the crown
   bond = { type = "string", default = "stacked", one_of = { "stacked", "running" } },
