@@ -10,6 +10,7 @@
 namespace ashlar {
 
 using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
 using Vec2 = Eigen::Vector2d;
 
 // A polygon loop given by vertex indices into its block's vertex list.

@@ -59,6 +59,52 @@ MassProperties mass_properties(const std::vector<Vec3>& vertices,
   return props;
 }
 
+MassPropertiesGradient mass_properties_gradient(const std::vector<Vec3>& vertices,
+                                                const std::vector<FaceLoop>& faces) {
+  const int n = static_cast<int>(vertices.size());
+  MassPropertiesGradient gradient;
+  gradient.volume.assign(n, Vec3::Zero());
+  gradient.centroid.assign(n, Mat3::Zero());
+  if (n == 0) return gradient;
+  // The same reference point as mass_properties: the results do not depend
+  // on it, the rounding does.
+  Box3 box;
+  for (const Vec3& p : vertices) box.add(p);
+  const Vec3 ref = 0.5 * (box.lo + box.hi);
+  // With S = 6 V = sum_t d_t, d_t = p0 . (p1 x p2), and M = sum_t d_t (p0 + p1 + p2):
+  // dd_t/dp0 = p1 x p2 (and cyclically), dM/dp_a = (p0 + p1 + p2) dd_t/dp_a^T + d_t I.
+  double six_volume = 0.0;
+  Vec3 moment = Vec3::Zero();
+  std::vector<Vec3> d_six_volume(n, Vec3::Zero());
+  std::vector<Mat3> d_moment(n, Mat3::Zero());
+  for (const FaceLoop& face : faces) {
+    for (size_t i = 1; i + 1 < face.size(); ++i) {
+      const int corner[3] = {face[0], face[i], face[i + 1]};
+      const Vec3 p[3] = {vertices[corner[0]] - ref, vertices[corner[1]] - ref,
+                         vertices[corner[2]] - ref};
+      const double d = p[0].dot(p[1].cross(p[2]));
+      const Vec3 sum = p[0] + p[1] + p[2];
+      six_volume += d;
+      moment += d * sum;
+      for (int a = 0; a < 3; ++a) {
+        const Vec3 dd = p[(a + 1) % 3].cross(p[(a + 2) % 3]);
+        d_six_volume[corner[a]] += dd;
+        d_moment[corner[a]] += sum * dd.transpose() + d * Mat3::Identity();
+      }
+    }
+  }
+  if (six_volume == 0.0) {
+    throw InvalidArgument("mass properties gradient: the polyhedron has zero volume");
+  }
+  // centroid = ref + M / (4 S)
+  for (int k = 0; k < n; ++k) {
+    gradient.volume[k] = d_six_volume[k] / 6.0;
+    gradient.centroid[k] = d_moment[k] / (4.0 * six_volume) -
+                           moment * d_six_volume[k].transpose() / (4.0 * six_volume * six_volume);
+  }
+  return gradient;
+}
+
 Block::Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double density,
              std::string name)
     : vertices_(std::move(vertices)),

@@ -79,6 +79,20 @@ using BlockPtr = std::shared_ptr<const Block>;
 MassProperties mass_properties(const std::vector<Vec3>& vertices,
                                const std::vector<FaceLoop>& faces);
 
+// How the volume and centroid of mass_properties change with each vertex,
+// for the same faces (the structural gradient moves vertices, never the
+// topology). Sizes: one entry per vertex.
+struct MassPropertiesGradient {
+  std::vector<Vec3> volume;    // m^2: d(volume) / d(vertex k)
+  std::vector<Mat3> centroid;  // dimensionless: (i, j) = d(centroid_i) / d(vertex k)_j
+};
+
+// Exact derivatives of mass_properties (the same fan triangulation, so they
+// also hold for moves that bend a face out of its plane). Throws
+// InvalidArgument for a polyhedron of zero volume, whose centroid is undefined.
+MassPropertiesGradient mass_properties_gradient(const std::vector<Vec3>& vertices,
+                                                const std::vector<FaceLoop>& faces);
+
 // Unit outward normal (Newell) and mean offset of every face.
 std::vector<FacePlane> face_planes(const std::vector<Vec3>& vertices,
                                    const std::vector<FaceLoop>& faces);
