@@ -54,31 +54,6 @@ std::vector<bool> grounded_blocks(const Structure& structure,
   return grounded;
 }
 
-// The balance rows a problem keeps, in order: all six, or for a planar
-// structure (x-z plane) the in-plane force and moment Fx, Fz, My.
-const std::array<int, 6> kAllRows = {0, 1, 2, 3, 4, 5};
-const std::array<int, 6> kPlanarRowsFirst = {0, 2, 4, 1, 3, 5};
-
-// Columns (c, s, f_u, f_v) of the balance rows of a block with centroid
-// `centroid` for a force acting on it at `position` (sign +1 for block b),
-// rows in the order `rows`.
-Eigen::Matrix<double, 6, 4> vertex_effect(const Interface& contact, const Vec3& position,
-                                          const Vec3& centroid, double length_unit,
-                                          double sign, const std::array<int, 6>& rows) {
-  const Vec3 arm = (position - centroid) / length_unit;
-  Eigen::Matrix<double, 6, 4> effect;
-  const Vec3 directions[3] = {contact.normal, contact.u, contact.v};
-  const int columns[3] = {0, 2, 3};
-  for (int k = 0; k < 3; ++k) {
-    effect.block<3, 1>(0, columns[k]) = sign * directions[k];
-    effect.block<3, 1>(3, columns[k]) = sign * arm.cross(directions[k]);
-  }
-  effect.col(1) = -effect.col(0);  // tension pulls where compression pushes
-  Eigen::Matrix<double, 6, 4> ordered;
-  for (int r = 0; r < 6; ++r) ordered.row(r) = effect.row(rows[r]);
-  return ordered;
-}
-
 void check_planar_loads(const Structure& structure) {
   for (size_t k = 0; k < structure.loads().size(); ++k) {
     const PointLoad& load = structure.loads()[k];
@@ -95,6 +70,31 @@ void check_planar_loads(const Structure& structure) {
 }
 
 }  // namespace
+
+// The balance rows a problem keeps, in order: all six, or for a planar
+// structure (x-z plane) the in-plane force and moment Fx, Fz, My.
+const std::array<int, 6>& balance_rows(bool planar) {
+  static const std::array<int, 6> all = {0, 1, 2, 3, 4, 5};
+  static const std::array<int, 6> planar_first = {0, 2, 4, 1, 3, 5};
+  return planar ? planar_first : all;
+}
+
+Eigen::Matrix<double, 6, 4> contact_vertex_effect(const Interface& contact, const Vec3& position,
+                                          const Vec3& centroid, double length_unit,
+                                          double sign, const std::array<int, 6>& rows) {
+  const Vec3 arm = (position - centroid) / length_unit;
+  Eigen::Matrix<double, 6, 4> effect;
+  const Vec3 directions[3] = {contact.normal, contact.u, contact.v};
+  const int columns[3] = {0, 2, 3};
+  for (int k = 0; k < 3; ++k) {
+    effect.block<3, 1>(0, columns[k]) = sign * directions[k];
+    effect.block<3, 1>(3, columns[k]) = sign * arm.cross(directions[k]);
+  }
+  effect.col(1) = -effect.col(0);  // tension pulls where compression pushes
+  Eigen::Matrix<double, 6, 4> ordered;
+  for (int r = 0; r < 6; ++r) ordered.row(r) = effect.row(rows[r]);
+  return ordered;
+}
 
 Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options) {
   const double mu = options.friction;
@@ -125,7 +125,7 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   EquilibriumProblem problem;
   const bool planar = structure.planar();
   if (planar) check_planar_loads(structure);
-  const std::array<int, 6>& rows = planar ? kPlanarRowsFirst : kAllRows;
+  const std::array<int, 6>& rows = balance_rows(planar);
   problem.block_rows = planar ? 3 : 6;
   const int d = problem.block_rows;
   const int n = structure.size();
@@ -177,9 +177,9 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
       vertex.row_b = row_b;
       vertex.position = p;
       vertex.on_b =
-          vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0, rows);
+          contact_vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0, rows);
       vertex.on_a =
-          vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0, rows);
+          contact_vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0, rows);
       problem.vertices.push_back(vertex);
     }
   }

@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -99,6 +100,19 @@ struct EquilibriumProblem {
 // and for a planar structure with a load out of its plane.
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options);
+
+// The balance rows a problem keeps, in order, as indices into (Fx, Fy, Fz,
+// Mx, My, Mz): all six, or for a planar structure (x-z plane) Fx, Fz, My
+// first.
+const std::array<int, 6>& balance_rows(bool planar);
+
+// Columns (c, s, f_u, f_v) of the balance rows of a block with centroid
+// `centroid` (m) for a contact force acting on it at `position` (m), in the
+// frame of `contact`; sign +1 for block b, -1 for block a; moments about the
+// centroid divided by `length_unit` (m); rows in the order `rows`.
+Eigen::Matrix<double, 6, 4> contact_vertex_effect(const Interface& contact, const Vec3& position,
+                                                  const Vec3& centroid, double length_unit,
+                                                  double sign, const std::array<int, 6>& rows);
 
 // The friction rows (over c, f_u, f_v) for the options; empty for mu = inf.
 Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options);
