@@ -124,8 +124,9 @@ void push_blocks(lua_State* L, const EquilibriumResult& result) {
   std::vector<bool> floating(result.block_tension.size(), false);
   for (int i : result.floating_blocks) floating[i] = true;
   for (size_t i = 0; i < result.block_tension.size(); ++i) {
-    lua_createtable(L, 0, 2);
+    lua_createtable(L, 0, 3);
     set_field(L, "tension", result.block_tension[i]);
+    set_field(L, "virtual_torque", result.virtual_torques[i]);
     lua_pushboolean(L, floating[i]);
     lua_setfield(L, -2, "floating");
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
@@ -144,6 +145,16 @@ void push_vertices(lua_State* L, const EquilibriumResult& result) {
     set_field(L, "friction_u", f(2));
     set_field(L, "friction_v", f(3));
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
+void push_cables(lua_State* L, const EquilibriumResult& result) {
+  lua_createtable(L, static_cast<int>(result.cables.size()), 0);
+  for (size_t c = 0; c < result.cables.size(); ++c) {
+    lua_createtable(L, 0, 2);
+    set_field(L, "tension", result.cables[c].tension);
+    set_field(L, "compression", result.cables[c].compression);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(c + 1));
   }
 }
 
@@ -181,6 +192,7 @@ int w_Result_index(lua_State* L) {
     if (is("thrust_line")) lua_pushcfunction(L, w_Result_thrust_line);
     else if (is("stable")) lua_pushboolean(L, r.stable);
     else if (is("infeasibility")) lua_pushnumber(L, r.infeasibility);
+    else if (is("penalty")) lua_pushnumber(L, r.penalty);
     else if (is("objective")) lua_pushnumber(L, r.objective);
     else if (is("status")) lua_pushstring(L, status_name(r.status));
     else if (is("iterations")) lua_pushinteger(L, r.iterations);
@@ -202,6 +214,7 @@ int w_Result_index(lua_State* L) {
     } else if (is("interfaces")) return push_cached_table(L, "interfaces", r, push_interfaces);
     else if (is("blocks")) return push_cached_table(L, "blocks", r, push_blocks);
     else if (is("vertices")) return push_cached_table(L, "vertices", r, push_vertices);
+    else if (is("cables")) return push_cached_table(L, "cables", r, push_cables);
     else return 0;
     return 1;
   });

@@ -1,5 +1,6 @@
 #include "wrap_Structure.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "io/structure_json.hpp"
@@ -78,6 +79,72 @@ int w_Structure_add_load(lua_State* L) {
     load.at = options.vec3("at").value_or(s.block(load.block).centroid());
     s.add_load(load);
     lua_pushinteger(L, static_cast<lua_Integer>(s.loads().size()));
+    return 1;
+  });
+}
+
+// One end of s:add_cable's table: {block = i or name, point = {x, y, z}};
+// without a block the end is a junction with other cables' ends.
+CableEnd cable_end(lua_State* L, const Structure& s, const OptionTable& options, const char* key) {
+  const std::string what = key;
+  if (options.push(key) != LUA_TTABLE) {
+    throw ArgError(options.arg(), what + ": required, a table {block = i, point = {x, y, z}} "
+                                         "(leave out block where cables meet), got " +
+                                      type_name(L, -1));
+  }
+  const OptionTable end(L, lua_gettop(L), options.arg(), what + ".", {"block", "point"});
+  CableEnd out;
+  if (end.push("block") != LUA_TNIL) {
+    out.block = check_block_index(L, s, -1, options.arg(), (what + ".block").c_str());
+  }
+  lua_pop(L, 1);
+  const std::optional<Vec3> point = end.vec3("point");
+  if (!point) throw ArgError(options.arg(), what + ".point: required, a table of 3 numbers (m)");
+  out.point = *point;
+  lua_pop(L, 1);
+  return out;
+}
+
+int w_Structure_add_cable(lua_State* L) {
+  return guard(L, [&] {
+    Structure& s = *luax_checkStructure(L, 1);
+    if (lua_type(L, 2) != LUA_TTABLE) {
+      throw ArgError(2, "expected a cable table {from = {block = i, point = {..}}, to = {..}, "
+                        "mass_per_length = 0, max_tension = nil}");
+    }
+    const OptionTable options(L, 2, {"from", "to", "mass_per_length", "max_tension"});
+    Cable cable;
+    cable.from = cable_end(L, s, options, "from");
+    cable.to = cable_end(L, s, options, "to");
+    cable.mass_per_length = options.positive("mass_per_length", 0.0, true);
+    if (options.has("max_tension")) {
+      cable.max_tension = options.positive("max_tension", cable.max_tension);
+    }
+    lua_pushinteger(L, s.add_cable(cable) + 1);
+    return 1;
+  });
+}
+
+int w_Structure_cables(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    lua_createtable(L, static_cast<int>(s.cables().size()), 0);
+    for (size_t c = 0; c < s.cables().size(); ++c) {
+      const Cable& cable = s.cables()[c];
+      lua_createtable(L, 0, 4);
+      const std::pair<const CableEnd*, const char*> ends[2] = {{&cable.from, "from"},
+                                                               {&cable.to, "to"}};
+      for (const auto& [end, key] : ends) {
+        lua_createtable(L, 0, 2);
+        if (end->block >= 0) set_index_field(L, "block", end->block);
+        set_field(L, "point", end->point);
+        lua_setfield(L, -2, key);
+      }
+      set_field(L, "mass_per_length", cable.mass_per_length);
+      if (std::isfinite(cable.max_tension)) set_field(L, "max_tension", cable.max_tension);
+      set_field(L, "length", (cable.to.point - cable.from.point).norm());
+      lua_rawseti(L, -2, static_cast<lua_Integer>(c + 1));
+    }
     return 1;
   });
 }
@@ -240,6 +307,8 @@ void luax_pushStructure(lua_State* L, std::shared_ptr<Structure> structure) {
 void register_Structure(lua_State* L) {
   static const luaL_Reg methods[] = {{"add", w_Structure_add},
                                      {"add_load", w_Structure_add_load},
+                                     {"add_cable", w_Structure_add_cable},
+                                     {"cables", w_Structure_cables},
                                      {"block", w_Structure_block},
                                      {"name", w_Structure_name},
                                      {"is_support", w_Structure_is_support},

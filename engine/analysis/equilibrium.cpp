@@ -1,5 +1,6 @@
 #include "analysis/equilibrium.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -33,12 +34,15 @@ double distance_from_compression_only_equilibrium(const EquilibriumProblem& prob
                                                   const Eigen::VectorXd& x) {
   Eigen::VectorXd imbalance = -problem.rhs;
   double worst = 0.0;
-  for (size_t k = 0; k < problem.vertices.size(); ++k) {
-    const ContactVertex& v = problem.vertices[k];
-    Eigen::Vector4d forces = x.segment<4>(4 * static_cast<Eigen::Index>(k));
-    forces(1) = 0.0;
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& v = problem.groups[k];
+    const GroupRules& rules = problem.rules_of(v);
+    // Without the penalised unknowns (tension, cable compression, virtual
+    // torques and forces).
+    const Eigen::Vector4d forces = (rules.linear.array() > 0.0)
+                                       .select(0.0, x.segment<4>(4 * static_cast<Eigen::Index>(k)));
     problem.add_effect(v, forces, imbalance);
-    worst = std::max(worst, -(problem.vertex_rows * forces).minCoeff());
+    worst = std::max(worst, -(rules.rows * forces - problem.lower_bounds(v)).minCoeff());
   }
   const int d = problem.block_rows;
   for (int row = 0; row < problem.row_count; row += d) {
@@ -80,26 +84,43 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   std::vector<double> pressure_weight(interfaces.size(), 0.0);
   std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
   result.block_tension.assign(structure.size(), 0.0);
-  double total_tension = 0.0;
   const Eigen::VectorXd& x = result.solution.x;
-  for (size_t k = 0; k < problem.vertices.size(); ++k) {
-    const ContactVertex& v = problem.vertices[k];
-    const Eigen::Vector4d forces = x.segment<4>(4 * static_cast<Eigen::Index>(k)) * problem.weight_unit;
-    const Interface& contact = interfaces[v.interface_index];
-    InterfaceForces& through = result.interfaces[v.interface_index];
+  const double wu = problem.weight_unit;
+  result.cables.resize(structure.cables().size());
+  result.virtual_torques.assign(structure.size(), Vec3::Zero());
+  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
+  double penalised = 0.0;  // scaled
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& v = problem.groups[k];
+    const Eigen::Vector4d scaled = x.segment<4>(4 * static_cast<Eigen::Index>(k));
+    penalised += problem.rules_of(v).linear.dot(scaled);
+    if (v.kind == GroupKind::cable || v.kind == GroupKind::bounded_cable) {
+      result.cables[v.source].tension = (scaled(0) - scaled(1)) * wu;
+      result.cables[v.source].compression = scaled(1) * wu;
+      continue;
+    }
+    if (v.kind == GroupKind::slack) {
+      if (v.block_a >= 0) {
+        result.virtual_torques[v.block_a](rows[v.component] - 3) =
+            (scaled(0) - scaled(1)) * wu * problem.length_unit;
+      }
+      continue;
+    }
+    const Eigen::Vector4d forces = scaled * wu;
+    const Interface& contact = interfaces[v.source];
+    InterfaceForces& through = result.interfaces[v.source];
     const double normal = forces(0) - forces(1);
     through.compression += forces(0);
     through.tension += forces(1);
     through.normal_force += normal;
     through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
-    pressure_weight[v.interface_index] += normal;
-    pressure_moment[v.interface_index] += normal * v.position;
+    pressure_weight[v.source] += normal;
+    pressure_moment[v.source] += normal * v.position;
     result.block_tension[v.block_a] += forces(1);
     result.block_tension[v.block_b] += forces(1);
-    total_tension += forces(1);
     result.vertex_forces.push_back(forces);
     result.vertex_positions.push_back(v.position);
-    result.vertex_interface.push_back(v.interface_index);
+    result.vertex_interface.push_back(v.source);
   }
   for (size_t i = 0; i < interfaces.size(); ++i) {
     result.interfaces[i].center_of_pressure = pressure_weight[i] > 0.0
@@ -111,17 +132,18 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   // Stability is a question of feasibility: forces that balance every block
   // without tension prove it, converged or not. Without such forces only a
   // converged optimum (whose tension is then needed) proves instability.
-  result.stable = result.floating_blocks.empty() &&
-                  result.imbalance_without_tension <= settings.stable_tolerance;
+  const bool floating = !result.floating_blocks.empty() || !problem.floating_junctions.empty();
+  result.stable = !floating && result.imbalance_without_tension <= settings.stable_tolerance;
   // Floating blocks cannot be balanced at all; a numerical failure (also what
   // a problem with no equilibrium even with tension, e.g. no friction under
   // a sideways load, ends in) leaves no usable equilibrium either.
-  if (!result.floating_blocks.empty() || result.status == SolverStatus::numerical_error) {
+  const int bodies = std::max(problem.body_count, 1);
+  if (floating || result.status == SolverStatus::numerical_error) {
     result.infeasibility = std::numeric_limits<double>::infinity();
-  } else if (result.stable) {
-    result.infeasibility = 0.0;
+    result.penalty = std::numeric_limits<double>::infinity();
   } else {
-    result.infeasibility = problem.total_weight > 0.0 ? total_tension / problem.total_weight : 0.0;
+    result.infeasibility = result.stable ? 0.0 : penalised / bodies;
+    result.penalty = info.objective / bodies;
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

@@ -33,6 +33,12 @@ struct InterfaceForces {
   Vec3 center_of_pressure = Vec3::Zero();
 };
 
+// A cable's axial force (N).
+struct CableForces {
+  double tension = 0.0;      // positive in tension; negative when the best equilibrium pushes
+  double compression = 0.0;  // the penalised compressive part (>= 0)
+};
+
 struct AnalysisTimings {
   double setup = 0.0;          // contact detection, problem and pattern analysis
   double assembly = 0.0;       // per-iteration residuals and normal-matrix values
@@ -42,11 +48,18 @@ struct AnalysisTimings {
 
 struct EquilibriumResult {
   bool stable = false;
-  // Total tension of the best equilibrium over the total free weight
-  // (dimensionless); exactly 0 when stable. Infinite when a free block has
-  // no chain of contacts to a support, or when the solver failed
-  // (numerical_error); approximate after max_iterations.
+  // Total tension of the best equilibrium over the total weight
+  // (dimensionless): interface tension, cable compression, and virtual
+  // torques over the unit of length; exactly 0 when stable. Infinite when a
+  // free block has no chain of contacts to a support, or when the solver
+  // failed (numerical_error); approximate after max_iterations.
   double infeasibility = 0.0;
+  // The QP's optimal value per analysed body, in units of the mean weight:
+  // the thesis's infeasibility measure (Shin 2014 eq. 1, after Whiting), the
+  // smooth function that gradients differentiate and the optimiser lowers.
+  // It follows infeasibility closely when unstable; when stable only the
+  // tiny force regularisation is left (about force_weight / 2 per body).
+  double penalty = 0.0;
   double objective = 0.0;      // the QP's optimum, scaled as in the QPS export
   SolverStatus status = SolverStatus::numerical_error;
   int iterations = 0;
@@ -63,6 +76,8 @@ struct EquilibriumResult {
   std::vector<int> vertex_interface;           // interface index of each vertex
   std::vector<InterfaceForces> interfaces;     // parallel to Structure::interfaces()
   std::vector<double> block_tension;           // N: tension over each block's interfaces
+  std::vector<CableForces> cables;             // parallel to Structure::cables()
+  std::vector<Vec3> virtual_torques;           // N m per block, about its centroid
   InteriorPointSolution solution;              // scaled; for warm starts
 };
 

@@ -1,5 +1,6 @@
 #include "analysis/equilibrium_problem.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numeric>
@@ -40,21 +41,92 @@ private:
   std::vector<int> parent_;
 };
 
-std::vector<bool> grounded_blocks(const Structure& structure,
-                                  const std::vector<Interface>& interfaces) {
+// Which bodies (blocks, then junctions) are joined to a support by a path of
+// contacts and cables.
+std::vector<bool> grounded_bodies(const Structure& structure,
+                                  const std::vector<Interface>& interfaces,
+                                  const std::vector<std::array<int, 2>>& cable_bodies,
+                                  int junction_count) {
   const int n = structure.size();
-  Components components(n);
+  const int bodies = n + junction_count;
+  Components components(bodies);
   for (const Interface& contact : interfaces) components.join(contact.a, contact.b);
-  std::vector<bool> root_grounded(n, false);
+  for (const std::array<int, 2>& ends : cable_bodies) components.join(ends[0], ends[1]);
+  std::vector<bool> root_grounded(bodies, false);
   for (int i = 0; i < n; ++i) {
     if (structure.is_support(i)) root_grounded[components.root(i)] = true;
   }
-  std::vector<bool> grounded(n);
-  for (int i = 0; i < n; ++i) grounded[i] = root_grounded[components.root(i)];
+  std::vector<bool> grounded(bodies);
+  for (int i = 0; i < bodies; ++i) grounded[i] = root_grounded[components.root(i)];
   return grounded;
 }
 
-void check_planar_loads(const Structure& structure) {
+// Junctions: cable ends away from blocks, merged where they coincide (within
+// `tolerance`, m). Fills the body of every cable end (block index, or block
+// count + junction index) and returns the junction positions. A junction
+// with a single cable end is an error: that end hangs from nothing.
+std::vector<Vec3> find_junctions(const Structure& structure, double tolerance,
+                                 std::vector<std::array<int, 2>>& cable_bodies) {
+  const std::vector<Cable>& cables = structure.cables();
+  const int n = structure.size();
+  cable_bodies.assign(cables.size(), {-1, -1});
+  struct LooseEnd {
+    Vec3 point;
+    int cable, end;
+  };
+  std::vector<LooseEnd> loose;
+  for (size_t c = 0; c < cables.size(); ++c) {
+    const CableEnd* ends[2] = {&cables[c].from, &cables[c].to};
+    for (int e = 0; e < 2; ++e) {
+      if (ends[e]->block >= 0) cable_bodies[c][e] = ends[e]->block;
+      else loose.push_back({ends[e]->point, static_cast<int>(c), e});
+    }
+  }
+  std::sort(loose.begin(), loose.end(),
+            [](const LooseEnd& p, const LooseEnd& q) { return p.point.x() < q.point.x(); });
+  std::vector<Vec3> junctions;
+  std::vector<int> junction_of(loose.size(), -1), ends_at(0);
+  for (size_t i = 0; i < loose.size(); ++i) {
+    // Ends sorted by x: only those within tolerance in x can coincide.
+    for (size_t j = i; j-- > 0 && loose[i].point.x() - loose[j].point.x() <= tolerance;) {
+      if ((loose[i].point - loose[j].point).norm() <= tolerance) {
+        junction_of[i] = junction_of[j];
+        break;
+      }
+    }
+    if (junction_of[i] < 0) {
+      junction_of[i] = static_cast<int>(junctions.size());
+      junctions.push_back(loose[i].point);
+      ends_at.push_back(0);
+    }
+    ++ends_at[junction_of[i]];
+    cable_bodies[loose[i].cable][loose[i].end] = n + junction_of[i];
+  }
+  for (size_t i = 0; i < loose.size(); ++i) {
+    if (ends_at[junction_of[i]] < 2) {
+      throw InvalidArgument("cable " + std::to_string(loose[i].cable + 1) + " '" +
+                            (loose[i].end == 0 ? "from" : "to") +
+                            "': the end is on no block and meets no other cable end; "
+                            "give it a block, or end it where another cable ends");
+    }
+  }
+  return junctions;
+}
+
+void check_planar_loads_and_cables(const Structure& structure, double tolerance) {
+  const std::vector<Cable>& cables = structure.cables();
+  for (size_t c = 0; c < cables.size(); ++c) {
+    const CableEnd* ends[2] = {&cables[c].from, &cables[c].to};
+    for (const CableEnd* end : ends) {
+      const double plane_y =
+          end->block >= 0 ? structure.block(end->block).centroid().y() : cables[c].from.point.y();
+      if (std::abs(end->point.y() - plane_y) > tolerance) {
+        throw InvalidArgument("planar structure: cable " + std::to_string(c + 1) +
+                              " leaves the x-z plane (its ends must lie in the mid-plane of "
+                              "their blocks, y = " + std::to_string(plane_y) + ")");
+      }
+    }
+  }
   for (size_t k = 0; k < structure.loads().size(); ++k) {
     const PointLoad& load = structure.loads()[k];
     const Block& block = structure.block(load.block);
@@ -116,21 +188,86 @@ Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions&
   return rows;
 }
 
+namespace {
+
+// Columns (t, k) of a cable pulling body `row`'s attachment point `at` (m)
+// along `direction`; moments about `centroid` for blocks, none for junctions.
+Eigen::Matrix<double, 6, 4> cable_effect(const Vec3& direction, const Vec3& at,
+                                         const Vec3* centroid, double length_unit,
+                                         const std::array<int, 6>& rows) {
+  Eigen::Matrix<double, 6, 1> pull = Eigen::Matrix<double, 6, 1>::Zero();
+  pull.head<3>() = direction;
+  if (centroid) pull.tail<3>() = ((at - *centroid) / length_unit).cross(direction);
+  Eigen::Matrix<double, 6, 4> effect = Eigen::Matrix<double, 6, 4>::Zero();
+  for (int r = 0; r < 6; ++r) effect(r, 0) = pull(rows[r]);
+  effect.col(1) = -effect.col(0);  // compression pushes where tension pulls
+  return effect;
+}
+
+void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
+  // The regularisation's pull on the multipliers grows with the forces,
+  // which grow with the number of blocks sharing the load (an arch's thrust
+  // is a fraction of its whole weight). Dividing it by the body count keeps
+  // the tension penalty exact on large structures, while staying far above
+  // the scale at which near-free friction unknowns spoil the factorisation.
+  const double regularisation = options.force_weight / std::max(problem.body_count, 1);
+  const double tension = options.tension_weight;
+  const Eigen::Matrix<double, Eigen::Dynamic, 3> friction = friction_rows(options);
+  GroupRules& contact = problem.rules[static_cast<int>(GroupKind::contact_vertex)];
+  contact.rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2 + friction.rows(), 4);
+  contact.rows(0, 0) = 1.0;
+  contact.rows(1, 1) = 1.0;
+  for (int j = 0; j < friction.rows(); ++j) {
+    contact.rows(2 + j, 0) = friction(j, 0);
+    contact.rows(2 + j, 2) = friction(j, 1);
+    contact.rows(2 + j, 3) = friction(j, 2);
+  }
+  contact.hessian << regularisation, tension, regularisation, regularisation;
+  contact.linear << 0.0, 1.0, 0.0, 0.0;
+
+  GroupRules& cable = problem.rules[static_cast<int>(GroupKind::cable)];
+  cable.rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2, 4);
+  cable.rows(0, 0) = 1.0;
+  cable.rows(1, 1) = 1.0;
+  cable.hessian = contact.hessian;
+  cable.linear = contact.linear;
+  GroupRules& bounded = problem.rules[static_cast<int>(GroupKind::bounded_cable)];
+  bounded = cable;
+  bounded.rows.conservativeResize(3, 4);
+  bounded.rows.row(2) << -1.0, 0.0, 0.0, 0.0;
+  bounded.bounded_row = 2;
+
+  GroupRules& slack = problem.rules[static_cast<int>(GroupKind::slack)];
+  slack.rows = cable.rows;
+  slack.hessian << tension, tension, regularisation, regularisation;
+  slack.linear << 1.0, 1.0, 0.0, 0.0;
+}
+
+}  // namespace
+
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options) {
   check_options(options);
   const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
-  const std::vector<bool> grounded = grounded_blocks(structure, interfaces);
-
+  const int n = structure.size();
+  const std::vector<Cable>& cables = structure.cables();
+  const double size = structure.bounds().diagonal();
+  std::vector<std::array<int, 2>> cable_bodies;
   EquilibriumProblem problem;
+  problem.junctions = find_junctions(structure, 1e-9 * size, cable_bodies);
+  const int junction_count = static_cast<int>(problem.junctions.size());
+  const std::vector<bool> grounded =
+      grounded_bodies(structure, interfaces, cable_bodies, junction_count);
+
   const bool planar = structure.planar();
-  if (planar) check_planar_loads(structure);
+  if (planar) check_planar_loads_and_cables(structure, 1e-9 * size);
   const std::array<int, 6>& rows = balance_rows(planar);
   problem.block_rows = planar ? 3 : 6;
   const int d = problem.block_rows;
-  const int n = structure.size();
   problem.row_of_block.assign(n, -1);
+  problem.row_of_junction.assign(junction_count, -1);
   double size_sum = 0.0;
+  int analysed_blocks = 0;
   for (int i = 0; i < n; ++i) {
     if (structure.is_support(i)) continue;
     if (!grounded[i]) {
@@ -141,27 +278,60 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
     problem.row_count += d;
     problem.total_weight += structure.block(i).mass() * kGravity;
     size_sum += structure.block(i).bounds().diagonal();
+    ++analysed_blocks;
   }
-  const int analysed = problem.row_count / d;
-  if (analysed > 0) {
-    problem.weight_unit = problem.total_weight / analysed;
-    problem.length_unit = size_sum / analysed;
+  for (int j = 0; j < junction_count; ++j) {
+    if (!grounded[n + j]) {
+      problem.floating_junctions.push_back(j);
+      continue;
+    }
+    problem.row_of_junction[j] = problem.row_count;
+    problem.row_count += d;
   }
+  auto row_of_body = [&](int body) {
+    return body < n ? problem.row_of_block[body] : problem.row_of_junction[body - n];
+  };
+  std::vector<double> cable_weight(cables.size()), cable_length(cables.size());
+  double cable_length_sum = 0.0;
+  for (size_t c = 0; c < cables.size(); ++c) {
+    cable_length[c] = (cables[c].to.point - cables[c].from.point).norm();
+    cable_weight[c] = cables[c].mass_per_length * cable_length[c] * kGravity;
+    for (int e = 0; e < 2; ++e) {
+      if (row_of_body(cable_bodies[c][e]) >= 0) problem.total_weight += 0.5 * cable_weight[c];
+    }
+    cable_length_sum += cable_length[c];
+  }
+  problem.body_count = problem.row_count / d;
+  if (problem.body_count > 0 && problem.total_weight > 0.0) {
+    problem.weight_unit = problem.total_weight / problem.body_count;
+  }
+  if (analysed_blocks > 0) problem.length_unit = size_sum / analysed_blocks;
+  else if (!cables.empty()) problem.length_unit = cable_length_sum / cables.size();
   const double wu = problem.weight_unit, lu = problem.length_unit;
 
-  // Each block's external force and moment, then the rows the problem keeps.
-  std::vector<Eigen::Matrix<double, 6, 1>> external(n, Eigen::Matrix<double, 6, 1>::Zero());
+  // Each body's external force and moment, then the rows the problem keeps.
+  const int bodies = n + junction_count;
+  std::vector<Eigen::Matrix<double, 6, 1>> external(bodies, Eigen::Matrix<double, 6, 1>::Zero());
   for (int i = 0; i < n; ++i) external[i](2) = structure.block(i).mass() * kGravity / wu;
-  for (const PointLoad& load : structure.loads()) {
-    const Vec3 arm = (load.at - structure.block(load.block).centroid()) / lu;
-    external[load.block].head<3>() -= load.force / wu;
-    external[load.block].tail<3>() -= arm.cross(load.force / wu);
+  auto add_force = [&](int body, const Vec3& force, const Vec3& at) {
+    external[body].head<3>() -= force / wu;
+    if (body < n) {
+      const Vec3 arm = (at - structure.block(body).centroid()) / lu;
+      external[body].tail<3>() -= arm.cross(force / wu);
+    }
+  };
+  for (const PointLoad& load : structure.loads()) add_force(load.block, load.force, load.at);
+  for (size_t c = 0; c < cables.size(); ++c) {
+    const CableEnd* ends[2] = {&cables[c].from, &cables[c].to};
+    for (int e = 0; e < 2; ++e) {
+      add_force(cable_bodies[c][e], Vec3(0.0, 0.0, -0.5 * cable_weight[c]), ends[e]->point);
+    }
   }
   problem.rhs = Eigen::VectorXd::Zero(problem.row_count);
-  for (int i = 0; i < n; ++i) {
-    const int row = problem.row_of_block[i];
+  for (int body = 0; body < bodies; ++body) {
+    const int row = row_of_body(body);
     if (row < 0) continue;
-    for (int r = 0; r < d; ++r) problem.rhs(row + r) = external[i](rows[r]);
+    for (int r = 0; r < d; ++r) problem.rhs(row + r) = external[body](rows[r]);
   }
 
   for (size_t k = 0; k < interfaces.size(); ++k) {
@@ -169,8 +339,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
     const int row_a = problem.row_of_block[contact.a], row_b = problem.row_of_block[contact.b];
     if (row_a < 0 && row_b < 0) continue;  // between supports, or floating
     for (const Vec3& p : contact.vertices) {
-      ContactVertex vertex;
-      vertex.interface_index = static_cast<int>(k);
+      ForceGroup vertex;
+      vertex.source = static_cast<int>(k);
       vertex.block_a = contact.a;
       vertex.block_b = contact.b;
       vertex.row_a = row_a;
@@ -180,36 +350,59 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
           contact_vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0, rows);
       vertex.on_a =
           contact_vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0, rows);
-      problem.vertices.push_back(vertex);
+      problem.groups.push_back(vertex);
     }
   }
+  problem.contact_vertex_count = static_cast<int>(problem.groups.size());
 
-  const Eigen::Matrix<double, Eigen::Dynamic, 3> friction = friction_rows(options);
-  problem.vertex_rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2 + friction.rows(), 4);
-  problem.vertex_rows(0, 0) = 1.0;
-  problem.vertex_rows(1, 1) = 1.0;
-  for (int j = 0; j < friction.rows(); ++j) {
-    problem.vertex_rows(2 + j, 0) = friction(j, 0);
-    problem.vertex_rows(2 + j, 2) = friction(j, 1);
-    problem.vertex_rows(2 + j, 3) = friction(j, 2);
+  std::vector<bool> has_cable(bodies, false);
+  for (size_t c = 0; c < cables.size(); ++c) {
+    const int body_a = cable_bodies[c][0], body_b = cable_bodies[c][1];
+    ForceGroup cable;
+    cable.source = static_cast<int>(c);
+    cable.kind = std::isinf(cables[c].max_tension) ? GroupKind::cable : GroupKind::bounded_cable;
+    cable.bound = std::isinf(cables[c].max_tension) ? 0.0 : cables[c].max_tension / wu;
+    cable.row_a = row_of_body(body_a);
+    cable.row_b = row_of_body(body_b);
+    if (cable.row_a < 0 && cable.row_b < 0) continue;  // between supports, or floating
+    cable.block_a = body_a < n ? body_a : -1;
+    cable.block_b = body_b < n ? body_b : -1;
+    const Vec3 along = (cables[c].to.point - cables[c].from.point) / cable_length[c];
+    const Vec3* centroid_a = body_a < n ? &structure.block(body_a).centroid() : nullptr;
+    const Vec3* centroid_b = body_b < n ? &structure.block(body_b).centroid() : nullptr;
+    cable.on_a = cable_effect(along, cables[c].from.point, centroid_a, lu, rows);
+    cable.on_b = cable_effect(-along, cables[c].to.point, centroid_b, lu, rows);
+    problem.groups.push_back(cable);
+    has_cable[body_a] = has_cable[body_a] || cable.row_a >= 0;
+    has_cable[body_b] = has_cable[body_b] || cable.row_b >= 0;
   }
-  // The regularisation's pull on the multipliers grows with the forces,
-  // which grow with the number of blocks sharing the load (an arch's thrust
-  // is a fraction of its whole weight). Dividing it by the block count keeps
-  // the tension penalty exact on large structures, while staying far above
-  // the scale at which near-free friction unknowns spoil the factorisation.
-  const double regularisation = options.force_weight / std::max(analysed, 1);
-  problem.hessian_diagonal << regularisation, options.tension_weight, regularisation,
-      regularisation;
-  problem.linear << 0.0, 1.0, 0.0, 0.0;
+
+  // Virtual torques on blocks with cables, virtual forces and torques on
+  // junctions (whose torque rows have nothing else and stay zero).
+  for (int body = 0; body < bodies; ++body) {
+    if (!has_cable[body]) continue;
+    for (int r = 0; r < d; ++r) {
+      if (body < n && rows[r] < 3) continue;
+      ForceGroup slack;
+      slack.kind = GroupKind::slack;
+      slack.source = body;
+      slack.component = r;
+      slack.block_a = body < n ? body : -1;
+      slack.row_a = row_of_body(body);
+      slack.on_a(r, 0) = 1.0;
+      slack.on_a(r, 1) = -1.0;
+      problem.groups.push_back(slack);
+    }
+  }
+  set_rules(problem, options);
   return problem;
 }
 
 Eigen::SparseMatrix<double> EquilibriumProblem::equality_matrix() const {
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(vertices.size() * 48);
-  for (size_t k = 0; k < vertices.size(); ++k) {
-    const ContactVertex& v = vertices[k];
+  entries.reserve(groups.size() * 48);
+  for (size_t k = 0; k < groups.size(); ++k) {
+    const ForceGroup& v = groups[k];
     for (int col = 0; col < 4; ++col) {
       const int variable = 4 * static_cast<int>(k) + col;
       for (int r = 0; r < block_rows; ++r) {

@@ -11,15 +11,26 @@
 // with `friction_sides` sides and one edge along u, or the box
 // |f_u|, |f_v| <= mu c; none when mu is infinite.
 //
-// Scaling: forces are in units of the mean free-block weight Wm (total free
-// weight / free blocks) and lengths in units of the mean free-block size L,
-// so the QP is the same in millimetres or kilometres and its numbers are
-// O(1) per block whatever the model size. The objective is
+// Cables (Shin 2014, "Extension to tension elements") pull their two end
+// bodies towards each other with t_k - k_k along their axis: tension t_k is
+// free (up to max_tension), compression k_k is penalised like s_k. Their
+// weight hangs half at each end. An end away from any block is a junction:
+// a body of its own with force balance only. Axial forces alone may not
+// balance a block (figure 1), so every block with a cable end gets virtual
+// torques about its centroid, and every junction virtual forces, each p - n
+// with p, n >= 0 penalised like tension: the penalty stays finite.
+//
+// Scaling: forces are in units of the mean weight per analysed body Wm
+// (blocks' and cables' weight / analysed blocks and junctions) and lengths in
+// units of the mean free-block size L, so the QP is the same in millimetres
+// or kilometres and its numbers are O(1) per block whatever the model size.
+// The objective is
 //     sum_k [ s_k + tension_weight/2 s_k^2 + force_weight/(2n) (c_k^2 + f_uk^2 + f_vk^2) ]
-// with n the number of free blocks analysed.
-// The linear tension term is an exact penalty: when a compression-only
-// equilibrium exists, the optimum has no tension at all (the tiny
-// force_weight regularisation only picks the most even force distribution).
+// (likewise k_k, p_k, n_k penalised, t_k regularised) with n the number of
+// bodies analysed. The linear tension term is an exact penalty: when a
+// compression-only equilibrium exists, the optimum has no tension at all
+// (the tiny force_weight regularisation only picks the most even force
+// distribution).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "core/types.hpp"
 #include "structure/structure.hpp"
 
 namespace ashlar {
@@ -47,57 +59,95 @@ struct EquilibriumOptions {
   ContactOptions contact;           // how interfaces are found
 };
 
-// One contact vertex: the unknowns (c, s, f_u, f_v) at one polygon vertex.
-struct ContactVertex {
-  int interface_index = -1;  // into Structure::interfaces()
-  int block_a = -1, block_b = -1;
-  int row_a = -1, row_b = -1;  // first of the 6 balance rows, -1 for supports
-  Vec3 position = Vec3::Zero();  // m
-  // Scaled effect of (c, s, f_u, f_v) on the balance rows of block b and of
-  // block a: force, then moment about the block's centroid / L. Only the
+// What a group of four unknowns x_k stands for.
+enum class GroupKind {
+  contact_vertex,  // (c, s, f_u, f_v) at one vertex of a contact polygon
+  cable,           // (t, k, -, -): a cable's tension t and penalised compression k
+  bounded_cable,   // the same, with t <= the cable's max_tension
+  slack,           // (p, n, -, -): a virtual torque (or, at a junction, force) p - n, penalised
+};
+constexpr int kGroupKinds = 4;
+
+// Inequalities and objective shared by every group of one kind: each row r
+// gives r . x_k >= 0, except bounded_row, which gives r . x_k >= -bound.
+struct GroupRules {
+  Eigen::Matrix<double, Eigen::Dynamic, 4> rows;
+  Eigen::Vector4d hessian = Eigen::Vector4d::Zero();  // diagonal, scaled
+  Eigen::Vector4d linear = Eigen::Vector4d::Zero();   // scaled
+  int bounded_row = -1;
+};
+
+// One group of four unknowns and its effect on the balance rows of the (at
+// most two) bodies it acts on. A body is a block or a cable junction.
+struct ForceGroup {
+  GroupKind kind = GroupKind::contact_vertex;
+  // The interface (contact vertex), the cable (cables), or the body (slack:
+  // a block index, or block count + junction index).
+  int source = -1;
+  int component = -1;        // slack: which of its body's balance rows it relieves
+  int block_a = -1, block_b = -1;  // contact: the interface's blocks; cable: the end blocks
+  int row_a = -1, row_b = -1;  // first of each body's balance rows, -1 for supports
+  Vec3 position = Vec3::Zero();  // m: contact vertex
+  double bound = 0.0;            // bounded cable: max_tension, scaled
+  // Scaled effect of the four unknowns on the balance rows of body b and of
+  // body a: force, then moment about the block's centroid / L. Only the
   // first block_rows rows count: for planar problems they are Fx, Fz, My.
-  Eigen::Matrix<double, 6, 4> on_b, on_a;
+  Eigen::Matrix<double, 6, 4> on_b = Eigen::Matrix<double, 6, 4>::Zero();
+  Eigen::Matrix<double, 6, 4> on_a = Eigen::Matrix<double, 6, 4>::Zero();
 };
 
 struct EquilibriumProblem {
-  std::vector<ContactVertex> vertices;  // 4 unknowns each: c, s, f_u, f_v
+  // Contact vertices first (in interface order), then cables, then slacks.
+  std::vector<ForceGroup> groups;
+  int contact_vertex_count = 0;
   std::vector<int> row_of_block;        // first balance row per block, -1 if none
-  std::vector<int> floating_blocks;     // free blocks with no path of contacts to a support
-  int block_rows = 6;                   // balance rows per block: 6, or 3 for planar structures
-  int row_count = 0;                    // block_rows per analysed free block
-  Eigen::VectorXd rhs;                  // balance: sum of contact effects = rhs
-  // Inequality rows shared by every vertex, over (c, s, f_u, f_v): each row
-  // r gives r . x_k >= 0. The first two are c >= 0 and s >= 0.
-  Eigen::Matrix<double, Eigen::Dynamic, 4> vertex_rows;
-  Eigen::Vector4d hessian_diagonal;  // per vertex, scaled
-  Eigen::Vector4d linear;            // per vertex, scaled
-  double weight_unit = 1.0;          // N: one scaled force unit (mean free-block weight)
+  std::vector<Vec3> junctions;          // m: where cable ends meet away from blocks
+  std::vector<int> row_of_junction;     // first balance row per junction, -1 if none
+  std::vector<int> floating_blocks;     // free blocks with no path of contacts or cables to a support
+  std::vector<int> floating_junctions;
+  int block_rows = 6;                   // balance rows per body: 6, or 3 for planar structures
+  int row_count = 0;                    // block_rows per analysed body
+  Eigen::VectorXd rhs;                  // balance: sum of group effects = rhs
+  std::array<GroupRules, kGroupKinds> rules;  // indexed by GroupKind
+  double weight_unit = 1.0;          // N: one scaled force unit (mean weight per analysed body)
   double length_unit = 1.0;          // m: one scaled length unit
-  double total_weight = 0.0;         // N: weight of the free blocks analysed
+  double total_weight = 0.0;         // N: weight carried by the analysed bodies
+  int body_count = 0;                // analysed blocks and junctions
 
-  int variable_count() const { return 4 * static_cast<int>(vertices.size()); }
-  // rows += A_k forces: the effect of vertex k's unknowns on the balance rows.
-  void add_effect(const ContactVertex& v, const Eigen::Vector4d& forces,
+  const GroupRules& rules_of(const ForceGroup& group) const {
+    return rules[static_cast<int>(group.kind)];
+  }
+  int variable_count() const { return 4 * static_cast<int>(groups.size()); }
+  // rows += A_k forces: the effect of group k's unknowns on the balance rows.
+  void add_effect(const ForceGroup& v, const Eigen::Vector4d& forces,
                   Eigen::VectorXd& rows) const {
     const int d = block_rows;
     if (v.row_a >= 0) rows.segment(v.row_a, d).noalias() += v.on_a.topRows(d) * forces;
     if (v.row_b >= 0) rows.segment(v.row_b, d).noalias() += v.on_b.topRows(d) * forces;
   }
-  // A_k^T multipliers: what the balance rows' multipliers say to vertex k.
-  Eigen::Vector4d reaction(const ContactVertex& v, const Eigen::VectorXd& multipliers) const {
+  // A_k^T multipliers: what the balance rows' multipliers say to group k.
+  Eigen::Vector4d reaction(const ForceGroup& v, const Eigen::VectorXd& multipliers) const {
     const int d = block_rows;
     Eigen::Vector4d out = Eigen::Vector4d::Zero();
     if (v.row_a >= 0) out.noalias() += v.on_a.topRows(d).transpose() * multipliers.segment(v.row_a, d);
     if (v.row_b >= 0) out.noalias() += v.on_b.topRows(d).transpose() * multipliers.segment(v.row_b, d);
     return out;
   }
+  // The constant side of group k's inequality rows: rows . x_k >= lower.
+  Eigen::VectorXd lower_bounds(const ForceGroup& v) const {
+    const GroupRules& r = rules_of(v);
+    Eigen::VectorXd lower = Eigen::VectorXd::Zero(r.rows.rows());
+    if (r.bounded_row >= 0) lower(r.bounded_row) = -v.bound;
+    return lower;
+  }
   // The equality constraint matrix (row_count x variable_count), for export
-  // and residual checks; the solver works with the per-vertex blocks.
+  // and residual checks; the solver works with the per-group blocks.
   Eigen::SparseMatrix<double> equality_matrix() const;
 };
 
 // Builds the problem. Throws InvalidArgument for bad options (naming them),
-// and for a planar structure with a load out of its plane.
+// for a planar structure with a load or cable out of its plane, and for a
+// cable end attached to nothing (no block, and no other cable end there).
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options);
 

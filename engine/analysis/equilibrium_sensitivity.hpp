@@ -12,26 +12,30 @@
 #include <vector>
 
 #include "analysis/equilibrium_problem.hpp"
+#include "analysis/interior_point.hpp"
 #include "core/types.hpp"
 #include "structure/structure.hpp"
 
 namespace ashlar {
 
 struct EquilibriumSensitivity {
-  // Per contact vertex of the problem (problem.vertices order):
+  // Per contact vertex of the problem (the first contact_vertex_count groups):
   std::vector<Vec3> vertex_position;  // dP/d(position), 1/m
   std::vector<Mat3> vertex_frame;     // columns dP/d(normal), dP/d(u), dP/d(v) of its interface frame
   // Per block (structure order; zero for supports and blocks not analysed):
   std::vector<Vec3> block_centroid;   // dP/d(centroid), 1/m
   std::vector<double> block_weight;   // dP/d(weight), 1/N
+  // Per cable (structure order): dP/d(end point), 1/m, through its direction,
+  // its attachment arms and its own weight (not through the units).
+  std::vector<Vec3> cable_from, cable_to;
   double weight_unit = 0.0;           // dP/d(problem.weight_unit), 1/N
   double length_unit = 0.0;           // dP/d(problem.length_unit), 1/m
 };
 
-// x and y: the solver's optimal primal (4 per contact vertex) and equality
-// multipliers (problem.row_count) for `problem`, built from `structure`.
+// The solver's optimum for `problem`, built from `structure`: x (4 per
+// group), y (problem.row_count) and z (the groups' rule rows).
 EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
                                                const EquilibriumProblem& problem,
-                                               const Eigen::VectorXd& x, const Eigen::VectorXd& y);
+                                               const InteriorPointSolution& optimum);
 
 }  // namespace ashlar

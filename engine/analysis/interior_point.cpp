@@ -61,7 +61,7 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   // Upper-triangle block pattern: for block column J, the block rows I <= J.
   std::vector<std::vector<int>> upper(blocks);
   for (int j = 0; j < blocks; ++j) upper[j].push_back(j);
-  for (const ContactVertex& v : problem.vertices) {
+  for (const ForceGroup& v : problem.groups) {
     if (v.row_a >= 0 && v.row_b >= 0) {
       const int a = v.row_a / d, b = v.row_b / d;
       upper[std::max(a, b)].push_back(std::min(a, b));
@@ -86,9 +86,9 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
     return static_cast<int>(std::lower_bound(upper[j].begin(), upper[j].end(), i) -
                             upper[j].begin());
   };
-  slots_.resize(problem.vertices.size());
-  for (size_t k = 0; k < problem.vertices.size(); ++k) {
-    const ContactVertex& v = problem.vertices[k];
+  slots_.resize(problem.groups.size());
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& v = problem.groups[k];
     VertexSlots& slot = slots_[k];
     if (v.row_a >= 0) slot.aa = rank(v.row_a / d, v.row_a / d);
     if (v.row_b >= 0) slot.bb = rank(v.row_b / d, v.row_b / d);
@@ -110,32 +110,44 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
                                            InteriorPointSolution& solution, bool warm_start) {
   using Clock = std::chrono::steady_clock;
   InteriorPointInfo info;
-  const int nv = static_cast<int>(problem.vertices.size());
-  const RowsMatrix& g = problem.vertex_rows;
-  const int m = static_cast<int>(g.rows());
-  const Vector4& h = problem.hessian_diagonal;
+  const int nv = static_cast<int>(problem.groups.size());
   const int d = block_rows_;
-  const Vector4& q = problem.linear;
   const Eigen::VectorXd& b = problem.rhs;
+  // Each group's inequality rows start at first_row[k] in w and z; `lower`
+  // holds their constant sides (G x_k >= lower).
+  std::vector<int> first_row(nv + 1, 0);
+  for (int k = 0; k < nv; ++k) {
+    first_row[k + 1] = first_row[k] + static_cast<int>(problem.rules_of(problem.groups[k]).rows.rows());
+  }
+  const int m_total = first_row[nv];
+  Eigen::VectorXd lower(m_total);
+  for (int k = 0; k < nv; ++k) {
+    lower.segment(first_row[k], first_row[k + 1] - first_row[k]) =
+        problem.lower_bounds(problem.groups[k]);
+  }
+  auto rows_of = [&](int k) -> const RowsMatrix& { return problem.rules_of(problem.groups[k]).rows; };
+  auto ineq = [&](Eigen::VectorXd& v, int k) {
+    return v.segment(first_row[k], first_row[k + 1] - first_row[k]);
+  };
 
   Eigen::VectorXd& x = solution.x;
   Eigen::VectorXd& y = solution.y;
   Eigen::VectorXd& w = solution.w;
   Eigen::VectorXd& z = solution.z;
-  const bool sizes_match = x.size() == 4 * nv && y.size() == size_ && w.size() == m * nv &&
-                           z.size() == m * nv;
+  const bool sizes_match = x.size() == 4 * nv && y.size() == size_ && w.size() == m_total &&
+                           z.size() == m_total;
   if (warm_start && sizes_match) {
     // Interior-point iterates must start strictly inside the cone.
     constexpr double kMargin = 1e-2;
     for (int k = 0; k < nv; ++k) {
-      w.segment(m * k, m) = (g * x.segment<4>(4 * k)).cwiseMax(kMargin);
+      ineq(w, k) = (rows_of(k) * x.segment<4>(4 * k) - ineq(lower, k)).cwiseMax(kMargin);
     }
     z = z.cwiseMax(kMargin);
   } else {
     x = Eigen::VectorXd::Zero(4 * nv);
     y = Eigen::VectorXd::Zero(size_);
-    w = Eigen::VectorXd::Ones(m * nv);
-    z = Eigen::VectorXd::Ones(m * nv);
+    w = Eigen::VectorXd::Ones(m_total);
+    z = Eigen::VectorXd::Ones(m_total);
   }
   if (nv == 0 && size_ == 0) {
     info.status = SolverStatus::converged;
@@ -147,11 +159,15 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   }
 
   const double rhs_scale = 1.0 + (b.size() ? b.lpNorm<Eigen::Infinity>() : 0.0);
-  const double dual_scale = 1.0 + q.lpNorm<Eigen::Infinity>();
+  double largest_linear = 0.0;
+  for (const GroupRules& rules : problem.rules) {
+    largest_linear = std::max(largest_linear, rules.linear.lpNorm<Eigen::Infinity>());
+  }
+  const double dual_scale = 1.0 + largest_linear;
 
-  Eigen::VectorXd r_p(size_), r_d(4 * nv), r_g(m * nv), r_c(m * nv);
+  Eigen::VectorXd r_p(size_), r_d(4 * nv), r_g(m_total), r_c(m_total);
   std::vector<Matrix4> inverse_phi(nv);
-  Eigen::VectorXd dx(4 * nv), dy(size_), dw(m * nv), dz(m * nv);
+  Eigen::VectorXd dx(4 * nv), dy(size_), dw(m_total), dz(m_total);
   Eigen::VectorXd dx_aff, dw_aff, dz_aff, rhs(size_);
   double* values = cholesky_->values();
   const int factorizations_before = cholesky_->factorizations();
@@ -163,19 +179,19 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   auto newton_direction = [&](const Eigen::VectorXd& complementarity) {
     const auto start = Clock::now();
     // Per inequality row: (r_c + D r_g) / w, combined below as G^T (...).
-    const Eigen::VectorXd row_terms = (complementarity + z.cwiseProduct(r_g)).cwiseQuotient(w);
+    Eigen::VectorXd row_terms = (complementarity + z.cwiseProduct(r_g)).cwiseQuotient(w);
     rhs = -r_p;
     for (int k = 0; k < nv; ++k) {
-      const ContactVertex& v = problem.vertices[k];
-      const Vector4 reduced = -r_d.segment<4>(4 * k) - g.transpose() * row_terms.segment(m * k, m);
+      const ForceGroup& v = problem.groups[k];
+      const Vector4 reduced = -r_d.segment<4>(4 * k) - rows_of(k).transpose() * ineq(row_terms, k);
       const Vector4 t = inverse_phi[k] * reduced;
       dx.segment<4>(4 * k) = t;  // completed below with the A^T dy part
       problem.add_effect(v, -t, rhs);
     }
     dy = cholesky_->solve(rhs);
     for (int k = 0; k < nv; ++k) {
-      dx.segment<4>(4 * k) += inverse_phi[k] * problem.reaction(problem.vertices[k], dy);
-      dw.segment(m * k, m) = g * dx.segment<4>(4 * k) + r_g.segment(m * k, m);
+      dx.segment<4>(4 * k) += inverse_phi[k] * problem.reaction(problem.groups[k], dy);
+      ineq(dw, k) = rows_of(k) * dx.segment<4>(4 * k) + ineq(r_g, k);
     }
     dz = -(complementarity + z.cwiseProduct(dw)).cwiseQuotient(w);
     info.solve_seconds += seconds_since(start);
@@ -184,8 +200,9 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   auto objective_value = [&] {
     double sum = 0.0;
     for (int k = 0; k < nv; ++k) {
+      const GroupRules& rules = problem.rules_of(problem.groups[k]);
       const Vector4 xk = x.segment<4>(4 * k);
-      sum += 0.5 * xk.dot(h.cwiseProduct(xk)) + q.dot(xk);
+      sum += 0.5 * xk.dot(rules.hessian.cwiseProduct(xk)) + rules.linear.dot(xk);
     }
     return sum;
   };
@@ -205,16 +222,17 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     // Residuals.
     r_p = -b;
     for (int k = 0; k < nv; ++k) {
-      const ContactVertex& v = problem.vertices[k];
+      const ForceGroup& v = problem.groups[k];
+      const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
       problem.add_effect(v, xk, r_p);
-      r_d.segment<4>(4 * k) = h.cwiseProduct(xk) + q - problem.reaction(problem.vertices[k], y) -
-                              g.transpose() * z.segment(m * k, m);
-      r_g.segment(m * k, m) = g * xk - w.segment(m * k, m);
+      r_d.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
+                              problem.reaction(v, y) - rules.rows.transpose() * ineq(z, k);
+      ineq(r_g, k) = rules.rows * xk - ineq(lower, k) - ineq(w, k);
     }
     // The total gap, not its mean, bounds the objective's error.
     const double duality_gap = w.dot(z);
-    const double mu = m * nv > 0 ? duality_gap / (m * nv) : 0.0;
+    const double mu = m_total > 0 ? duality_gap / m_total : 0.0;
     info.iterations = iteration;
     info.primal_residual = std::max(r_p.size() ? r_p.lpNorm<Eigen::Infinity>() : 0.0,
                                     r_g.size() ? r_g.lpNorm<Eigen::Infinity>() : 0.0);
@@ -248,12 +266,13 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     std::fill_n(values, value_count, 0.0);
     const Eigen::VectorXd scaling = z.cwiseQuotient(w);
     for (int k = 0; k < nv; ++k) {
-      Matrix4 phi = h.asDiagonal();
-      for (int i = 0; i < m; ++i) {
-        phi.noalias() += scaling(m * k + i) * g.row(i).transpose() * g.row(i);
+      const ForceGroup& v = problem.groups[k];
+      const GroupRules& rules = problem.rules_of(v);
+      Matrix4 phi = rules.hessian.asDiagonal();
+      for (int i = 0; i < rules.rows.rows(); ++i) {
+        phi.noalias() += scaling(first_row[k] + i) * rules.rows.row(i).transpose() * rules.rows.row(i);
       }
       inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
-      const ContactVertex& v = problem.vertices[k];
       const VertexSlots& slot = slots_[k];
       // Adds a d x d block to block column col_block at its rank-th block row.
       auto add_block = [&](int col_block, int rank, const BlockByBlock& block, bool diagonal) {
@@ -308,13 +327,13 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     newton_direction(r_c);
     const double affine_step = std::min(step_to_boundary(w, dw), step_to_boundary(z, dz));
     const double mu_affine =
-        (w + affine_step * dw).dot(z + affine_step * dz) / static_cast<double>(m * nv);
+        (w + affine_step * dw).dot(z + affine_step * dz) / static_cast<double>(m_total);
     const double centering = std::pow(mu_affine / mu, 3);
     dw_aff = dw;
     dz_aff = dz;
     // Corrector: second-order term and centring, same factorisation.
     r_c = w.cwiseProduct(z) + dw_aff.cwiseProduct(dz_aff) -
-          Eigen::VectorXd::Constant(m * nv, centering * mu);
+          Eigen::VectorXd::Constant(m_total, centering * mu);
     newton_direction(r_c);
     const double step =
         std::min(1.0, settings.step_fraction *

@@ -53,8 +53,8 @@ struct InteriorPointInfo {
   double solve_seconds = 0.0;       // triangular solves and step updates
 };
 
-// Primal x (4 per vertex: c, s, f_u, f_v, scaled), equality multipliers y,
-// inequality slacks w and multipliers z (vertex_rows per vertex).
+// Primal x (4 per force group, scaled), equality multipliers y, inequality
+// slacks w and multipliers z (the group's rule rows per group, in order).
 struct InteriorPointSolution {
   Eigen::VectorXd x, y, w, z;
 };

@@ -6,17 +6,21 @@
 //    N  obj                    the objective
 //    E  B<i>F1 ... B<i>F3      force balance of free block i along x, y, z
 //    E  B<i>M1 ... B<i>M3      moment balance of block i about its centroid
+//    E  J<j>F1 ... J<j>M3      balance of cable junction j (moments: virtual only)
 //    G  V<k>R<j>               friction side j of contact vertex k, >= 0
 //   COLUMNS
 //       C<k>  <row>  <value>   compression c at contact vertex k
 //       S<k>  ...              tension s
 //       U<k>  ...              friction f_u along the interface's u axis
 //       V<k>  ...              friction f_v along the interface's v axis
+//       T<c>, K<c>             tension and (penalised) compression of cable c
+//       P<j>, N<j>             the j-th virtual torque (or junction force), p - n
 //   RHS
 //       RHS  B<i>F3  <value>   weights and point loads (zero entries omitted)
 //   BOUNDS
 //    FR BND  U<k>              friction is free; C and S keep the MPS
 //    FR BND  V<k>              default bounds [0, inf)
+//    UP BND  T<c>  <value>     a cable's max_tension
 //   QUADOBJ
 //       C<k>  C<k>  <value>    the diagonal Hessian, so the lower triangle
 //   ENDATA
@@ -55,8 +59,29 @@ void append_number(std::string& out, double value) {
   out.append(buffer, written.ptr);
 }
 
-std::string column_name(int vertex, int unknown) {
-  return kColumnPrefix[unknown] + std::to_string(vertex + 1);
+// Each group's column names: C, S, U, V of contact vertex k; T and K of
+// cable c (its other two unknowns stay zero and are left out); P and N of
+// the j-th virtual torque or force.
+std::vector<std::vector<std::string>> column_names(const EquilibriumProblem& problem) {
+  std::vector<std::vector<std::string>> names(problem.groups.size());
+  int slack = 0;
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& group = problem.groups[k];
+    switch (group.kind) {
+      case GroupKind::contact_vertex:
+        for (char prefix : kColumnPrefix) names[k].push_back(prefix + std::to_string(k + 1));
+        break;
+      case GroupKind::cable:
+      case GroupKind::bounded_cable:
+        names[k] = {"T" + std::to_string(group.source + 1), "K" + std::to_string(group.source + 1)};
+        break;
+      case GroupKind::slack:
+        ++slack;
+        names[k] = {"P" + std::to_string(slack), "N" + std::to_string(slack)};
+        break;
+    }
+  }
+  return names;
 }
 
 std::string friction_row_name(int vertex, int side) {
@@ -65,15 +90,19 @@ std::string friction_row_name(int vertex, int side) {
 
 std::vector<std::string> balance_row_names(const EquilibriumProblem& problem) {
   std::vector<std::string> names(problem.row_count);
-  for (size_t block = 0; block < problem.row_of_block.size(); ++block) {
-    const int first = problem.row_of_block[block];
-    if (first < 0) continue;
-    for (int component = 0; component < problem.block_rows; ++component) {
-      names[first + component] = "B" + std::to_string(block + 1) +
-                                 (problem.block_rows == 3 ? kPlanarComponentName[component]
-                                                          : kComponentName[component]);
+  auto name_rows = [&](const std::vector<int>& first_rows, char prefix) {
+    for (size_t body = 0; body < first_rows.size(); ++body) {
+      const int first = first_rows[body];
+      if (first < 0) continue;
+      for (int component = 0; component < problem.block_rows; ++component) {
+        names[first + component] = prefix + std::to_string(body + 1) +
+                                   (problem.block_rows == 3 ? kPlanarComponentName[component]
+                                                            : kComponentName[component]);
+      }
     }
-  }
+  };
+  name_rows(problem.row_of_block, 'B');
+  name_rows(problem.row_of_junction, 'J');
   return names;
 }
 
@@ -103,34 +132,40 @@ std::string problem_name_of(const std::string& path) {
 }  // namespace
 
 std::string equilibrium_qps(const EquilibriumProblem& problem, const std::string& name) {
-  const int vertex_count = static_cast<int>(problem.vertices.size());
-  // The first two vertex rows are c >= 0 and s >= 0: bounds, not rows.
-  const int friction_sides = static_cast<int>(problem.vertex_rows.rows()) - 2;
+  const int group_count = static_cast<int>(problem.groups.size());
+  const GroupRules& contact = problem.rules[static_cast<int>(GroupKind::contact_vertex)];
+  // The first two rows of every kind are its two non-negativities: bounds,
+  // not rows; a cable's tension bound is an upper bound.
+  const int friction_sides = static_cast<int>(contact.rows.rows()) - 2;
   const std::vector<std::string> balance_rows = balance_row_names(problem);
   const Eigen::SparseMatrix<double> equality = problem.equality_matrix();
+  const std::vector<std::vector<std::string>> columns = column_names(problem);
 
   std::string out;
   // About 40 characters per entry, 30 entries per vertex.
-  out.reserve(1024 + static_cast<size_t>(vertex_count) * 1200);
+  out.reserve(1024 + static_cast<size_t>(group_count) * 1200);
   out += "NAME          " + name + "\nROWS\n N  obj\n";
   for (const std::string& row : balance_rows) out += " E  " + row + "\n";
-  for (int k = 0; k < vertex_count; ++k) {
+  for (int k = 0; k < problem.contact_vertex_count; ++k) {
     for (int side = 0; side < friction_sides; ++side) out += " G  " + friction_row_name(k, side) + "\n";
   }
 
   out += "COLUMNS\n";
-  for (int k = 0; k < vertex_count; ++k) {
-    for (int unknown = 0; unknown < 4; ++unknown) {
-      const std::string column = column_name(k, unknown);
+  for (int k = 0; k < group_count; ++k) {
+    const GroupRules& rules = problem.rules_of(problem.groups[k]);
+    for (size_t unknown = 0; unknown < columns[k].size(); ++unknown) {
+      const std::string& column = columns[k][unknown];
       const size_t length_before = out.size();
-      if (problem.linear(unknown) != 0.0) append_entry(out, column, "obj", problem.linear(unknown));
+      if (rules.linear(unknown) != 0.0) append_entry(out, column, "obj", rules.linear(unknown));
       for (Eigen::SparseMatrix<double>::InnerIterator entry(equality, 4 * k + unknown); entry;
            ++entry) {
         append_entry(out, column, balance_rows[entry.row()], entry.value());
       }
-      for (int side = 0; side < friction_sides; ++side) {
-        const double coefficient = problem.vertex_rows(2 + side, unknown);
-        if (coefficient != 0.0) append_entry(out, column, friction_row_name(k, side), coefficient);
+      if (k < problem.contact_vertex_count) {
+        for (int side = 0; side < friction_sides; ++side) {
+          const double coefficient = contact.rows(2 + side, unknown);
+          if (coefficient != 0.0) append_entry(out, column, friction_row_name(k, side), coefficient);
+        }
       }
       // A column exists only through its entries: declare an unused one.
       if (out.size() == length_before) append_entry(out, column, "obj", 0.0);
@@ -143,18 +178,24 @@ std::string equilibrium_qps(const EquilibriumProblem& problem, const std::string
   }
 
   out += "BOUNDS\n";
-  for (int k = 0; k < vertex_count; ++k) {
-    out += " FR BND " + column_name(k, 2) + "\n";
-    out += " FR BND " + column_name(k, 3) + "\n";
+  for (int k = 0; k < group_count; ++k) {
+    const ForceGroup& group = problem.groups[k];
+    if (group.kind == GroupKind::contact_vertex) {
+      out += " FR BND " + columns[k][2] + "\n";
+      out += " FR BND " + columns[k][3] + "\n";
+    } else if (group.kind == GroupKind::bounded_cable) {
+      out += " UP BND " + columns[k][0] + " ";
+      append_number(out, group.bound);
+      out += "\n";
+    }
   }
 
   out += "QUADOBJ\n";
-  for (int k = 0; k < vertex_count; ++k) {
-    for (int unknown = 0; unknown < 4; ++unknown) {
-      const double curvature = problem.hessian_diagonal(unknown);
-      if (curvature == 0.0) continue;
-      const std::string column = column_name(k, unknown);
-      append_entry(out, column, column, curvature);
+  for (int k = 0; k < group_count; ++k) {
+    const GroupRules& rules = problem.rules_of(problem.groups[k]);
+    for (size_t unknown = 0; unknown < columns[k].size(); ++unknown) {
+      const double curvature = rules.hessian(unknown);
+      if (curvature != 0.0) append_entry(out, columns[k][unknown], columns[k][unknown], curvature);
     }
   }
   out += "ENDATA\n";

@@ -5,6 +5,7 @@
 // the offending entry, e.g. "blocks[3].vertices[2]: expected 3 numbers".
 #include "io/structure_json.hpp"
 
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -253,6 +254,45 @@ void read_load(const Reader& reader, const json& entry, int i, Structure& struct
   }
 }
 
+CableEnd read_cable_end(const Reader& reader, const json& entry, const std::string& where,
+                        const Structure& structure) {
+  reader.expect_object(entry, where);
+  reader.reject_unknown_keys(entry, {"block", "point"}, where);
+  CableEnd end;
+  if (const auto block = entry.find("block"); block != entry.end()) {
+    end.block = reader.index(*block, structure.size(), "blocks", where + ".block");
+  }
+  end.point = reader.vec3(reader.member(entry, "point", where), where + ".point");
+  return end;
+}
+
+void read_cable(const Reader& reader, const json& entry, int i, Structure& structure) {
+  const std::string where = "cables[" + std::to_string(i) + "]";
+  reader.expect_object(entry, where);
+  reader.reject_unknown_keys(entry, {"from", "to", "mass_per_length", "max_tension"}, where);
+  Cable cable;
+  cable.from = read_cable_end(reader, reader.member(entry, "from", where), where + ".from", structure);
+  cable.to = read_cable_end(reader, reader.member(entry, "to", where), where + ".to", structure);
+  if (const auto mass = entry.find("mass_per_length"); mass != entry.end()) {
+    cable.mass_per_length = reader.number(*mass, where + ".mass_per_length");
+  }
+  if (const auto bound = entry.find("max_tension"); bound != entry.end()) {
+    cable.max_tension = reader.number(*bound, where + ".max_tension");
+  }
+  try {
+    structure.add_cable(cable);
+  } catch (const InvalidArgument& e) {
+    reader.fail(where, e.what());
+  }
+}
+
+json cable_end_to_json(const CableEnd& end) {
+  json out;
+  if (end.block >= 0) out["block"] = end.block;
+  out["point"] = vec3_to_json(end.point);
+  return out;
+}
+
 }  // namespace
 
 std::string structure_to_json(const Structure& structure) {
@@ -283,6 +323,15 @@ std::string structure_to_json(const Structure& structure) {
     entry["at"] = vec3_to_json(load.at);
     loads.push_back(std::move(entry));
   }
+  json cables = json::array();
+  for (const Cable& cable : structure.cables()) {
+    json entry;
+    entry["from"] = cable_end_to_json(cable.from);
+    entry["to"] = cable_end_to_json(cable.to);
+    entry["mass_per_length"] = cable.mass_per_length;
+    if (std::isfinite(cable.max_tension)) entry["max_tension"] = cable.max_tension;
+    cables.push_back(std::move(entry));
+  }
   json root;
   root["format"] = kFormatName;
   root["version"] = kStructureFormatVersion;
@@ -290,6 +339,7 @@ std::string structure_to_json(const Structure& structure) {
   if (structure.planar()) root["planar"] = true;
   root["blocks"] = std::move(blocks);
   root["loads"] = std::move(loads);
+  if (!cables.empty()) root["cables"] = std::move(cables);
   std::string text;
   write_pretty(root, 0, text);
   return text + "\n";
@@ -313,7 +363,7 @@ Structure structure_from_json(const std::string& text, const std::string& source
   // Format and version first: a file of another kind or a later version is
   // reported as such, not by its first unknown field.
   check_header(reader, root);
-  reader.reject_unknown_keys(root, {"format", "version", "units", "planar", "blocks", "loads"},
+  reader.reject_unknown_keys(root, {"format", "version", "units", "planar", "blocks", "loads", "cables"},
                              "top level");
 
   Structure structure;
@@ -330,6 +380,12 @@ Structure structure_from_json(const std::string& text, const std::string& source
     reader.expect_array(*loads, "loads");
     for (size_t i = 0; i < loads->size(); ++i) {
       read_load(reader, (*loads)[i], static_cast<int>(i), structure);
+    }
+  }
+  if (const auto cables = root.find("cables"); cables != root.end()) {
+    reader.expect_array(*cables, "cables");
+    for (size_t i = 0; i < cables->size(); ++i) {
+      read_cable(reader, (*cables)[i], static_cast<int>(i), structure);
     }
   }
   return structure;

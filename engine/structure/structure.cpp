@@ -1,5 +1,7 @@
 #include "structure/structure.hpp"
 
+#include <cmath>
+
 #include "core/error.hpp"
 
 namespace ashlar {
@@ -39,6 +41,75 @@ void Structure::add_load(const PointLoad& load) {
   if (!load.force.allFinite()) throw InvalidArgument("load: force must be finite");
   if (!load.at.allFinite()) throw InvalidArgument("load: point of application must be finite");
   loads_.push_back(load);
+}
+
+namespace {
+
+std::string cable_end_name(int cable, const char* end) {
+  return "cable " + std::to_string(cable + 1) + " '" + end + "'";
+}
+
+}  // namespace
+
+void Structure::check_cable(const Cable& cable, int index) const {
+  const struct { const CableEnd& end; const char* name; } ends[2] = {{cable.from, "from"},
+                                                                     {cable.to, "to"}};
+  for (const auto& [end, end_name] : ends) {
+    const std::string what = cable_end_name(index, end_name);
+    if (end.block < -1 || end.block >= size()) {
+      throw InvalidArgument(what + ": block " + std::to_string(end.block + 1) +
+                            " does not exist (the structure has " + std::to_string(size()) +
+                            " blocks)");
+    }
+    if (!end.point.allFinite()) throw InvalidArgument(what + ": point must be finite");
+    if (end.block >= 0) {
+      // An attachment point must be on the block: within its bounding box,
+      // give or take a relative 1e-6 of its size.
+      const Box3& box = block(end.block).bounds();
+      const double slack = 1e-6 * box.diagonal();
+      if ((end.point.array() < box.lo.array() - slack).any() ||
+          (end.point.array() > box.hi.array() + slack).any()) {
+        throw InvalidArgument(what + ": point is not on block " + std::to_string(end.block + 1) +
+                              " ('" + name(end.block) + "'), which spans from (" +
+                              std::to_string(box.lo.x()) + ", " + std::to_string(box.lo.y()) +
+                              ", " + std::to_string(box.lo.z()) + ") to (" +
+                              std::to_string(box.hi.x()) + ", " + std::to_string(box.hi.y()) +
+                              ", " + std::to_string(box.hi.z()) + ")");
+      }
+    }
+  }
+  const std::string what = "cable " + std::to_string(index + 1);
+  if (!((cable.to.point - cable.from.point).norm() > 0.0)) {
+    throw InvalidArgument(what + ": its two ends are at the same point (zero length)");
+  }
+  if (!std::isfinite(cable.mass_per_length) || cable.mass_per_length < 0.0) {
+    throw InvalidArgument(what + ": mass_per_length must be a finite number >= 0 (kg/m)");
+  }
+  if (std::isnan(cable.max_tension) || cable.max_tension <= 0.0) {
+    throw InvalidArgument(what + ": max_tension must be a number > 0 (N), or nil for no limit");
+  }
+  if (cable.from.block >= 0 && cable.from.block == cable.to.block) {
+    throw InvalidArgument(what + ": both ends are on block " + std::to_string(cable.from.block + 1) +
+                          "; a cable within one block carries nothing");
+  }
+}
+
+int Structure::add_cable(const Cable& cable) {
+  const int index = static_cast<int>(cables_.size());
+  check_cable(cable, index);
+  cables_.push_back(cable);
+  return index;
+}
+
+void Structure::set_cable_points(int index, const Vec3& from, const Vec3& to) {
+  if (index < 0 || index >= static_cast<int>(cables_.size())) {
+    throw InvalidArgument("cable " + std::to_string(index + 1) + " does not exist");
+  }
+  Cable moved = cables_[index];
+  moved.from.point = from;
+  moved.to.point = to;
+  check_cable(moved, index);
+  cables_[index] = moved;
 }
 
 int Structure::find(const std::string& name) const {

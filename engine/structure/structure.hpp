@@ -2,6 +2,7 @@
 // the contact interfaces between blocks, computed on demand and cached.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -25,6 +26,22 @@ struct PointLoad {
   Vec3 at = Vec3::Zero();
 };
 
+// One end of a cable: fixed to a block at a point, or (block -1) a junction
+// where it meets the ends of other cables at the same point.
+struct CableEnd {
+  int block = -1;  // 0-based; a support block anchors the end
+  Vec3 point = Vec3::Zero();  // m
+};
+
+// A tension-only element: force along its axis only, tension free, any
+// compression penalised; weight mass_per_length * length * g, half at each
+// end; tension at most max_tension (N).
+struct Cable {
+  CableEnd from, to;
+  double mass_per_length = 0.0;  // kg/m
+  double max_tension = std::numeric_limits<double>::infinity();  // N
+};
+
 class Structure {
 public:
   // Adds a block and returns its 0-based index. A given name must be unused
@@ -34,6 +51,10 @@ public:
   // Throws InvalidArgument for a bad block index, a support block (loads
   // on fixed ground do nothing) or a non-finite value.
   void add_load(const PointLoad& load);
+  // Adds a cable and returns its 0-based index. Throws InvalidArgument for a
+  // bad block index, an end point off its block, a zero length, a negative
+  // mass or a non-positive tension bound.
+  int add_cable(const Cable& cable);
 
   int size() const { return static_cast<int>(blocks_.size()); }
   const StructureBlock& entry(int i) const { return blocks_.at(i); }
@@ -43,6 +64,10 @@ public:
   int find(const std::string& name) const;  // -1 if absent
   const std::vector<StructureBlock>& entries() const { return blocks_; }
   const std::vector<PointLoad>& loads() const { return loads_; }
+  const std::vector<Cable>& cables() const { return cables_; }
+  // Moves both end points of cable `index` (the optimiser's design variables);
+  // the same checks as add_cable.
+  void set_cable_points(int index, const Vec3& from, const Vec3& to);
   Box3 bounds() const;
 
   // A planar structure lies in the x-z plane as an extrusion along y, with
@@ -56,8 +81,11 @@ public:
   const std::vector<Interface>& interfaces(const ContactOptions& options = {}) const;
 
 private:
+  void check_cable(const Cable& cable, int index) const;
+
   std::vector<StructureBlock> blocks_;
   std::vector<PointLoad> loads_;
+  std::vector<Cable> cables_;
   std::unordered_map<std::string, int> index_by_name_;
   bool planar_ = false;
 

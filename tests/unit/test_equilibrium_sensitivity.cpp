@@ -26,8 +26,9 @@ struct ProblemData {
 
 ProblemData data_of(const Structure& s, const EquilibriumProblem& p) {
   ProblemData d;
-  for (const ContactVertex& v : p.vertices) {
-    const Interface& c = s.interfaces()[v.interface_index];
+  for (int k = 0; k < p.contact_vertex_count; ++k) {
+    const ForceGroup& v = p.groups[k];
+    const Interface& c = s.interfaces()[v.source];
     d.positions.push_back(v.position);
     d.frames.push_back({c.normal, c.u, c.v});
   }
@@ -43,9 +44,9 @@ ProblemData data_of(const Structure& s, const EquilibriumProblem& p) {
 // Rebuilds A and b from `d` as build_equilibrium_problem does.
 EquilibriumProblem with_data(const Structure& s, EquilibriumProblem p, const ProblemData& d) {
   const std::array<int, 6>& rows = balance_rows(p.block_rows == 3);
-  for (size_t k = 0; k < p.vertices.size(); ++k) {
-    ContactVertex& v = p.vertices[k];
-    Interface contact = s.interfaces()[v.interface_index];
+  for (int k = 0; k < p.contact_vertex_count; ++k) {
+    ForceGroup& v = p.groups[k];
+    Interface contact = s.interfaces()[v.source];
     contact.normal = d.frames[k][0];
     contact.u = d.frames[k][1];
     contact.v = d.frames[k][2];
@@ -87,7 +88,7 @@ void expect_sensitivities_match(const Structure& s, const EquilibriumOptions& op
   InteriorPointSolution solution;
   const double penalty = optimal_penalty(with_data(s, problem, base), &solution);
   ASSERT_GT(penalty, 1e-3) << "the structure must be unstable for a non-trivial gradient";
-  const EquilibriumSensitivity sens = equilibrium_sensitivity(s, problem, solution.x, solution.y);
+  const EquilibriumSensitivity sens = equilibrium_sensitivity(s, problem, solution);
 
   const double h = 1e-5;
   auto difference = [&](const std::function<void(ProblemData&, double)>& move) {
@@ -100,7 +101,7 @@ void expect_sensitivities_match(const Structure& s, const EquilibriumOptions& op
   auto expect_close = [&](double analytic, double numeric, const std::string& what) {
     EXPECT_NEAR(analytic, numeric, 1e-4 * (1 + std::abs(numeric))) << what;
   };
-  for (size_t k = 0; k < problem.vertices.size(); ++k) {
+  for (int k = 0; k < problem.contact_vertex_count; ++k) {
     for (int j = 0; j < 3; ++j) {
       const std::string at = " vertex " + std::to_string(k) + " axis " + std::to_string(j);
       expect_close(sens.vertex_position[k](j),
