@@ -22,12 +22,11 @@ struct AnalysisRecord {
   int block_count = 0;
 };
 
-// Options table of ashlar.analyze / ashlar.export_qp at stack index arg.
-AnalysisSettings settings_from(lua_State* L, int arg) {
-  const OptionTable options(L, arg,
-                            {"friction", "friction_sides", "friction_model", "tension_weight",
-                             "force_weight", "tolerance", "max_iterations", "stable_tolerance",
-                             "contact_tolerance", "warm_start"});
+}  // namespace
+
+AnalysisSettings analysis_settings(const OptionTable& options) {
+  lua_State* L = options.state();
+  const int arg = options.arg();
   AnalysisSettings settings;
   EquilibriumOptions& problem = settings.problem;
   if (options.push("friction") != LUA_TNIL) {
@@ -59,6 +58,13 @@ AnalysisSettings settings_from(lua_State* L, int arg) {
   lua_pop(L, 1);
   settings.stable_tolerance = options.positive("stable_tolerance", settings.stable_tolerance);
   return settings;
+}
+
+namespace {
+
+// Options table of ashlar.analyze / ashlar.export_qp at stack index arg.
+AnalysisSettings settings_from(lua_State* L, int arg) {
+  return analysis_settings(OptionTable(L, arg, {ASHLAR_ANALYSIS_OPTIONS, "warm_start"}));
 }
 
 AnalysisRecord& check_record(lua_State* L, int idx) {

@@ -8,6 +8,15 @@
 
 namespace ashlar::lua {
 
+class OptionTable;
+
+// The option names of ashlar.analyze, for option tables that accept them.
+#define ASHLAR_ANALYSIS_OPTIONS                                                          \
+  "friction", "friction_sides", "friction_model", "tension_weight", "force_weight",      \
+      "tolerance", "max_iterations", "stable_tolerance", "contact_tolerance"
+// Analysis settings from an option table that allows ASHLAR_ANALYSIS_OPTIONS.
+AnalysisSettings analysis_settings(const OptionTable& options);
+
 // The engine result held by the Result at idx, or nullptr if it is not one.
 const EquilibriumResult* luax_testResult(lua_State* L, int idx);
 void register_Result(lua_State* L);

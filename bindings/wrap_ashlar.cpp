@@ -12,6 +12,8 @@
 #include "wrap_Block.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
+#include "wrap_gradient.hpp"
+#include "wrap_optimize.hpp"
 
 namespace ashlar::lua {
 
@@ -221,6 +223,8 @@ int ashlar_open_library(lua_State* L) {
   set_block_constructors(L);
   set_structure_functions(L);
   set_analysis_functions(L);
+  set_gradient_functions(L);
+  set_optimize_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

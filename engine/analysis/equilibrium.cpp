@@ -55,11 +55,12 @@ double distance_from_compression_only_equilibrium(const EquilibriumProblem& prob
 }  // namespace
 
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
-                                      const EquilibriumResult* warm_start) {
+                                      const EquilibriumResult* warm_start,
+                                      EquilibriumProblem* problem_out) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   check_settings(settings);
-  const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
+  EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   EquilibriumSolver solver(problem);
   EquilibriumResult result;
   result.timings.setup = std::chrono::duration<double>(Clock::now() - start).count();
@@ -146,6 +147,7 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
     result.penalty = info.objective / bodies;
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (problem_out) *problem_out = std::move(problem);
   return result;
 }
 

@@ -83,9 +83,11 @@ struct EquilibriumResult {
 
 // Runs the analysis. Throws InvalidArgument for bad settings; every outcome
 // (unstable, not converged, floating blocks) is reported in the result.
-// `warm_start`, if given, must come from the same structure.
+// `warm_start`, if given, must come from the same structure. `problem`, if
+// given, receives the QP that was solved (for its derivatives).
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
-                                      const EquilibriumResult* warm_start = nullptr);
+                                      const EquilibriumResult* warm_start = nullptr,
+                                      EquilibriumProblem* problem = nullptr);
 
 // Centres of pressure along the structure: when the contact graph of the
 // free blocks is a chain from support to support (an arch, a column), in

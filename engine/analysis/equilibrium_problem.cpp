@@ -143,6 +143,16 @@ void check_planar_loads_and_cables(const Structure& structure, double tolerance)
 
 }  // namespace
 
+double block_size(const Block& block) {
+  const std::vector<Vec3>& vertices = block.vertices();
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : vertices) mean += p;
+  mean /= static_cast<double>(vertices.size());
+  double sum = 0.0;
+  for (const Vec3& p : vertices) sum += (p - mean).squaredNorm();
+  return 2.0 * std::sqrt(sum / static_cast<double>(vertices.size()));
+}
+
 // The balance rows a problem keeps, in order: all six, or for a planar
 // structure (x-z plane) the in-plane force and moment Fx, Fz, My.
 const std::array<int, 6>& balance_rows(bool planar) {
@@ -277,7 +287,7 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
     problem.row_of_block[i] = problem.row_count;
     problem.row_count += d;
     problem.total_weight += structure.block(i).mass() * kGravity;
-    size_sum += structure.block(i).bounds().diagonal();
+    size_sum += block_size(structure.block(i));
     ++analysed_blocks;
   }
   for (int j = 0; j < junction_count; ++j) {

@@ -22,7 +22,7 @@
 //
 // Scaling: forces are in units of the mean weight per analysed body Wm
 // (blocks' and cables' weight / analysed blocks and junctions) and lengths in
-// units of the mean free-block size L, so the QP is the same in millimetres
+// units of the mean free-block size L (block_size), so the QP is the same in millimetres
 // or kilometres and its numbers are O(1) per block whatever the model size.
 // The objective is
 //     sum_k [ s_k + tension_weight/2 s_k^2 + force_weight/(2n) (c_k^2 + f_uk^2 + f_vk^2) ]
@@ -150,6 +150,11 @@ struct EquilibriumProblem {
 // cable end attached to nothing (no block, and no other cable end there).
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options);
+
+// A block's size for the unit of length (m): twice the root mean square
+// distance of its vertices from their mean, which is a box's diagonal but,
+// unlike the bounding box, smooth in the vertices (the gradient needs that).
+double block_size(const Block& block);
 
 // The balance rows a problem keeps, in order, as indices into (Fx, Fy, Fz,
 // Mx, My, Mz): all six, or for a planar structure (x-z plane) Fx, Fz, My

@@ -1,0 +1,517 @@
+// ashlar.optimize: moves a structure's vertices (or a generator's parameters)
+// down the structural gradient until the structure stands.
+#include "wrap_optimize.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "analysis/structural_gradient.hpp"
+#include "core/error.hpp"
+#include "luax.hpp"
+#include "optimize/optimizer.hpp"
+#include "wrap_Result.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+// The design of a structure: its blocks' vertices, then both end points of
+// every cable as free points (from, to).
+DesignPoint design_of(const Structure& s) {
+  DesignPoint design;
+  for (int i = 0; i < s.size(); ++i) design.block_vertices.push_back(s.block(i).vertices());
+  for (const Cable& cable : s.cables()) {
+    design.points.push_back(cable.from.point);
+    design.points.push_back(cable.to.point);
+  }
+  return design;
+}
+
+// `s` with the positions of `design`: same names, supports, loads, cables.
+std::shared_ptr<Structure> with_design(const Structure& s, const DesignPoint& design) {
+  auto out = std::make_shared<Structure>();
+  for (int i = 0; i < s.size(); ++i) {
+    const Block& block = s.block(i);
+    out->add(std::make_shared<const Block>(design.block_vertices[i], block.faces(), block.density(),
+                                           block.name()),
+             s.is_support(i), s.name(i));
+  }
+  out->set_planar(s.planar());
+  for (const PointLoad& load : s.loads()) out->add_load(load);
+  for (size_t c = 0; c < s.cables().size(); ++c) {
+    Cable cable = s.cables()[c];
+    cable.from.point = design.points[2 * c];
+    cable.to.point = design.points[2 * c + 1];
+    out->add_cable(cable);
+  }
+  return out;
+}
+
+OptimizeSettings optimize_settings(const OptionTable& options) {
+  OptimizeSettings settings;
+  if (const std::optional<std::string> method = options.string("method")) {
+    if (*method == "lbfgs") settings.method = OptimizeMethod::lbfgs;
+    else if (*method == "gradient") settings.method = OptimizeMethod::gradient;
+    else throw ArgError(options.arg(), "method: '" + *method + "' is not one of lbfgs, gradient");
+  }
+  lua_State* L = options.state();
+  if (options.push("max_iterations") != LUA_TNIL) {
+    const lua_Integer n = check_integer(L, -1, "max_iterations");
+    if (n < 0) throw ArgError(options.arg(), "max_iterations: expected an integer >= 0");
+    settings.max_iterations = static_cast<int>(n);
+  }
+  lua_pop(L, 1);
+  settings.gradient_tolerance = options.positive("gradient_tolerance", settings.gradient_tolerance);
+  settings.value_tolerance = options.positive("value_tolerance", settings.value_tolerance);
+  settings.initial_step = options.positive("initial_step", settings.initial_step, true);
+  return settings;
+}
+
+// The analysis options in opts.analysis.
+AnalysisSettings nested_analysis_settings(lua_State* L, const OptionTable& options) {
+  AnalysisSettings settings;
+  if (options.push("analysis") == LUA_TTABLE) {
+    settings = analysis_settings(
+        OptionTable(L, lua_gettop(L), options.arg(), "analysis.", {ASHLAR_ANALYSIS_OPTIONS}));
+  } else if (lua_type(L, -1) != LUA_TNIL) {
+    throw ArgError(options.arg(), "analysis: expected a table of ashlar.analyze options, got " +
+                                      type_name(L, -1));
+  }
+  lua_pop(L, 1);
+  return settings;
+}
+
+// Prints one line per accepted iterate when asked to (or, by default, when
+// standard output is a terminal), and keeps the history for Lua.
+struct Progress {
+  bool print = false;
+  struct Entry {
+    OptimizeStep step;
+    double infeasibility = 0.0;
+  };
+  std::vector<Entry> history;
+  // The last evaluations' (penalty, infeasibility): an accepted iterate is
+  // one of them.
+  std::vector<std::pair<double, double>> recent;
+
+  void evaluated(double penalty, double infeasibility) {
+    recent.emplace_back(penalty, infeasibility);
+    if (recent.size() > 64) recent.erase(recent.begin());
+  }
+  void accepted(const OptimizeStep& step) {
+    Entry entry{step, std::nan("")};
+    for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
+      if (it->first == step.value) {
+        entry.infeasibility = it->second;
+        break;
+      }
+    }
+    history.push_back(entry);
+    if (print) {
+      std::printf("optimize: iteration %3d  penalty %.6g  infeasibility %.6g  step %.3g m  %.2f s%s\n",
+                  step.iteration, step.value, entry.infeasibility, step.step, step.seconds,
+                  step.stable ? "  stable" : "");
+      std::fflush(stdout);
+    }
+  }
+};
+
+bool wants_progress(const OptionTable& options) {
+  return options.boolean("progress").value_or(isatty(STDOUT_FILENO) != 0);
+}
+
+void push_history(lua_State* L, const Progress& progress) {
+  lua_createtable(L, static_cast<int>(progress.history.size()), 0);
+  for (size_t k = 0; k < progress.history.size(); ++k) {
+    const Progress::Entry& e = progress.history[k];
+    lua_createtable(L, 0, 6);
+    lua_pushinteger(L, e.step.iteration);
+    lua_setfield(L, -2, "iteration");
+    set_field(L, "penalty", e.step.value);
+    set_field(L, "infeasibility", e.infeasibility);
+    set_field(L, "step", e.step.step);
+    set_field(L, "seconds", e.step.seconds);
+    lua_pushboolean(L, e.step.stable);
+    lua_setfield(L, -2, "stable");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
+// A list of block references (indices or names) at the top of the stack.
+std::vector<int> block_list(lua_State* L, const Structure& s, int arg, const std::string& what) {
+  std::vector<int> blocks;
+  if (lua_type(L, -1) != LUA_TTABLE) {
+    throw ArgError(arg, what + ": expected a list of block indices or names, got " +
+                            type_name(L, -1));
+  }
+  const lua_Integer n = luaL_len(L, -1);
+  for (lua_Integer k = 1; k <= n; ++k) {
+    lua_geti(L, -1, k);
+    blocks.push_back(check_block_index(L, s, -1, arg, (what + "[" + std::to_string(k) + "]").c_str()));
+    lua_pop(L, 1);
+  }
+  return blocks;
+}
+
+// {block = i or name, vertex = k} at the top of the stack.
+PositionRef vertex_ref(lua_State* L, const Structure& s, int arg, const std::string& what) {
+  if (lua_type(L, -1) != LUA_TTABLE) {
+    throw ArgError(arg, what + ": expected {block = i, vertex = k}, got " + type_name(L, -1));
+  }
+  const OptionTable ref(L, lua_gettop(L), arg, what + ".", {"block", "vertex"});
+  ref.push("block");
+  const int block = check_block_index(L, s, -1, arg, (what + ".block").c_str());
+  lua_pop(L, 1);
+  ref.push("vertex");
+  const lua_Integer vertex = check_integer(L, -1, (what + ".vertex").c_str());
+  lua_pop(L, 1);
+  const int count = static_cast<int>(s.block(block).vertices().size());
+  if (vertex < 1 || vertex > count) {
+    throw ArgError(arg, what + ".vertex: " + std::to_string(vertex) + " is out of range (block " +
+                            std::to_string(block + 1) + " has " + std::to_string(count) +
+                            " vertices)");
+  }
+  return PositionRef::vertex(block, static_cast<int>(vertex - 1));
+}
+
+// A free block's face resting on a fixed block (a voussoir's springing on
+// its abutment) must stay on it, or the contact opens: its vertices are
+// fixed too. (Coincident vertices are welded by the design space; a vertex
+// inside a face of another free block is not held to it.)
+void hold_faces_on_fixed_blocks(const Structure& s, DesignConstraints& c) {
+  std::vector<bool> fixed(s.size(), false);
+  for (int block : c.fixed_blocks) fixed[block] = true;
+  const double tolerance = 1e-6 * s.bounds().diagonal();
+  for (const Interface& contact : s.interfaces()) {
+    if (fixed[contact.a] == fixed[contact.b]) continue;
+    const int free_block = fixed[contact.a] ? contact.b : contact.a;
+    const std::vector<Vec3>& vertices = s.block(free_block).vertices();
+    for (size_t k = 0; k < vertices.size(); ++k) {
+      if (std::abs(contact.normal.dot(vertices[k] - contact.center)) <= tolerance) {
+        c.fixed.push_back(PositionRef::vertex(free_block, static_cast<int>(k)));
+      }
+    }
+  }
+}
+
+DesignConstraints design_constraints(lua_State* L, const Structure& s, const OptionTable& options) {
+  const int arg = options.arg();
+  DesignConstraints c;
+  for (int i = 0; i < s.size(); ++i) {
+    if (s.is_support(i)) c.fixed_blocks.push_back(i);
+  }
+  if (options.push("fixed") != LUA_TNIL) {
+    for (int block : block_list(L, s, arg, "fixed")) c.fixed_blocks.push_back(block);
+  }
+  lua_pop(L, 1);
+  if (const std::optional<std::string> pattern = options.string("fixed_names")) {
+    for (int i = 0; i < s.size(); ++i) {
+      lua_getglobal(L, "string");
+      lua_getfield(L, -1, "find");
+      lua_pushstring(L, s.name(i).c_str());
+      lua_pushstring(L, pattern->c_str());
+      protected_call(L, 2, 1);
+      if (!lua_isnil(L, -1)) c.fixed_blocks.push_back(i);
+      lua_pop(L, 2);
+    }
+  }
+  if (options.push("fixed_vertices") != LUA_TNIL) {
+    if (lua_type(L, -1) != LUA_TFUNCTION) {
+      throw ArgError(arg, "fixed_vertices: expected a function(point, block, vertex, name) "
+                          "returning true for vertices that stay, got " + type_name(L, -1));
+    }
+    const int predicate = lua_gettop(L);
+    for (int i = 0; i < s.size(); ++i) {
+      const std::vector<Vec3>& vertices = s.block(i).vertices();
+      for (size_t k = 0; k < vertices.size(); ++k) {
+        lua_pushvalue(L, predicate);
+        push_vec3(L, vertices[k]);
+        lua_pushinteger(L, i + 1);
+        lua_pushinteger(L, static_cast<lua_Integer>(k + 1));
+        lua_pushstring(L, s.name(i).c_str());
+        protected_call(L, 4, 1);
+        if (lua_toboolean(L, -1)) c.fixed.push_back(PositionRef::vertex(i, static_cast<int>(k)));
+        lua_pop(L, 1);
+      }
+    }
+  }
+  lua_pop(L, 1);
+  if (options.boolean("fixed_cables").value_or(false)) {
+    for (size_t p = 0; p < 2 * s.cables().size(); ++p) {
+      c.fixed.push_back(PositionRef::point(static_cast<int>(p)));
+    }
+  }
+  if (options.push("together") != LUA_TNIL) {
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      throw ArgError(arg, "together: expected a list of groups of {block = i, vertex = k}");
+    }
+    const lua_Integer groups = luaL_len(L, -1);
+    for (lua_Integer gi = 1; gi <= groups; ++gi) {
+      lua_geti(L, -1, gi);
+      const std::string what = "together[" + std::to_string(gi) + "]";
+      if (lua_type(L, -1) != LUA_TTABLE) throw ArgError(arg, what + ": expected a list of vertices");
+      std::vector<PositionRef> group;
+      const lua_Integer members = luaL_len(L, -1);
+      for (lua_Integer m = 1; m <= members; ++m) {
+        lua_geti(L, -1, m);
+        group.push_back(vertex_ref(L, s, arg, what + "[" + std::to_string(m) + "]"));
+        lua_pop(L, 1);
+      }
+      c.move_together.push_back(std::move(group));
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
+  if (options.push("symmetry") != LUA_TNIL) {
+    const OptionTable mirror(L, lua_gettop(L), arg, "symmetry.", {"point", "normal"});
+    MirrorPlane plane;
+    plane.point = mirror.vec3("point").value_or(Vec3::Zero());
+    const std::optional<Vec3> normal = mirror.vec3("normal");
+    if (!normal) throw ArgError(arg, "symmetry.normal: required, the mirror plane's normal {x, y, z}");
+    plane.normal = *normal;
+    c.mirror = plane;
+  }
+  lua_pop(L, 1);
+  if (options.push("keep_normal") != LUA_TNIL) {
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      throw ArgError(arg, "keep_normal: expected a list of {block = i, face = f}");
+    }
+    const lua_Integer n = luaL_len(L, -1);
+    for (lua_Integer k = 1; k <= n; ++k) {
+      lua_geti(L, -1, k);
+      const std::string what = "keep_normal[" + std::to_string(k) + "]";
+      if (lua_type(L, -1) != LUA_TTABLE) throw ArgError(arg, what + ": expected {block = i, face = f}");
+      const OptionTable ref(L, lua_gettop(L), arg, what + ".", {"block", "face"});
+      ref.push("block");
+      const int block = check_block_index(L, s, -1, arg, (what + ".block").c_str());
+      lua_pop(L, 1);
+      ref.push("face");
+      const lua_Integer face = check_integer(L, -1, (what + ".face").c_str());
+      lua_pop(L, 1);
+      const int faces = static_cast<int>(s.block(block).faces().size());
+      if (face < 1 || face > faces) {
+        throw ArgError(arg, what + ".face: " + std::to_string(face) + " is out of range (block " +
+                                std::to_string(block + 1) + " has " + std::to_string(faces) +
+                                " faces)");
+      }
+      c.keep_normal.push_back({block, static_cast<int>(face - 1)});
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
+  hold_faces_on_fixed_blocks(s, c);
+  c.max_displacement = options.positive("max_displacement", c.max_displacement);
+  c.min_block_volume = options.positive("min_volume", 0.0, true);
+  return c;
+}
+
+void push_outcome(lua_State* L, OptimizeStatus status, bool stable, const std::string& message,
+                  int evaluations, const Progress& progress) {
+  lua_pushboolean(L, stable);
+  lua_setfield(L, -2, "stable");
+  lua_pushstring(L, status_name(status));
+  lua_setfield(L, -2, "status");
+  lua_pushstring(L, message.c_str());
+  lua_setfield(L, -2, "message");
+  lua_pushinteger(L, evaluations);
+  lua_setfield(L, -2, "evaluations");
+  push_history(L, progress);
+  lua_setfield(L, -2, "history");
+}
+
+int optimize_structure(lua_State* L) {
+  const Structure& s = *luax_checkStructure(L, 1);
+  const OptionTable options(
+      L, 2, {"method", "max_iterations", "gradient_tolerance", "value_tolerance", "initial_step",
+             "analysis", "progress", "fixed", "fixed_names", "fixed_vertices", "fixed_cables",
+             "together", "symmetry", "keep_normal", "max_displacement", "min_volume"});
+  const AnalysisSettings analysis = nested_analysis_settings(L, options);
+  OptimizeSettings settings = optimize_settings(options);
+  std::vector<std::vector<FaceLoop>> faces;
+  for (int i = 0; i < s.size(); ++i) faces.push_back(s.block(i).faces());
+  const DesignSpace space(std::move(faces), design_of(s), design_constraints(L, s, options));
+
+  Progress progress;
+  progress.print = wants_progress(options);
+  settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
+  const DesignObjective objective = [&](const DesignPoint& design) {
+    const StructuralGradient g = structural_gradient(*with_design(s, design), analysis);
+    if (!g.valid) {
+      throw Error("the structure has no equilibrium at all (" +
+                  std::string(status_name(g.analysis.status)) + ")");
+    }
+    progress.evaluated(g.analysis.penalty, g.analysis.infeasibility);
+    DesignEvaluation evaluation;
+    evaluation.value = g.analysis.penalty;
+    evaluation.stable = g.analysis.stable;
+    evaluation.gradient.block_vertices = g.block_vertices;
+    for (size_t c = 0; c < g.cable_from.size(); ++c) {
+      evaluation.gradient.points.push_back(g.cable_from[c]);
+      evaluation.gradient.points.push_back(g.cable_to[c]);
+    }
+    return evaluation;
+  };
+  const OptimizeResult result = optimize_design(space, objective, settings);
+  lua_createtable(L, 0, 7);
+  luax_pushStructure(L, with_design(s, result.design));
+  lua_setfield(L, -2, "structure");
+  push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+  return 1;
+}
+
+// Calls the generator at stack index `generator` with a table of `names` =
+// `values`; returns the structure it made.
+std::shared_ptr<Structure> generate(lua_State* L, int generator, const std::vector<std::string>& names,
+                                    const Eigen::VectorXd& values) {
+  lua_pushvalue(L, generator);
+  lua_createtable(L, 0, static_cast<int>(names.size()));
+  for (size_t j = 0; j < names.size(); ++j) {
+    lua_pushnumber(L, values(j));
+    lua_setfield(L, -2, names[j].c_str());
+  }
+  protected_call(L, 1, 1);
+  std::shared_ptr<Structure> s = luax_checkStructure(L, -1);
+  lua_pop(L, 1);
+  return s;
+}
+
+// The derivative of every position with respect to one parameter, by central
+// differences of the generator (no analysis involved): the dot product with
+// the structural gradient is the parameter's derivative.
+double parameter_derivative(const Structure& base, const Structure& plus, const Structure& minus,
+                            const StructuralGradient& g, double step, const std::string& name) {
+  if (plus.size() != base.size() || minus.size() != base.size() ||
+      plus.cables().size() != base.cables().size() ||
+      minus.cables().size() != base.cables().size()) {
+    throw InvalidArgument("parameter '" + name +
+                          "' changes the number of blocks or cables; only parameters that move "
+                          "vertices can be optimised");
+  }
+  double sum = 0.0;
+  for (int i = 0; i < base.size(); ++i) {
+    const std::vector<Vec3>& p = plus.block(i).vertices();
+    const std::vector<Vec3>& m = minus.block(i).vertices();
+    if (p.size() != g.block_vertices[i].size() || m.size() != p.size()) {
+      throw InvalidArgument("parameter '" + name + "' changes the vertex count of block " +
+                            std::to_string(i + 1));
+    }
+    for (size_t k = 0; k < p.size(); ++k) sum += g.block_vertices[i][k].dot(p[k] - m[k]);
+  }
+  for (size_t c = 0; c < base.cables().size(); ++c) {
+    sum += g.cable_from[c].dot(plus.cables()[c].from.point - minus.cables()[c].from.point);
+    sum += g.cable_to[c].dot(plus.cables()[c].to.point - minus.cables()[c].to.point);
+  }
+  return sum / (2.0 * step);
+}
+
+int optimize_parameters_of(lua_State* L) {
+  const int generator = 1;
+  const OptionTable options(L, 2, {"params", "lower", "upper", "method", "max_iterations",
+                                   "gradient_tolerance", "value_tolerance", "initial_step",
+                                   "analysis", "progress"});
+  std::vector<std::string> names;
+  std::vector<double> initial;
+  if (options.push("params") != LUA_TTABLE) {
+    throw ArgError(2, "params: required, a table of parameter names and starting values");
+  }
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    if (lua_type(L, -2) != LUA_TSTRING) throw ArgError(2, "params: keys must be parameter names");
+    const std::string name = lua_tostring(L, -2);
+    initial.push_back(check_number(L, -1, ("params." + name).c_str()));
+    names.push_back(name);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  const int n = static_cast<int>(names.size());
+  if (n == 0) throw ArgError(2, "params: give at least one parameter to optimise");
+  // Deterministic order: sorted by name.
+  std::vector<int> order(n);
+  for (int j = 0; j < n; ++j) order[j] = j;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return names[a] < names[b]; });
+  std::vector<std::string> sorted_names;
+  Eigen::VectorXd start(n), lower(n), upper(n);
+  for (int j = 0; j < n; ++j) {
+    sorted_names.push_back(names[order[j]]);
+    start(j) = initial[order[j]];
+  }
+  for (const char* side : {"lower", "upper"}) {
+    Eigen::VectorXd& bound = side[0] == 'l' ? lower : upper;
+    bound.setConstant(side[0] == 'l' ? -std::numeric_limits<double>::infinity()
+                                     : std::numeric_limits<double>::infinity());
+    if (options.push(side) == LUA_TTABLE) {
+      for (int j = 0; j < n; ++j) {
+        if (lua_getfield(L, -1, sorted_names[j].c_str()) != LUA_TNIL) {
+          bound(j) = check_number(L, -1, (std::string(side) + "." + sorted_names[j]).c_str());
+        }
+        lua_pop(L, 1);
+      }
+    } else if (lua_type(L, -1) != LUA_TNIL) {
+      throw ArgError(2, std::string(side) + ": expected a table of parameter bounds");
+    }
+    lua_pop(L, 1);
+  }
+  const AnalysisSettings analysis = nested_analysis_settings(L, options);
+  OptimizeSettings settings = optimize_settings(options);
+  Progress progress;
+  progress.print = wants_progress(options);
+  settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
+  const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
+    const std::shared_ptr<Structure> base = generate(L, generator, sorted_names, values);
+    const StructuralGradient g = structural_gradient(*base, analysis);
+    if (!g.valid) {
+      throw Error("the structure has no equilibrium at all (" +
+                  std::string(status_name(g.analysis.status)) + ")");
+    }
+    progress.evaluated(g.analysis.penalty, g.analysis.infeasibility);
+    ParameterEvaluation evaluation;
+    evaluation.value = g.analysis.penalty;
+    evaluation.stable = g.analysis.stable;
+    evaluation.gradient.resize(n);
+    for (int j = 0; j < n; ++j) {
+      const double step = 1e-6 * std::max(1.0, std::abs(values(j)));
+      Eigen::VectorXd plus = values, minus = values;
+      plus(j) += step;
+      minus(j) -= step;
+      evaluation.gradient(j) =
+          parameter_derivative(*base, *generate(L, generator, sorted_names, plus),
+                               *generate(L, generator, sorted_names, minus), g, step,
+                               sorted_names[j]);
+    }
+    return evaluation;
+  };
+  const ParameterResult result = optimize_parameters(lower, upper, start, objective, settings);
+  lua_createtable(L, 0, 8);
+  lua_createtable(L, 0, n);
+  for (int j = 0; j < n; ++j) {
+    lua_pushnumber(L, result.parameters(j));
+    lua_setfield(L, -2, sorted_names[j].c_str());
+  }
+  lua_setfield(L, -2, "params");
+  luax_pushStructure(L, generate(L, generator, sorted_names, result.parameters));
+  lua_setfield(L, -2, "structure");
+  push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+  return 1;
+}
+
+int w_optimize(lua_State* L) {
+  return guard(L, [&] {
+    if (lua_type(L, 1) == LUA_TFUNCTION) return optimize_parameters_of(L);
+    return optimize_structure(L);
+  });
+}
+
+}  // namespace
+
+void set_optimize_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"optimize", w_optimize}, {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua
