@@ -12,4 +12,5 @@ return {
   h_frame = require "ashlar.models.h_frame",
   flying_buttress = require "ashlar.models.flying_buttress",
   arch_bridge = require "ashlar.models.arch_bridge",
+  cable_stayed_bridge = require "ashlar.models.cable_stayed_bridge",
 }
