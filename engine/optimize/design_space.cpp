@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "geometry/block.hpp"
+#include "geometry/polygon.hpp"
 
 namespace ashlar {
 namespace {
@@ -91,24 +92,46 @@ private:
   std::vector<int> parent_;
 };
 
-// Buckets points in cubic cells of side `cell`: every point within `cell` of
-// a query lies in the 27 cells around it, so neighbour queries cost O(1).
+// Buckets points in cubic cells of side `cell` for neighbour queries in
+// time proportional to the cells (or the occupied cells) they cover.
 class PointGrid {
 public:
   PointGrid(const Vec3& origin, double cell) : origin_(origin), cell_(cell) {}
 
-  void insert(const Vec3& p, int id) { cells_[key(p, 0, 0, 0)].push_back(id); }
+  void insert(const Vec3& p, int id) { cells_[key(p)].push_back(id); }
 
-  void for_each_near(const Vec3& p, const std::function<void(int)>& visit) const {
-    for (int dx = -1; dx <= 1; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto cell = cells_.find(key(p, dx, dy, dz));
+  // The ids in the cells that overlap the box [lo, hi]: every point inside
+  // the box, and some near it.
+  void for_each_in(const Vec3& lo, const Vec3& hi, const std::function<void(int)>& visit) const {
+    const Key first = key(lo), last = key(hi);
+    double cells = 1.0;
+    for (int axis = 0; axis < 3; ++axis) cells *= static_cast<double>(last[axis] - first[axis] + 1);
+    const auto inside = [&](const Key& k) {
+      for (int axis = 0; axis < 3; ++axis) {
+        if (k[axis] < first[axis] || k[axis] > last[axis]) return false;
+      }
+      return true;
+    };
+    if (cells > static_cast<double>(cells_.size())) {
+      for (const auto& [k, ids] : cells_) {
+        if (!inside(k)) continue;
+        for (int id : ids) visit(id);
+      }
+      return;
+    }
+    for (Key k = first; k[0] <= last[0]; ++k[0]) {
+      for (k[1] = first[1]; k[1] <= last[1]; ++k[1]) {
+        for (k[2] = first[2]; k[2] <= last[2]; ++k[2]) {
+          const auto cell = cells_.find(k);
           if (cell == cells_.end()) continue;
           for (int id : cell->second) visit(id);
         }
       }
     }
+  }
+
+  void for_each_near(const Vec3& p, double radius, const std::function<void(int)>& visit) const {
+    for_each_in(p - Vec3::Constant(radius), p + Vec3::Constant(radius), visit);
   }
 
 private:
@@ -120,17 +143,33 @@ private:
                                  bits(k[2]) * 83492791u);
     }
   };
-  Key key(const Vec3& p, int dx, int dy, int dz) const {
+  Key key(const Vec3& p) const {
     const Vec3 q = (p - origin_) / cell_;
-    return {static_cast<std::int64_t>(std::floor(q.x())) + dx,
-            static_cast<std::int64_t>(std::floor(q.y())) + dy,
-            static_cast<std::int64_t>(std::floor(q.z())) + dz};
+    return {static_cast<std::int64_t>(std::floor(q.x())), static_cast<std::int64_t>(std::floor(q.y())),
+            static_cast<std::int64_t>(std::floor(q.z()))};
   }
 
   Vec3 origin_;
   double cell_;
   std::unordered_map<Key, std::vector<int>, KeyHash> cells_;
 };
+
+// True when p lies inside the 2D polygon or within `tolerance` of its outline.
+bool covers(const Loop2& polygon, const Vec2& p, double tolerance) {
+  bool inside = false;
+  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[j];
+    const Vec2 edge = b - a;
+    const double along = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    if ((a + along * edge - p).norm() <= tolerance) return true;
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < a.x() + (p.y() - a.y()) * edge.x() / edge.y()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
 
 // Two unit vectors spanning the plane with unit normal n; axis-aligned when
 // n is, so that box bounds on in-plane displacements stay per coordinate.
@@ -258,7 +297,7 @@ void DesignSpace::weld() {
   DisjointSets welded(count);
   PointGrid grid(bounds.lo, std::max(weld_tolerance_, 1e-12 * model_size_));
   for (int i = 0; i < count; ++i) {
-    grid.for_each_near(positions[i], [&](int j) {
+    grid.for_each_near(positions[i], weld_tolerance_, [&](int j) {
       if ((positions[j] - positions[i]).norm() <= weld_tolerance_) welded.unite(i, j);
     });
     grid.insert(positions[i], i);
@@ -332,7 +371,7 @@ void DesignSpace::build_variables() {
       const Vec3& p = nodes_[g].initial;
       const Vec3 image = p - 2.0 * normal.dot(p - origin) * normal;
       double nearest = weld_tolerance_;
-      grid.for_each_near(image, [&](int h) {
+      grid.for_each_near(image, weld_tolerance_, [&](int h) {
         const double distance = (nodes_[h].initial - image).norm();
         if (distance <= nearest) {
           nearest = distance;
@@ -395,8 +434,19 @@ void DesignSpace::build_constraint_rows() {
     for (const Node& node : nodes_) largest = std::max(largest, node.initial.cwiseAbs().maxCoeff());
     return largest;
   }();
-  std::vector<double> tolerances;
-  // Faces of welded blocks that share all their nodes are one constraint.
+  const auto at = [&](int node) -> const Vec3& { return nodes_[node].initial; };
+  // Nodes in cells of about one node each, to find those lying on a face.
+  const double cell = std::max(model_size_ / std::cbrt(static_cast<double>(nodes_.size())),
+                               2.0 * weld_tolerance_);
+  Box3 bounds;
+  for (const Node& node : nodes_) bounds.add(node.initial);
+  PointGrid grid(bounds.lo, cell);
+  for (int g = 0; g < static_cast<int>(nodes_.size()); ++g) grid.insert(at(g), g);
+
+  // Faces of welded blocks that share all their nodes are one constraint;
+  // a kept normal wins over plain planarity.
+  std::vector<FaceRef> unique_faces;
+  std::vector<char> keeps_normal;
   std::set<std::vector<int>> seen;
   const auto node_loop = [&](const FaceRef& face) {
     std::vector<int> loop;
@@ -405,55 +455,73 @@ void DesignSpace::build_constraint_rows() {
     }
     return loop;
   };
-  const auto first_time = [&](std::vector<int> loop) {
+  const auto add_face = [&](const FaceRef& face, bool keep) {
+    std::vector<int> loop = node_loop(face);
     std::sort(loop.begin(), loop.end());
-    return seen.insert(loop).second;
+    if (!seen.insert(loop).second) return;
+    unique_faces.push_back(face);
+    keeps_normal.push_back(keep);
   };
-  const auto add_row = [&](ConstraintRow row, double face_size) {
-    rows_.push_back(row);
-    tolerances.push_back(kRelativeRowTolerance * face_size +
-                         8.0 * std::numeric_limits<double>::epsilon() * magnitude);
-  };
-
-  for (const FaceRef& face : constraints_.keep_normal) {
-    const std::vector<int> loop = node_loop(face);
-    if (!first_time(loop)) continue;
-    ConstraintRow row;
-    row.keeps_normal = true;
-    row.face = face;
-    row.normal = face_planes(initial_.block_vertices[face.block],
-                             {faces_[face.block][face.face]}).front().normal;
-    double size = 0.0;
-    for (int node : loop) size = std::max(size, (nodes_[node].initial - nodes_[loop[0]].initial).norm());
-    for (size_t k = 1; k < loop.size(); ++k) {
-      row.nodes = {loop[0], loop[k], -1, -1};
-      add_row(row, size);
-    }
+  for (const FaceRef& face : constraints_.keep_normal) add_face(face, true);
+  for (int b = 0; b < static_cast<int>(faces_.size()); ++b) {
+    for (int f = 0; f < static_cast<int>(faces_[b].size()); ++f) add_face(FaceRef{b, f}, false);
   }
 
-  for (int b = 0; b < static_cast<int>(faces_.size()); ++b) {
-    for (int f = 0; f < static_cast<int>(faces_[b].size()); ++f) {
-      const std::vector<int> loop = node_loop(FaceRef{b, f});
-      if (loop.size() < 4 || !first_time(loop)) continue;
-      // The widest triangle of the face fixes its plane: a, the vertex
-      // farthest from a, then the vertex farthest from that line.
-      const auto at = [&](int node) -> const Vec3& { return nodes_[node].initial; };
-      const int a = loop[0];
-      const int far = *std::max_element(loop.begin(), loop.end(), [&](int p, int q) {
-        return (at(p) - at(a)).squaredNorm() < (at(q) - at(a)).squaredNorm();
-      });
-      const auto area = [&](int node) { return (at(far) - at(a)).cross(at(node) - at(a)).norm(); };
-      const int wide = *std::max_element(loop.begin(), loop.end(),
-                                         [&](int p, int q) { return area(p) < area(q); });
-      ConstraintRow row;
-      row.face = FaceRef{b, f};
-      row.scale = area(wide);
-      for (int node : loop) {
-        if (node == a || node == far || node == wide) continue;
-        row.nodes = {a, far, wide, node};
-        add_row(row, (at(far) - at(a)).norm());
-      }
+  std::vector<double> tolerances;
+  std::vector<int> own_block_mark(nodes_.size(), -1);
+  for (size_t u = 0; u < unique_faces.size(); ++u) {
+    const FaceRef face = unique_faces[u];
+    const std::vector<int> loop = node_loop(face);
+    for (int i = block_offset_[face.block]; i < block_offset_[face.block + 1]; ++i) {
+      own_block_mark[node_of_position_[i]] = static_cast<int>(u);
     }
+    // The widest triangle of the face fixes its plane: a, the vertex
+    // farthest from a, then the vertex farthest from that line.
+    const int a = loop[0];
+    const int far = *std::max_element(loop.begin(), loop.end(), [&](int p, int q) {
+      return (at(p) - at(a)).squaredNorm() < (at(q) - at(a)).squaredNorm();
+    });
+    const auto area = [&](int node) { return (at(far) - at(a)).cross(at(node) - at(a)).norm(); };
+    const int wide = *std::max_element(loop.begin(), loop.end(),
+                                       [&](int p, int q) { return area(p) < area(q); });
+    ConstraintRow row;
+    row.face = face;
+    row.keeps_normal = keeps_normal[u];
+    row.scale = area(wide);
+    if (row.keeps_normal) {
+      row.normal = face_planes(initial_.block_vertices[face.block],
+                               {faces_[face.block][face.face]}).front().normal;
+    }
+    const double tolerance = kRelativeRowTolerance * (at(far) - at(a)).norm() +
+                             8.0 * std::numeric_limits<double>::epsilon() * magnitude;
+    const auto add_row = [&](int node) {
+      row.nodes = row.keeps_normal ? std::array<int, 4>{a, node, -1, -1}
+                                   : std::array<int, 4>{a, far, wide, node};
+      rows_.push_back(row);
+      tolerances.push_back(tolerance);
+    };
+    for (int node : loop) {
+      if (node != a && (row.keeps_normal || (node != far && node != wide))) add_row(node);
+    }
+
+    // Positions of other blocks (or free points) lying on the face stay on
+    // it: T-junctions, a block standing inside a larger face, an anchor.
+    std::vector<Vec3> corners;
+    Box3 extent;
+    for (int node : loop) {
+      corners.push_back(at(node));
+      extent.add(at(node));
+    }
+    const PlaneFrame frame = PlaneFrame::from_normal(at(a), newell_normal(corners).normalized());
+    Loop2 outline;
+    for (const Vec3& corner : corners) outline.push_back(frame.project(corner));
+    const Vec3 margin = Vec3::Constant(weld_tolerance_);
+    grid.for_each_in(extent.lo - margin, extent.hi + margin, [&](int node) {
+      if (own_block_mark[node] == static_cast<int>(u)) return;
+      if (std::abs(frame.distance(at(node))) > weld_tolerance_) return;
+      if (!covers(outline, frame.project(at(node)), weld_tolerance_)) return;
+      add_row(node);
+    });
   }
   tolerances_ = Eigen::Map<const Eigen::VectorXd>(tolerances.data(), tolerances.size());
 }

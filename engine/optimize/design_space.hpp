@@ -11,8 +11,9 @@
 //    its first variable and a 3x3 basis (identity, the mirror reflection, or
 //    two in-plane axes), so x = x0 + B z and B^T g cost O(model size).
 //  - Planar faces and kept normals are equations c(x0 + B z) = 0 (c_i is the
-//    distance, in metres, of one face vertex from the plane of three others,
-//    or from the plane with the kept normal). They are nonlinear, and no
+//    distance, in metres, of one face vertex, or of another block's vertex
+//    lying on the face, from the plane of three face vertices, or from the
+//    plane with the kept normal). They are nonlinear, and no
 //    linear parameterisation keeps faces that share vertices planar, so they
 //    are kept by a chart (PlanarChart): an exact, smooth map from z to the
 //    constraint set. The chart projects z along the constraint normals of a
@@ -79,8 +80,11 @@ struct MirrorPlane {
 };
 
 struct DesignConstraints {
-  // Positions closer than this (m) are welded: they move together, so
-  // contacts between blocks stay closed. Default: 1e-9 x the model size.
+  // Positions closer than this (m) are welded: they move together. A
+  // position this close to another block's face (a T-junction, a block
+  // standing inside a larger face, a cable anchor) stays in that face's
+  // plane. So contacts between blocks stay closed. Default: 1e-9 x the
+  // model size.
   std::optional<double> weld_tolerance;
   // Blocks that never move (e.g. supports); anything welded to them is fixed.
   std::vector<int> fixed_blocks;
@@ -144,7 +148,8 @@ public:
 
   // The constraint equations c(x0 + B z) = 0 (m), one row per face vertex
   // beyond the three that fix a face's plane (one per vertex but the first
-  // for kept normals); faces shared by welded blocks count once.
+  // for kept normals) and per other position lying on the face; faces
+  // shared by welded blocks count once.
   int constraint_count() const { return static_cast<int>(rows_.size()); }
   Eigen::VectorXd constraint_values(const Eigen::VectorXd& z) const;
   // d c / d z, constraint_count() x variable_count(), sparse.

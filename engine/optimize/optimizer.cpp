@@ -227,10 +227,10 @@ private:
     } catch (const GeometryError& e) {
       trial.admissible = false;
       trial.rejection = e.what();
-      return trial;
     } catch (const std::exception& e) {
       throw Stop{OptimizeStatus::evaluation_failed, std::string("evaluation failed: ") + e.what()};
     }
+    last_rejection_ = trial.rejection;
     if (trial.admissible && (!std::isfinite(trial.value) || !trial.gradient.allFinite())) {
       throw Stop{OptimizeStatus::evaluation_failed,
                  "evaluation failed: the objective returned a non-finite value or gradient"};
@@ -301,10 +301,15 @@ private:
         } else {
           run_lbfgs();
         }
-        throw Stop{OptimizeStatus::converged, "converged: the gradient vanished"};
+        // LBFGS++ returns by itself only when the gradient is lost in rounding.
+        throw Stop{OptimizeStatus::converged, "converged: the gradient is below rounding"};
       } catch (const std::exception& e) {
         if (settings_.method == OptimizeMethod::gradient || history_.size() == accepted_before) {
-          throw Stop{OptimizeStatus::line_search_failed, std::string("line search failed: ") + e.what()};
+          std::string message = std::string("line search failed: ") + e.what();
+          if (!last_rejection_.empty()) {
+            message += " (the last trial design was rejected: " + last_rejection_ + ")";
+          }
+          throw Stop{OptimizeStatus::line_search_failed, message};
         }
         problem_.recenter(current_);
         v_ = current_.point;
@@ -312,13 +317,13 @@ private:
     }
   }
 
-  // The scale of v that makes the first step of length initial_step: its
-  // largest component moves by that much (the next steps are L-BFGS's own).
+  // The scale of v that makes L-BFGS's first step (a unit step along the
+  // normalised gradient in w = v / scale) initial_step long in its largest
+  // component. Restarts use it too: a scale from a short last step would
+  // shrink gradients in w below the rounding of w.
   double first_step_scale() const {
-    const double last = history_.size() > 1 ? history_.back().step : 0.0;
-    const double length = last > 0.0 ? last : initial_step_;
     const Eigen::VectorXd& g = current_.gradient;
-    return length * g.norm() / g.cwiseAbs().maxCoeff();
+    return initial_step_ * g.norm() / g.cwiseAbs().maxCoeff();
   }
 
   // Steepest descent in v, projected onto the bounds, with backtracking; the
@@ -336,8 +341,8 @@ private:
         }
         const Eigen::VectorXd v =
             (v_ - length * g).cwiseMax(problem_.lower()).cwiseMin(problem_.upper());
+        if (v == v_) throw std::runtime_error("the steps became too short to change the design");
         const double predicted = g.dot(v - v_);
-        if (!(predicted < 0.0)) throw std::runtime_error("the bounds block every descent");
         const Trial next = evaluate(v);
         if (next.admissible && next.value <= current_.value + kArmijo * predicted) {
           accept(v, next);
@@ -385,8 +390,10 @@ private:
     Eigen::VectorXd w = objective.start();
     double value = 0.0;
     LBFGSpp::LBFGSBParam<double> param;
-    param.epsilon = 0.0;  // stopping is accept()'s business
+    // Stopping is accept()'s business.
+    param.epsilon = 0.0;
     param.epsilon_rel = 0.0;
+    param.past = 0;
     param.max_linesearch = kMaxLineSearchTrials;
     param.ftol = kArmijo;
     LBFGSpp::LBFGSBSolver<double, ArmijoBoxLineSearch> solver(param);
@@ -402,6 +409,7 @@ private:
   Eigen::VectorXd v_;
   Trial current_;
   std::vector<OptimizeStep> history_;
+  std::string last_rejection_;  // why the last evaluated design was rejected, if it was
   std::exception_ptr callback_error_;
 };
 

@@ -1,3 +1,4 @@
+#include <iostream>
 // The design space's constraints and the optimisers, on synthetic objectives
 // (weighted squared distances of positions to targets, exact gradients)
 // whose constrained minimisers are known in closed form.
@@ -395,6 +396,7 @@ TEST(Optimizer, EveryEvaluatedDesignHasPlanarFaces) {
         settings);
     EXPECT_EQ(calls, result.evaluations);
     EXPECT_LT(worst, 1e-10);
+    std::cout << "planar " << status_name(result.status) << " it=" << result.history.size() << " ev=" << result.evaluations << " " << result.message << " v0=" << result.history.front().value << " v=" << result.history.back().value << "\n";
     EXPECT_LT(result.history.back().value, 0.5 * result.history.front().value) << result.message;
     for (int k = 0; k < 8; ++k) {
       EXPECT_EQ(result.design.block_vertices[3][k], model.design.block_vertices[3][k]);
@@ -430,6 +432,7 @@ TEST(Optimizer, MinBlockVolumeHoldsAtEveryEvaluation) {
         },
         settings);
     EXPECT_GE(smallest, 0.5);
+    std::cout << "minvol " << status_name(result.status) << " it=" << result.history.size() << " ev=" << result.evaluations << " " << result.message << " vol=" << volume_of(model, result.design, box) - 0.5 << "\n";
     const double volume = volume_of(model, result.design, box);
     EXPECT_GE(volume, 0.5);
     EXPECT_LT(volume, 0.501) << result.message;  // pressed against the bound
@@ -495,6 +498,7 @@ TEST(Optimizer, LbfgsNeedsFewerIterationsThanGradientDescentWhenIllConditioned) 
   EXPECT_LT(lbfgs.history.size(), 30u);
   EXPECT_GT(gradient.history.size(), 3 * lbfgs.history.size()) << gradient.message;
   EXPECT_LT(lbfgs.evaluations, gradient.evaluations);
+  std::cout << "illcond " << lbfgs.history.size() << " " << lbfgs.evaluations << " " << gradient.history.size() << " " << gradient.evaluations << " " << gradient.message << "\n";
 }
 
 TEST(Optimizer, HistoryRecordsEveryAcceptedIterate) {
@@ -546,6 +550,7 @@ TEST(Optimizer, GeometryErrorsShortenTheStepAndOtherErrorsEndTheRun) {
       },
       precise(OptimizeMethod::gradient));
   EXPECT_LE(walled.design.points[p].x(), 0.3);
+  std::cout << "walled " << walled.message << " ev=" << walled.evaluations << "\n";
   EXPECT_GT(walled.design.points[p].x(), 0.29) << walled.message;
 
   int calls = 0;
@@ -594,6 +599,7 @@ TEST(Optimizer, ParametersStayWithinTheirBounds) {
           },
           settings);
       EXPECT_TRUE(inside);
+      std::cout << "rosen " << status_name(result.status) << " it=" << result.history.size() << " ev=" << result.evaluations << " " << result.message << " " << result.parameters.transpose() << "\n";
       for (size_t i = 1; i < result.history.size(); ++i) {
         EXPECT_LT(result.history[i].value, result.history[i - 1].value);
       }
