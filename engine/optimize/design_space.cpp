@@ -1,12 +1,13 @@
 #include "optimize/design_space.hpp"
 
-#include <Eigen/SparseLU>
-#include <Eigen/SparseQR>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <set>
+#include <iomanip>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -18,19 +19,34 @@ namespace ashlar {
 namespace {
 
 constexpr double kRelativeWeldTolerance = 1e-9;  // of the model size
-// Newton's target for a constraint row, of its face's size: far below the
-// 1e-10 planarity that designs promise, far above rounding.
+// Unit normals this parallel (dot product) are parallel: about 0.08 degrees.
+constexpr double kParallel = 1.0 - 1e-6;
+// The projection's target for a constraint row, of its face's size: far
+// below the 1e-10 planarity that designs promise, far above rounding.
 constexpr double kRelativeRowTolerance = 1e-12;
 // A design counts as planar when no row exceeds this many row tolerances.
 constexpr double kRowSlack = 100.0;
-// Constraint gradients shorter than this fraction of the longest, after
-// removing their components along earlier ones, are redundant.
-constexpr double kRankThreshold = 1e-9;
+// A constraint row whose squared gradient shrinks below this fraction once
+// its components along earlier rows are removed is redundant; the shift
+// (of the largest squared gradient) is far below that, far above rounding.
+constexpr double kRankThreshold = 1e-7;
+constexpr double kPivotShift = 1e-15;
+// Rows weighing less than this fraction of the largest in a dependency are
+// not part of it.
+constexpr double kInvolved = 1e-6;
+// A projection's Newton steps must at least halve the residual, within a
+// limit; otherwise the point is too far from the chart's base.
+constexpr double kMinContraction = 0.5;
 constexpr int kMaxNewtonIterations = 20;
+// Relative residuals of the linear solves: the target, and the worst that
+// counts as rounding (ill-conditioned charts stall between the two).
+constexpr double kExactSolve = 1e-14;
+constexpr double kRoundedSolve = 1e-9;
+constexpr int kMaxKrylovIterations = 200;
 
 std::string number(double value) {
   std::ostringstream text;
-  text << value;
+  text << std::setprecision(10) << value;
   return text.str();
 }
 
@@ -47,8 +63,7 @@ void check_block_index(int block, const DesignPoint& design, const std::string& 
   const int blocks = static_cast<int>(design.block_vertices.size());
   if (block < 0 || block >= blocks) {
     throw InvalidArgument(what + ": block " + std::to_string(block + 1) +
-                          " does not exist (the design has " + std::to_string(blocks) +
-                          " blocks)");
+                          " does not exist (the design has " + std::to_string(blocks) + " blocks)");
   }
 }
 
@@ -65,8 +80,8 @@ void check_position(const PositionRef& ref, const DesignPoint& design, const std
   const int vertices = static_cast<int>(design.block_vertices[ref.block].size());
   if (ref.index < 0 || ref.index >= vertices) {
     throw InvalidArgument(what + ": block " + std::to_string(ref.block + 1) + " has no vertex " +
-                          std::to_string(ref.index + 1) + " (it has " +
-                          std::to_string(vertices) + ")");
+                          std::to_string(ref.index + 1) + " (it has " + std::to_string(vertices) +
+                          ")");
   }
 }
 
@@ -145,7 +160,8 @@ private:
   };
   Key key(const Vec3& p) const {
     const Vec3 q = (p - origin_) / cell_;
-    return {static_cast<std::int64_t>(std::floor(q.x())), static_cast<std::int64_t>(std::floor(q.y())),
+    return {static_cast<std::int64_t>(std::floor(q.x())),
+            static_cast<std::int64_t>(std::floor(q.y())),
             static_cast<std::int64_t>(std::floor(q.z()))};
   }
 
@@ -154,21 +170,57 @@ private:
   std::unordered_map<Key, std::vector<int>, KeyHash> cells_;
 };
 
-// True when p lies inside the 2D polygon or within `tolerance` of its outline.
-bool covers(const Loop2& polygon, const Vec2& p, double tolerance) {
+enum class Placement { outside, on_outline, inside };
+
+// Where p lies relative to a 2D polygon, `tolerance` counting as on it.
+Placement locate(const Loop2& polygon, const Vec2& p, double tolerance) {
   bool inside = false;
   for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
     const Vec2& a = polygon[i];
     const Vec2& b = polygon[j];
     const Vec2 edge = b - a;
     const double along = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
-    if ((a + along * edge - p).norm() <= tolerance) return true;
+    if ((a + along * edge - p).norm() <= tolerance) return Placement::on_outline;
     if ((a.y() > p.y()) != (b.y() > p.y()) &&
         p.x() < a.x() + (p.y() - a.y()) * edge.x() / edge.y()) {
       inside = !inside;
     }
   }
-  return inside;
+  return inside ? Placement::inside : Placement::outside;
+}
+
+using NormalFactor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+
+// The rows of `jacobian` that do not depend on rows before them, found by a
+// sparse LDL^T of jacobian jacobian^T: a dependent row leaves a pivot at
+// rounding level, and a small shift keeps the factorisation going past it.
+// `factor` keeps that shifted factorisation.
+std::vector<int> independent_rows(const Eigen::SparseMatrix<double>& jacobian,
+                                  NormalFactor& factor) {
+  const Eigen::SparseMatrix<double> normal = jacobian * jacobian.transpose();
+  const Eigen::VectorXd squared_norms = normal.diagonal();
+  std::vector<int> rows;
+  if (normal.rows() == 0 || squared_norms.maxCoeff() == 0.0) return rows;
+  const double shift = kPivotShift * squared_norms.maxCoeff();
+  factor.setShift(shift);
+  factor.compute(normal);
+  if (factor.info() != Eigen::Success) {
+    throw InvalidArgument("design: the constraint Jacobian could not be factorised");
+  }
+  for (Eigen::Index k = 0; k < normal.rows(); ++k) {
+    const int row = factor.permutationPinv().indices()[k];
+    if (factor.vectorD()[k] - shift > kRankThreshold * squared_norms[row]) rows.push_back(row);
+  }
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+Eigen::SparseMatrix<double> selection(const std::vector<int>& rows, int count) {
+  std::vector<Eigen::Triplet<double>> ones;
+  for (size_t k = 0; k < rows.size(); ++k) ones.emplace_back(static_cast<int>(k), rows[k], 1.0);
+  Eigen::SparseMatrix<double> select(static_cast<int>(rows.size()), count);
+  select.setFromTriplets(ones.begin(), ones.end());
+  return select;
 }
 
 // Two unit vectors spanning the plane with unit normal n; axis-aligned when
@@ -184,13 +236,22 @@ Mat3 plane_basis(const Vec3& n) {
 
 }  // namespace
 
+// Every face once (welded blocks share contact faces), with every node on it.
+struct DesignSpace::FaceSet {
+  std::vector<FaceRef> faces;
+  std::vector<std::vector<int>> nodes;  // sorted
+  std::vector<Vec3> areas;              // Newell vectors: normal times twice the area
+  std::vector<char> keeps_normal;
+};
+
 DesignSpace::DesignSpace(std::vector<std::vector<FaceLoop>> faces, DesignPoint initial,
                          DesignConstraints constraints)
     : faces_(std::move(faces)), initial_(std::move(initial)), constraints_(std::move(constraints)) {
   check_input();
   weld();
   build_variables();
-  build_constraint_rows();
+  position_variable_count_ = variable_count_;
+  build_plane_groups();
   find_start();
 }
 
@@ -204,8 +265,7 @@ void DesignSpace::check_input() const {
     const int vertices = static_cast<int>(initial_.block_vertices[b].size());
     for (int k = 0; k < vertices; ++k) {
       if (!initial_.block_vertices[b][k].allFinite()) {
-        throw InvalidArgument("design: " + describe(PositionRef::vertex(b, k)) +
-                              " is not finite");
+        throw InvalidArgument("design: " + describe(PositionRef::vertex(b, k)) + " is not finite");
       }
     }
     for (size_t f = 0; f < faces_[b].size(); ++f) {
@@ -241,7 +301,9 @@ void DesignSpace::check_input() const {
     for (const PositionRef& ref : c.move_together[g]) check_position(ref, initial_, what);
   }
   if (c.mirror) {
-    if (!c.mirror->point.allFinite()) throw InvalidArgument("mirror: the plane's point must be finite");
+    if (!c.mirror->point.allFinite()) {
+      throw InvalidArgument("mirror: the plane's point must be finite");
+    }
     if (!c.mirror->normal.allFinite() || c.mirror->normal.norm() == 0.0) {
       throw InvalidArgument("mirror: the plane's normal must be a finite, non-zero vector");
     }
@@ -343,7 +405,9 @@ void DesignSpace::build_variables() {
   DisjointSets classes(count);
   for (const auto& group : constraints_.move_together) {
     const int first = node_of_position_[position_index(group.front())];
-    for (const PositionRef& ref : group) classes.unite(first, node_of_position_[position_index(ref)]);
+    for (const PositionRef& ref : group) {
+      classes.unite(first, node_of_position_[position_index(ref)]);
+    }
   }
   std::vector<char> fixed_node(count, 0);
   for (int block : constraints_.fixed_blocks) {
@@ -351,11 +415,14 @@ void DesignSpace::build_variables() {
       fixed_node[node_of_position_[i]] = 1;
     }
   }
-  for (const PositionRef& ref : constraints_.fixed) fixed_node[node_of_position_[position_index(ref)]] = 1;
+  for (const PositionRef& ref : constraints_.fixed) {
+    fixed_node[node_of_position_[position_index(ref)]] = 1;
+  }
   std::vector<char> fixed_class(count, 0);
   for (int g = 0; g < count; ++g) fixed_class[classes.find(g)] |= fixed_node[g];
 
-  std::vector<int> partner(count, -1);
+  std::vector<int>& partner = partner_;
+  partner.assign(count, -1);
   Mat3 reflection = Mat3::Identity();
   Mat3 in_plane = Mat3::Identity();
   if (constraints_.mirror) {
@@ -428,100 +495,293 @@ void DesignSpace::build_variables() {
   }
 }
 
-void DesignSpace::build_constraint_rows() {
-  const double magnitude = [&] {
-    double largest = 0.0;
-    for (const Node& node : nodes_) largest = std::max(largest, node.initial.cwiseAbs().maxCoeff());
-    return largest;
-  }();
+bool DesignSpace::spans_plane(const std::vector<int>& nodes) const {
+  if (nodes.size() < 3) return false;
   const auto at = [&](int node) -> const Vec3& { return nodes_[node].initial; };
-  // Nodes in cells of about one node each, to find those lying on a face.
-  const double cell = std::max(model_size_ / std::cbrt(static_cast<double>(nodes_.size())),
-                               2.0 * weld_tolerance_);
+  const Vec3& a = at(nodes[0]);
+  const int far = *std::max_element(nodes.begin(), nodes.end(), [&](int p, int q) {
+    return (at(p) - a).squaredNorm() < (at(q) - a).squaredNorm();
+  });
+  const Vec3 line = at(far) - a;
+  if (line.norm() <= weld_tolerance_) return false;
+  double widest = 0.0;
+  for (int node : nodes) widest = std::max(widest, line.cross(at(node) - a).norm() / line.norm());
+  return widest > weld_tolerance_;
+}
+
+void DesignSpace::build_plane_groups() {
+  const auto at = [&](int node) -> const Vec3& { return nodes_[node].initial; };
+  const int node_count = static_cast<int>(nodes_.size());
+
+  // Faces once each (welded blocks share contact faces), as node loops.
+  std::vector<FaceRef> faces;
+  std::vector<std::vector<int>> loops;
+  std::map<std::vector<int>, int> face_of_nodes;
+  for (int b = 0; b < static_cast<int>(faces_.size()); ++b) {
+    for (int f = 0; f < static_cast<int>(faces_[b].size()); ++f) {
+      std::vector<int> loop;
+      for (int index : faces_[b][f]) loop.push_back(node_of_position_[block_offset_[b] + index]);
+      std::vector<int> key = loop;
+      std::sort(key.begin(), key.end());
+      if (!face_of_nodes.emplace(key, static_cast<int>(faces.size())).second) continue;
+      faces.push_back(FaceRef{b, f});
+      loops.push_back(loop);
+    }
+  }
+  const int face_count = static_cast<int>(faces.size());
+
+  // Every node on each face: its loop, positions of other blocks (or free
+  // points) inside it, and vertices on its outline of faces in contact with
+  // it (opposite normals), found among nodes bucketed about one a cell. A
+  // vertex on the outline of a face it only lies flush with is left free:
+  // keeping it in that plane is no contact, and would make the constraints
+  // singular wherever such faces are coplanar.
+  std::vector<std::vector<Vec3>> normals_of_node(node_count);
+  for (int b = 0; b < static_cast<int>(faces_.size()); ++b) {
+    const std::vector<FacePlane> planes = face_planes(initial_.block_vertices[b], faces_[b]);
+    for (size_t f = 0; f < faces_[b].size(); ++f) {
+      for (int index : faces_[b][f]) {
+        normals_of_node[node_of_position_[block_offset_[b] + index]].push_back(planes[f].normal);
+      }
+    }
+  }
   Box3 bounds;
   for (const Node& node : nodes_) bounds.add(node.initial);
-  PointGrid grid(bounds.lo, cell);
-  for (int g = 0; g < static_cast<int>(nodes_.size()); ++g) grid.insert(at(g), g);
-
-  // Faces of welded blocks that share all their nodes are one constraint;
-  // a kept normal wins over plain planarity.
-  std::vector<FaceRef> unique_faces;
-  std::vector<char> keeps_normal;
-  std::set<std::vector<int>> seen;
-  const auto node_loop = [&](const FaceRef& face) {
-    std::vector<int> loop;
-    for (int index : faces_[face.block][face.face]) {
-      loop.push_back(node_of_position_[block_offset_[face.block] + index]);
-    }
-    return loop;
-  };
-  const auto add_face = [&](const FaceRef& face, bool keep) {
-    std::vector<int> loop = node_loop(face);
-    std::sort(loop.begin(), loop.end());
-    if (!seen.insert(loop).second) return;
-    unique_faces.push_back(face);
-    keeps_normal.push_back(keep);
-  };
-  for (const FaceRef& face : constraints_.keep_normal) add_face(face, true);
-  for (int b = 0; b < static_cast<int>(faces_.size()); ++b) {
-    for (int f = 0; f < static_cast<int>(faces_[b].size()); ++f) add_face(FaceRef{b, f}, false);
-  }
-
-  std::vector<double> tolerances;
-  std::vector<int> own_block_mark(nodes_.size(), -1);
-  for (size_t u = 0; u < unique_faces.size(); ++u) {
-    const FaceRef face = unique_faces[u];
-    const std::vector<int> loop = node_loop(face);
+  PointGrid grid(bounds.lo, std::max(model_size_ / std::cbrt(static_cast<double>(node_count)),
+                                     2.0 * weld_tolerance_));
+  for (int g = 0; g < node_count; ++g) grid.insert(at(g), g);
+  std::vector<std::vector<int>> on_face(face_count);
+  std::vector<Vec3> face_area(face_count);  // Newell: direction and twice the area
+  std::vector<int> own_block_mark(node_count, -1);
+  for (int f = 0; f < face_count; ++f) {
+    const FaceRef face = faces[f];
     for (int i = block_offset_[face.block]; i < block_offset_[face.block + 1]; ++i) {
-      own_block_mark[node_of_position_[i]] = static_cast<int>(u);
+      own_block_mark[node_of_position_[i]] = f;
     }
-    // The widest triangle of the face fixes its plane: a, the vertex
-    // farthest from a, then the vertex farthest from that line.
-    const int a = loop[0];
-    const int far = *std::max_element(loop.begin(), loop.end(), [&](int p, int q) {
-      return (at(p) - at(a)).squaredNorm() < (at(q) - at(a)).squaredNorm();
-    });
-    const auto area = [&](int node) { return (at(far) - at(a)).cross(at(node) - at(a)).norm(); };
-    const int wide = *std::max_element(loop.begin(), loop.end(),
-                                       [&](int p, int q) { return area(p) < area(q); });
-    ConstraintRow row;
-    row.face = face;
-    row.keeps_normal = keeps_normal[u];
-    row.scale = area(wide);
-    if (row.keeps_normal) {
-      row.normal = face_planes(initial_.block_vertices[face.block],
-                               {faces_[face.block][face.face]}).front().normal;
-    }
-    const double tolerance = kRelativeRowTolerance * (at(far) - at(a)).norm() +
-                             8.0 * std::numeric_limits<double>::epsilon() * magnitude;
-    const auto add_row = [&](int node) {
-      row.nodes = row.keeps_normal ? std::array<int, 4>{a, node, -1, -1}
-                                   : std::array<int, 4>{a, far, wide, node};
-      rows_.push_back(row);
-      tolerances.push_back(tolerance);
-    };
-    for (int node : loop) {
-      if (node != a && (row.keeps_normal || (node != far && node != wide))) add_row(node);
-    }
-
-    // Positions of other blocks (or free points) lying on the face stay on
-    // it: T-junctions, a block standing inside a larger face, an anchor.
     std::vector<Vec3> corners;
     Box3 extent;
-    for (int node : loop) {
+    for (int node : loops[f]) {
       corners.push_back(at(node));
       extent.add(at(node));
     }
-    const PlaneFrame frame = PlaneFrame::from_normal(at(a), newell_normal(corners).normalized());
+    face_area[f] = newell_normal(corners);
+    const Vec3 normal = face_area[f].normalized();
+    const PlaneFrame frame = PlaneFrame::from_normal(corners[0], normal);
     Loop2 outline;
     for (const Vec3& corner : corners) outline.push_back(frame.project(corner));
+    const auto in_contact = [&](int node) {
+      return std::any_of(normals_of_node[node].begin(), normals_of_node[node].end(),
+                         [&](const Vec3& n) { return n.dot(normal) <= -kParallel; });
+    };
+    on_face[f] = loops[f];
     const Vec3 margin = Vec3::Constant(weld_tolerance_);
     grid.for_each_in(extent.lo - margin, extent.hi + margin, [&](int node) {
-      if (own_block_mark[node] == static_cast<int>(u)) return;
+      if (own_block_mark[node] == f) return;
       if (std::abs(frame.distance(at(node))) > weld_tolerance_) return;
-      if (!covers(outline, frame.project(at(node)), weld_tolerance_)) return;
-      add_row(node);
+      const Placement placement = locate(outline, frame.project(at(node)), weld_tolerance_);
+      if (placement == Placement::inside ||
+          (placement == Placement::on_outline && in_contact(node))) {
+        on_face[f].push_back(node);
+      }
     });
+    std::sort(on_face[f].begin(), on_face[f].end());
+  }
+
+  FaceSet set;
+  set.faces = std::move(faces);
+  set.nodes = std::move(on_face);
+  set.areas = std::move(face_area);
+  set.keeps_normal.assign(face_count, 0);
+  for (const FaceRef& face : constraints_.keep_normal) {
+    std::vector<int> key;
+    for (int index : faces_[face.block][face.face]) {
+      key.push_back(node_of_position_[block_offset_[face.block] + index]);
+    }
+    std::sort(key.begin(), key.end());
+    set.keeps_normal[face_of_nodes.at(key)] = 1;
+  }
+
+  // Faces with three non-collinear nodes in common lie in one plane.
+  DisjointSets merged(face_count);
+  std::vector<std::vector<int>> faces_of_node(node_count);
+  for (int f = 0; f < face_count; ++f) {
+    for (int node : set.nodes[f]) faces_of_node[node].push_back(f);
+  }
+  for (int f = 0; f < face_count; ++f) {
+    std::map<int, std::vector<int>> common;
+    for (int node : set.nodes[f]) {
+      for (int g : faces_of_node[node]) {
+        if (g > f) common[g].push_back(node);
+      }
+    }
+    for (const auto& [g, nodes] : common) {
+      if (spans_plane(nodes)) merged.unite(f, g);
+    }
+  }
+  // So do coplanar faces whose equations are dependent at the start: a
+  // flat strip of faces sharing edges, held at both ends (the side of an
+  // arch between fixed blocks), can stay flat or fold, and its equations
+  // are singular where the two meet. Flat is the design's reading.
+  for (bool changed = true; changed;) {
+    std::vector<int> root(face_count);
+    for (int f = 0; f < face_count; ++f) root[f] = merged.find(f);
+    form_groups(set, root);
+    changed = false;
+    for (const auto& [f, g] : dependent_coplanar_faces()) changed |= merged.unite(f, g);
+  }
+}
+
+void DesignSpace::form_groups(const FaceSet& set, const std::vector<int>& root) {
+  const auto at = [&](int node) -> const Vec3& { return nodes_[node].initial; };
+  groups_.clear();
+  rows_.clear();
+  variable_count_ = position_variable_count_;
+  std::vector<int> group_of_root(root.size(), -1);
+  std::vector<char> keeps_normal;
+  for (size_t f = 0; f < root.size(); ++f) {
+    int& group = group_of_root[root[f]];
+    if (group < 0) {
+      group = static_cast<int>(groups_.size());
+      groups_.push_back(PlaneGroup{});
+      groups_.back().source = static_cast<int>(f);
+      keeps_normal.push_back(0);
+    }
+    PlaneGroup& plane = groups_[group];
+    plane.nodes.insert(plane.nodes.end(), set.nodes[f].begin(), set.nodes[f].end());
+    // The group's normal and name come from its kept-normal face, or else
+    // from its widest face.
+    if (set.keeps_normal[f] && !keeps_normal[group]) {
+      keeps_normal[group] = 1;
+      plane.source = static_cast<int>(f);
+    } else if (!keeps_normal[group] && set.areas[f].norm() > set.areas[plane.source].norm()) {
+      plane.source = static_cast<int>(f);
+    }
+  }
+  for (PlaneGroup& plane : groups_) {
+    std::sort(plane.nodes.begin(), plane.nodes.end());
+    plane.nodes.erase(std::unique(plane.nodes.begin(), plane.nodes.end()), plane.nodes.end());
+    plane.face = set.faces[plane.source];
+    // Outward, as the face is oriented: a kept normal keeps its sign.
+    const FaceRef face = plane.face;
+    plane.normal =
+        face_planes(initial_.block_vertices[face.block], {faces_[face.block][face.face]})[0].normal;
+    for (int node : plane.nodes) plane.center += at(node);
+    plane.center /= static_cast<double>(plane.nodes.size());
+    plane.size = 0.0;
+    for (int node : plane.nodes) {
+      plane.size = std::max(plane.size, (at(node) - plane.center).norm());
+    }
+  }
+  assign_plane_variables(keeps_normal);
+}
+
+std::vector<std::pair<int, int>> DesignSpace::dependent_coplanar_faces() const {
+  std::vector<std::pair<int, int>> pairs;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> jacobian =
+      constraint_jacobian(Eigen::VectorXd::Zero(variable_count_));
+  NormalFactor factor;
+  const std::vector<int> kept = independent_rows(jacobian, factor);
+  if (static_cast<int>(kept.size()) == constraint_count()) return pairs;
+  const Eigen::SparseMatrix<double> kept_jacobian = selection(kept, constraint_count()) * jacobian;
+  factor.compute(kept_jacobian * kept_jacobian.transpose());
+  const auto coplanar = [&](const PlaneGroup& a, const PlaneGroup& b) {
+    return std::abs(a.normal.dot(b.normal)) >= kParallel &&
+           std::abs(a.normal.dot(b.center - a.center)) <= weld_tolerance_;
+  };
+  for (int row = 0, next = 0; row < constraint_count(); ++row) {
+    if (next < static_cast<int>(kept.size()) && kept[next] == row) {
+      ++next;
+      continue;
+    }
+    // The row as a combination of the kept rows: their groups are involved.
+    const Eigen::VectorXd gradient = jacobian.row(row).transpose();
+    const Eigen::VectorXd weights = factor.solve(kept_jacobian * gradient);
+    const PlaneGroup& own = groups_[rows_[row].group];
+    for (Eigen::Index k = 0; k < weights.size(); ++k) {
+      const PlaneGroup& other = groups_[rows_[kept[k]].group];
+      if (std::abs(weights[k]) > kInvolved * weights.cwiseAbs().maxCoeff() && &other != &own &&
+          coplanar(own, other)) {
+        pairs.emplace_back(own.source, other.source);
+      }
+    }
+  }
+  return pairs;
+}
+
+void DesignSpace::assign_plane_variables(const std::vector<char>& keeps_normal) {
+  const auto at = [&](int node) -> const Vec3& { return nodes_[node].initial; };
+  std::map<std::vector<int>, int> group_of_nodes;
+  for (size_t g = 0; g < groups_.size(); ++g) {
+    group_of_nodes.emplace(groups_[g].nodes, static_cast<int>(g));
+  }
+  const Vec3 mirror_normal =
+      constraints_.mirror ? constraints_.mirror->normal.normalized() : Vec3::Zero();
+  double magnitude = 0.0;  // of coordinates, for rounding
+  for (const Node& node : nodes_) {
+    magnitude = std::max(magnitude, node.initial.cwiseAbs().maxCoeff());
+  }
+  std::vector<double> tolerances;
+
+  for (size_t g = 0; g < groups_.size(); ++g) {
+    PlaneGroup& plane = groups_[g];
+    // A mirror image of a group whose plane is already a variable keeps its
+    // faces planar by symmetry; a self-symmetric plane only turns about the
+    // mirror normal.
+    int image = -1;
+    if (constraints_.mirror) {
+      std::vector<int> mirrored;
+      for (int node : plane.nodes) mirrored.push_back(partner_[node]);
+      std::sort(mirrored.begin(), mirrored.end());
+      const auto found = group_of_nodes.find(mirrored);
+      if (mirrored.front() >= 0 && found != group_of_nodes.end()) image = found->second;
+    }
+    if (image >= 0 && image < static_cast<int>(g)) continue;
+    const bool self_symmetric = image == static_cast<int>(g);
+    if (self_symmetric && mirror_normal.cross(plane.normal).norm() < 0.5) {
+      continue;  // the mirror plane
+    }
+
+    std::vector<int> fixed;
+    for (int node : plane.nodes) {
+      if (nodes_[node].variable_count == 0) fixed.push_back(node);
+    }
+    const bool determined = spans_plane(fixed) || (keeps_normal[g] && !fixed.empty());
+    if (!determined) {
+      if (self_symmetric) {
+        plane.tilts.col(0) = mirror_normal.cross(plane.normal).normalized();
+        plane.tilt_count = 1;
+      } else if (!keeps_normal[g]) {
+        plane.tilts = plane_basis(plane.normal);
+        plane.tilt_count = 2;
+      }
+      plane.moves = true;
+      plane.first_variable = variable_count_;
+      variable_count_ += plane.tilt_count + 1;
+    }
+
+    // One row per node; fixed nodes only while they still pin the plane's
+    // variables (their rows depend on nothing else).
+    std::vector<Eigen::Vector3d> pinned;  // orthonormalised plane parts of kept fixed rows
+    const double tolerance = kRelativeRowTolerance * plane.size +
+                             8.0 * std::numeric_limits<double>::epsilon() * magnitude;
+    for (int node : plane.nodes) {
+      if (nodes_[node].variable_count == 0) {
+        if (determined) continue;
+        Eigen::Vector3d part = Eigen::Vector3d::Zero();
+        for (int k = 0; k < plane.tilt_count; ++k) {
+          part[k] = (at(node) - plane.center).dot(plane.tilts.col(k)) / plane.size;
+        }
+        part[plane.tilt_count] = -1.0;
+        const double length = part.norm();
+        for (const Eigen::Vector3d& earlier : pinned) part -= part.dot(earlier) * earlier;
+        if (part.norm() <= 1e-6 * length) continue;
+        pinned.push_back(part.normalized());
+      } else if (self_symmetric && partner_[node] < node) {
+        continue;  // the same equation as its partner's
+      }
+      rows_.push_back(ConstraintRow{static_cast<int>(g), node});
+      tolerances.push_back(tolerance);
+    }
   }
   tolerances_ = Eigen::Map<const Eigen::VectorXd>(tolerances.data(), tolerances.size());
 }
@@ -539,12 +799,13 @@ void DesignSpace::find_start() {
   if (!why.empty()) throw InvalidArgument("the initial design is not admissible: " + why);
 }
 
-Eigen::VectorXd DesignSpace::lower_bounds() const {
-  return Eigen::VectorXd::Constant(variable_count_, -constraints_.max_displacement);
-}
+Eigen::VectorXd DesignSpace::lower_bounds() const { return -upper_bounds(); }
 
 Eigen::VectorXd DesignSpace::upper_bounds() const {
-  return Eigen::VectorXd::Constant(variable_count_, constraints_.max_displacement);
+  Eigen::VectorXd bounds =
+      Eigen::VectorXd::Constant(variable_count_, std::numeric_limits<double>::infinity());
+  bounds.head(position_variable_count_).setConstant(constraints_.max_displacement);
+  return bounds;
 }
 
 std::vector<Vec3> DesignSpace::node_positions(const Eigen::VectorXd& z) const {
@@ -556,7 +817,9 @@ std::vector<Vec3> DesignSpace::node_positions(const Eigen::VectorXd& z) const {
   positions.reserve(nodes_.size());
   for (const Node& node : nodes_) {
     Vec3 p = node.initial;
-    for (int k = 0; k < node.variable_count; ++k) p += node.basis.col(k) * z[node.first_variable + k];
+    for (int k = 0; k < node.variable_count; ++k) {
+      p += node.basis.col(k) * z[node.first_variable + k];
+    }
     positions.push_back(p);
   }
   return positions;
@@ -592,7 +855,9 @@ Eigen::VectorXd DesignSpace::reduce(const DesignPoint& gradient) const {
   Eigen::VectorXd reduced = Eigen::VectorXd::Zero(variable_count_);
   const auto add = [&](int position, const Vec3& g) {
     const Node& node = nodes_[node_of_position_[position]];
-    for (int k = 0; k < node.variable_count; ++k) reduced[node.first_variable + k] += node.basis.col(k).dot(g);
+    for (int k = 0; k < node.variable_count; ++k) {
+      reduced[node.first_variable + k] += node.basis.col(k).dot(g);
+    }
   };
   for (size_t b = 0; b < faces_.size(); ++b) {
     const auto& vertices = gradient.block_vertices[b];
@@ -602,7 +867,9 @@ Eigen::VectorXd DesignSpace::reduce(const DesignPoint& gradient) const {
                         std::to_string(vertices.size()) + " vertices, expected " +
                         std::to_string(expected));
     }
-    for (size_t k = 0; k < vertices.size(); ++k) add(block_offset_[b] + static_cast<int>(k), vertices[k]);
+    for (size_t k = 0; k < vertices.size(); ++k) {
+      add(block_offset_[b] + static_cast<int>(k), vertices[k]);
+    }
   }
   for (size_t p = 0; p < gradient.points.size(); ++p) {
     add(block_offset_.back() + static_cast<int>(p), gradient.points[p]);
@@ -629,10 +896,11 @@ std::string DesignSpace::rejection(const Eigen::VectorXd& z) const {
       }
     }
   }
+  const Eigen::VectorXd residuals = constraint_values(z);
   for (int r = 0; r < constraint_count(); ++r) {
-    const double off = std::abs(row_value(rows_[r], positions, nullptr));
+    const double off = std::abs(residuals[r]);
     if (off > kRowSlack * tolerances_[r] + start_residuals_[r]) {
-      return describe(rows_[r].face) + " is not planar (a vertex " + number(off) +
+      return describe(groups_[rows_[r].group].face) + " is not planar (a vertex " + number(off) +
              " m off its plane)";
     }
   }
@@ -649,46 +917,43 @@ std::string DesignSpace::rejection(const Eigen::VectorXd& z) const {
   return {};
 }
 
-double DesignSpace::row_value(const ConstraintRow& row, const std::vector<Vec3>& positions,
-                              std::array<Vec3, 4>* gradient) const {
-  const Vec3& a = positions[row.nodes[0]];
-  if (row.keeps_normal) {
-    if (gradient) *gradient = {-row.normal, row.normal, Vec3::Zero(), Vec3::Zero()};
-    return row.normal.dot(positions[row.nodes[1]] - a);
+std::pair<Vec3, double> DesignSpace::plane_at(const PlaneGroup& plane,
+                                              const Eigen::VectorXd& z) const {
+  if (!plane.moves) return {plane.normal, 0.0};
+  Vec3 normal = plane.normal;
+  for (int k = 0; k < plane.tilt_count; ++k) {
+    normal += z[plane.first_variable + k] / plane.size * plane.tilts.col(k);
   }
-  // (i - a) . ((b - a) x (c - a)) / scale: the distance of i from the plane
-  // of a, b, c while that triangle keeps its area.
-  const Vec3 u = positions[row.nodes[1]] - a;
-  const Vec3 v = positions[row.nodes[2]] - a;
-  const Vec3 w = positions[row.nodes[3]] - a;
-  if (gradient) {
-    const Vec3 d_b = v.cross(w) / row.scale, d_c = w.cross(u) / row.scale,
-               d_i = u.cross(v) / row.scale;
-    *gradient = {-(d_b + d_c + d_i), d_b, d_c, d_i};
-  }
-  return w.dot(u.cross(v)) / row.scale;
+  return {normal, z[plane.first_variable + plane.tilt_count]};
 }
 
 Eigen::VectorXd DesignSpace::constraint_values(const Eigen::VectorXd& z) const {
   const std::vector<Vec3> positions = node_positions(z);
   Eigen::VectorXd values(constraint_count());
-  for (int r = 0; r < constraint_count(); ++r) values[r] = row_value(rows_[r], positions, nullptr);
+  for (int r = 0; r < constraint_count(); ++r) {
+    const PlaneGroup& plane = groups_[rows_[r].group];
+    const auto [normal, offset] = plane_at(plane, z);
+    values[r] = normal.dot(positions[rows_[r].node] - plane.center) - offset;
+  }
   return values;
 }
 
 Eigen::SparseMatrix<double> DesignSpace::constraint_jacobian(const Eigen::VectorXd& z) const {
   const std::vector<Vec3> positions = node_positions(z);
   std::vector<Eigen::Triplet<double>> entries;
-  std::array<Vec3, 4> gradient;
   for (int r = 0; r < constraint_count(); ++r) {
-    row_value(rows_[r], positions, &gradient);
-    for (int k = 0; k < 4; ++k) {
-      if (rows_[r].nodes[k] < 0) continue;
-      const Node& node = nodes_[rows_[r].nodes[k]];
-      for (int c = 0; c < node.variable_count; ++c) {
-        entries.emplace_back(r, node.first_variable + c, node.basis.col(c).dot(gradient[k]));
-      }
+    const PlaneGroup& plane = groups_[rows_[r].group];
+    const Node& node = nodes_[rows_[r].node];
+    const Vec3 normal = plane_at(plane, z).first;
+    for (int c = 0; c < node.variable_count; ++c) {
+      entries.emplace_back(r, node.first_variable + c, node.basis.col(c).dot(normal));
     }
+    if (!plane.moves) continue;
+    const Vec3 arm = positions[rows_[r].node] - plane.center;
+    for (int k = 0; k < plane.tilt_count; ++k) {
+      entries.emplace_back(r, plane.first_variable + k, arm.dot(plane.tilts.col(k)) / plane.size);
+    }
+    entries.emplace_back(r, plane.first_variable + plane.tilt_count, -1.0);
   }
   Eigen::SparseMatrix<double> jacobian(constraint_count(), variable_count_);
   jacobian.setFromTriplets(entries.begin(), entries.end());
@@ -697,32 +962,18 @@ Eigen::SparseMatrix<double> DesignSpace::constraint_jacobian(const Eigen::Vector
 
 PlanarChart::PlanarChart(const DesignSpace& space, const Eigen::VectorXd& base) : space_(&space) {
   const Eigen::SparseMatrix<double> full = space.constraint_jacobian(base);
-  Eigen::SparseMatrix<double> columns = full.transpose();
-  columns.makeCompressed();
-  double longest = 0.0;
-  for (int r = 0; r < columns.cols(); ++r) longest = std::max(longest, columns.col(r).norm());
-  if (longest > 0.0) {
-    // Rows that depend on others (a face and its mirror image, faces whose
-    // vertices are all fixed) would make A_b A^T singular: the QR moves the
-    // columns of A_b^T it finds dependent past its rank.
-    Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
-    qr.setPivotThreshold(kRankThreshold * longest);
-    qr.compute(columns);
-    if (qr.info() != Eigen::Success) {
-      throw InvalidArgument("design: the constraint Jacobian could not be factorised");
-    }
-    for (Eigen::Index k = 0; k < qr.rank(); ++k) rows_.push_back(qr.colsPermutation().indices()[k]);
-    std::sort(rows_.begin(), rows_.end());
-  }
-  std::vector<Eigen::Triplet<double>> ones;
-  tolerances_.resize(rank());
-  for (int k = 0; k < rank(); ++k) {
-    ones.emplace_back(k, rows_[k], 1.0);
-    tolerances_[k] = space.constraint_tolerances()[rows_[k]];
-  }
-  selection_.resize(rank(), space.constraint_count());
-  selection_.setFromTriplets(ones.begin(), ones.end());
+  // The rows are independent by construction but for rare cases (positions
+  // that move together within one plane, an asymmetric mesh under a mirror)
+  // that would make A_b A^T singular. The factor that finds them then
+  // preconditions the solves.
+  auto factor = std::make_shared<NormalFactor>();
+  rows_ = independent_rows(full, *factor);
+  selection_ = selection(rows_, space.constraint_count());
   base_jacobian_ = selection_ * full;
+  tolerances_ = selection_ * space.constraint_tolerances();
+  if (rank() == 0) return;
+  if (rank() < full.rows()) factor->compute(base_jacobian_ * base_jacobian_.transpose());
+  normal_factor_ = std::move(factor);
 }
 
 Eigen::SparseMatrix<double> PlanarChart::jacobian(const Eigen::VectorXd& z) const {
@@ -731,29 +982,53 @@ Eigen::SparseMatrix<double> PlanarChart::jacobian(const Eigen::VectorXd& z) cons
 
 std::optional<Eigen::VectorXd> PlanarChart::project(const Eigen::VectorXd& z) const {
   Eigen::VectorXd y = z;
-  for (int iteration = 0;; ++iteration) {
+  double previous = std::numeric_limits<double>::infinity();
+  for (int iteration = 0; rank() > 0; ++iteration) {
     const Eigen::VectorXd residual = selection_ * space_->constraint_values(y);
     if (!residual.allFinite()) return std::nullopt;
-    if (rank() == 0 || (residual.cwiseAbs() - tolerances_).maxCoeff() <= 0.0) return y;
-    if (iteration == kMaxNewtonIterations) return std::nullopt;
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(jacobian(y) * base_jacobian_.transpose());
-    if (lu.info() != Eigen::Success) return std::nullopt;
-    const Eigen::VectorXd step = lu.solve(residual);
-    if (!step.allFinite()) return std::nullopt;
-    y -= base_jacobian_.transpose() * step;
+    const double excess = (residual.cwiseAbs().array() / tolerances_.array()).maxCoeff();
+    if (excess <= 1.0) break;
+    // Newton converges quadratically; when it stalls, rounding must explain it.
+    const double size = residual.cwiseAbs().maxCoeff();
+    if (size > kMinContraction * previous || iteration == kMaxNewtonIterations) {
+      if (excess <= kRowSlack) break;
+      return std::nullopt;
+    }
+    previous = size;
+    const std::optional<Eigen::VectorXd> step =
+        solve(jacobian(y) * base_jacobian_.transpose(), residual);
+    if (!step) return std::nullopt;
+    y -= base_jacobian_.transpose() * *step;
   }
+  return y;
 }
 
 Eigen::VectorXd PlanarChart::pull_back(const Eigen::VectorXd& y,
                                        const Eigen::VectorXd& gradient) const {
   if (rank() == 0) return gradient;
   const Eigen::SparseMatrix<double> at_y = jacobian(y);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(at_y * base_jacobian_.transpose());
-  if (lu.info() != Eigen::Success) {
-    throw GeometryError("planar chart: the constraints are singular at this design");
+  const std::optional<Eigen::VectorXd> multipliers =
+      solve(base_jacobian_ * at_y.transpose(), base_jacobian_ * gradient);
+  if (!multipliers) {
+    throw GeometryError("planar chart: the gradient cannot be mapped at this design");
   }
-  const Eigen::VectorXd multipliers = lu.transpose().solve(base_jacobian_ * gradient);
-  return gradient - at_y.transpose() * multipliers;
+  return gradient - at_y.transpose() * *multipliers;
+}
+
+// Systems with A(y) A_b^T or its transpose: a sparse LU per Newton step
+// would cost several factorisations per design, so BiCGSTAB solves them,
+// preconditioned by the chart's factor of A_b A_b^T, which they approach as
+// y approaches the base (a handful of iterations near it).
+std::optional<Eigen::VectorXd> PlanarChart::solve(const Eigen::SparseMatrix<double>& matrix,
+                                                  const Eigen::VectorXd& rhs) const {
+  Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, FactorPreconditioner> solver;
+  solver.preconditioner().factor = normal_factor_.get();
+  solver.setTolerance(kExactSolve);
+  solver.setMaxIterations(kMaxKrylovIterations);
+  solver.compute(matrix);
+  const Eigen::VectorXd solution = solver.solve(rhs);
+  if (!solution.allFinite() || solver.error() > kRoundedSolve) return std::nullopt;
+  return solution;
 }
 
 }  // namespace ashlar

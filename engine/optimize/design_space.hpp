@@ -10,36 +10,54 @@
 //    mirror plane move within it. B is never formed: each welded node keeps
 //    its first variable and a 3x3 basis (identity, the mirror reflection, or
 //    two in-plane axes), so x = x0 + B z and B^T g cost O(model size).
-//  - Planar faces and kept normals are equations c(x0 + B z) = 0 (c_i is the
-//    distance, in metres, of one face vertex, or of another block's vertex
-//    lying on the face, from the plane of three face vertices, or from the
-//    plane with the kept normal). They are nonlinear, and no
-//    linear parameterisation keeps faces that share vertices planar, so they
-//    are kept by a chart (PlanarChart): an exact, smooth map from z to the
-//    constraint set. The chart projects z along the constraint normals of a
-//    base design b, y = z + A_b^T lambda with c(y) = 0 (Newton), where A_b is
-//    the constraint Jacobian at b (rows found redundant at b by a rank-
-//    revealing sparse QR are dropped). By the implicit function theorem its
-//    derivative is exact and cheap: for f(y(z)),
-//        df/dz = g - A(y)^T mu,  (A_b A(y)^T) mu = A_b g,
-//    one sparse LU solve. So both optimisers see a smooth function with an
-//    exact gradient whose every evaluated design has planar faces to about
-//    1e-12 of the face size; the chart is re-centred when the optimiser
-//    restarts. A projection-after-each-step with a tangent-projected gradient
-//    would be inexact off the constraint set and confuse L-BFGS's line search.
-//  - Displacement bounds are box bounds on z (exact for points and vertices
+//  - Planes are variables too. Faces that must share a plane form a group:
+//    a face, the faces of welded blocks with three non-collinear positions
+//    in common with it (contacts, faces split by T-junctions), and coplanar
+//    faces whose equations are dependent at the start (a flat strip of faces
+//    held at both ends, such as an arch's side between fixed blocks, whose
+//    equations are singular where staying flat and folding meet: it stays
+//    flat). Every position on a group's faces, including other blocks'
+//    vertices inside them or on their outline when in contact, gives one
+//    equation: its distance from the group's plane,
+//        c_i = n(z) . (x_i - center) - offset(z) = 0 (m),
+//    with the normal tilted by two variables (none for a kept normal, one
+//    for a plane the mirror maps onto itself) and the offset one more.
+//    Explicit planes keep the equations local, well conditioned (chains of
+//    four-point coplanarity conditions across overlapping faces are not) and
+//    independent but for rare cases: a plane that fixed positions or
+//    symmetry determine has no variables, a mirrored group no equations.
+//  - The equations are nonlinear (tilt times position), so a chart
+//    (PlanarChart) maps z exactly and smoothly onto the constraint set: it
+//    moves z along the constraint normals of a base design b,
+//        y = z + A_b^T lambda  with  c(y) = 0,
+//    A_b the constraint Jacobian at b without rows that are redundant there
+//    (a sparse LDL^T of A_b A_b^T finds any left). By the implicit function
+//    theorem the gradient of f(y(z)) is exact and cheap:
+//        df/dz = g - A(y)^T mu,  (A_b A(y)^T) mu = A_b g.
+//    Newton's method for the projection and the system for mu are solved by
+//    BiCGSTAB preconditioned with the one factor of A_b A_b^T per chart. So
+//    the optimisers see a smooth function with an exact gradient, and every
+//    design they evaluate has planar faces to about 1e-12 of their size.
+//    Projecting after each step with a tangent-projected gradient instead
+//    would be inexact off the constraint set and mislead L-BFGS's line
+//    search. Charts are re-centred at the current design when an optimiser
+//    restarts (gradient descent: every step).
+//  - Displacement bounds are box bounds on z (per coordinate for positions
 //    whose basis is the identity or axis-aligned); a design whose planar-face
 //    correction carries a coordinate past its bound is rejected, like one
 //    with a block below the minimum volume. Rejected designs are never passed
 //    to the objective; optimisers shorten their step instead.
-// Everything is sparse and linear in the model size (spatial hashing for
-// coincident positions, sparse QR and LU on the constraint Jacobian).
+// Everything is sparse and linear in the model size but for the sparse
+// factorisation (spatial hashing for coincident positions and positions on
+// faces, one sparse LDL^T per chart).
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <array>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,10 +99,11 @@ struct MirrorPlane {
 
 struct DesignConstraints {
   // Positions closer than this (m) are welded: they move together. A
-  // position this close to another block's face (a T-junction, a block
-  // standing inside a larger face, a cable anchor) stays in that face's
-  // plane. So contacts between blocks stay closed. Default: 1e-9 x the
-  // model size.
+  // position this close to the inside of another block's face (a block
+  // standing inside a larger face, a cable anchor), or to its outline when
+  // it is a vertex of a face in contact with it (a T-junction), stays in
+  // that face's plane. So contacts between blocks stay closed. Default:
+  // 1e-9 x the model size.
   std::optional<double> weld_tolerance;
   // Blocks that never move (e.g. supports); anything welded to them is fixed.
   std::vector<int> fixed_blocks;
@@ -123,12 +142,15 @@ public:
   // Diagonal of the bounding box of all positions (m); 1 for a lone point.
   double model_size() const { return model_size_; }
 
-  // Number of reduced variables z (metres: displacement components).
+  // Number of reduced variables z (m): displacement components of the
+  // movable positions, then the variables of the planes that faces lie in.
   int variable_count() const { return variable_count_; }
+  int position_variable_count() const { return position_variable_count_; }
   // z of the initial design made exactly planar (every face, kept normals);
   // it moves each position by about the input's planarity error at most.
   const Eigen::VectorXd& start() const { return start_; }
-  // Box bounds on z: -/+ max_displacement (infinite by default).
+  // Box bounds on z: -/+ max_displacement (infinite by default) for
+  // positions, infinite for planes.
   Eigen::VectorXd lower_bounds() const;
   Eigen::VectorXd upper_bounds() const;
 
@@ -146,10 +168,9 @@ public:
   // below min_block_volume or inverted. Empty when it is admissible.
   std::string rejection(const Eigen::VectorXd& z) const;
 
-  // The constraint equations c(x0 + B z) = 0 (m), one row per face vertex
-  // beyond the three that fix a face's plane (one per vertex but the first
-  // for kept normals) and per other position lying on the face; faces
-  // shared by welded blocks count once.
+  // The constraint equations c(z) = 0 (m): one row per position on a plane
+  // (face vertices, positions of other blocks lying on the face), its
+  // distance from the plane; see PlaneGroup.
   int constraint_count() const { return static_cast<int>(rows_.size()); }
   Eigen::VectorXd constraint_values(const Eigen::VectorXd& z) const;
   // d c / d z, constraint_count() x variable_count(), sparse.
@@ -160,32 +181,53 @@ public:
 private:
   // Welded positions: one shared initial position and displacement.
   struct Node {
-    Vec3 initial = Vec3::Zero();    // m, mean of the welded positions
+    Vec3 initial = Vec3::Zero();  // m, mean of the welded positions
     int first_variable = 0;
     int variable_count = 0;         // 0 fixed, 2 on the mirror plane, 3 otherwise
     Mat3 basis = Mat3::Identity();  // displacement = basis.leftCols(count) * z[first..]
     PositionRef example;            // one of its positions, for messages
   };
-  // Planarity: node i lies in the plane of nodes a, b, c (nodes = a, b, c, i).
-  // Kept normal: node i lies in the plane through node a with `normal`
-  // (nodes = a, i, -, -).
+  // Faces that share one plane (see the file comment) and the nodes lying
+  // on them.
+  struct PlaneGroup {
+    std::vector<int> nodes;       // sorted
+    FaceRef face;                 // its widest face (or the kept-normal one), for messages
+    Vec3 center = Vec3::Zero();   // m, at the start
+    Vec3 normal = Vec3::UnitZ();  // unit, at the start
+    double size = 1.0;            // m, farthest node from the center
+    // Plane variables (none when fixed nodes or symmetry fix the plane):
+    // tilts z[first + k] (m at distance `size`) along tilts.col(k), then
+    // the offset (m) along the normal.
+    bool moves = false;
+    int first_variable = 0;
+    int tilt_count = 0;
+    Mat3 tilts = Mat3::Zero();
+    int source = 0;  // the face named by `face`, in FaceSet order
+  };
+  struct FaceSet;
+  // Node `node` lies in the plane of group `group`.
   struct ConstraintRow {
-    std::array<int, 4> nodes{};
-    bool keeps_normal = false;
-    Vec3 normal = Vec3::Zero();
-    double scale = 1.0;  // planarity: |(b - a) x (c - a)| at the start (m^2)
-    FaceRef face;        // for messages
+    int group = 0;
+    int node = 0;
   };
 
   void check_input() const;
   void weld();
   void build_variables();
-  void build_constraint_rows();
+  void build_plane_groups();
+  // Groups the faces of equal root, then assigns plane variables and rows.
+  void form_groups(const FaceSet& set, const std::vector<int>& root);
+  void assign_plane_variables(const std::vector<char>& keeps_normal);
+  // Pairs of faces (FaceSet order) of coplanar groups whose equations are
+  // dependent at the start.
+  std::vector<std::pair<int, int>> dependent_coplanar_faces() const;
   void find_start();
   int position_index(const PositionRef& ref) const;
+  bool spans_plane(const std::vector<int>& nodes) const;
   std::vector<Vec3> node_positions(const Eigen::VectorXd& z) const;
-  double row_value(const ConstraintRow& row, const std::vector<Vec3>& positions,
-                   std::array<Vec3, 4>* gradient) const;
+  // The group's plane at z: normal . (x - center) = offset, the normal not
+  // of unit length once tilted.
+  std::pair<Vec3, double> plane_at(const PlaneGroup& plane, const Eigen::VectorXd& z) const;
 
   std::vector<std::vector<FaceLoop>> faces_;
   DesignPoint initial_;
@@ -195,11 +237,14 @@ private:
   std::vector<int> block_offset_;  // first position index of each block; points follow
   std::vector<int> node_of_position_;
   std::vector<Node> nodes_;
+  std::vector<int> partner_;  // mirror image of each node (-1: none, or no mirror)
+  int position_variable_count_ = 0;
   int variable_count_ = 0;
+  std::vector<PlaneGroup> groups_;
   std::vector<ConstraintRow> rows_;
   Eigen::VectorXd tolerances_;
   Eigen::VectorXd start_;
-  // |c| at the start: zero but for faces whose vertices are all fixed.
+  // |c| at the start: zero but for nodes that cannot reach a fixed plane.
   Eigen::VectorXd start_residuals_;
 };
 
@@ -212,24 +257,50 @@ public:
   PlanarChart(const DesignSpace& space, const Eigen::VectorXd& base);
 
   // y = z + A_b^T lambda with c(y) = 0 to tolerance, found by Newton's
-  // method from lambda = 0; std::nullopt when it does not converge (z too far
-  // from the base for this chart).
+  // method from lambda = 0; std::nullopt when it does not converge (z too
+  // far from the base for this chart).
   std::optional<Eigen::VectorXd> project(const Eigen::VectorXd& z) const;
   // The derivative with respect to z of f(project(z)), given y = project(z)
   // and gradient = df/dy (size variable_count()). Throws GeometryError when
-  // the constraints are singular at y.
+  // y is too far from the base for this chart.
   Eigen::VectorXd pull_back(const Eigen::VectorXd& y, const Eigen::VectorXd& gradient) const;
   // Number of independent constraint rows kept at the base.
   int rank() const { return static_cast<int>(rows_.size()); }
 
 private:
+  using NormalFactor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+  // Eigen's preconditioner interface around the chart's factor.
+  struct FactorPreconditioner {
+    const NormalFactor* factor = nullptr;
+    FactorPreconditioner() = default;
+    template <typename Matrix>
+    explicit FactorPreconditioner(const Matrix&) {}
+    template <typename Matrix>
+    FactorPreconditioner& analyzePattern(const Matrix&) {
+      return *this;
+    }
+    template <typename Matrix>
+    FactorPreconditioner& factorize(const Matrix&) {
+      return *this;
+    }
+    template <typename Matrix>
+    FactorPreconditioner& compute(const Matrix&) {
+      return *this;
+    }
+    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return factor->solve(b); }
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+  };
+
   Eigen::SparseMatrix<double> jacobian(const Eigen::VectorXd& z) const;
+  std::optional<Eigen::VectorXd> solve(const Eigen::SparseMatrix<double>& matrix,
+                                       const Eigen::VectorXd& rhs) const;
 
   const DesignSpace* space_;
-  std::vector<int> rows_;                      // independent rows at the base
-  Eigen::SparseMatrix<double> selection_;      // rows_ x constraint_count()
-  Eigen::SparseMatrix<double> base_jacobian_;  // A_b: rows_ x variable_count()
-  Eigen::VectorXd tolerances_;                 // of rows_
+  std::vector<int> rows_;                              // independent rows at the base
+  Eigen::SparseMatrix<double> selection_;              // rows_ x constraint_count()
+  Eigen::SparseMatrix<double> base_jacobian_;          // A_b: rows_ x variable_count()
+  Eigen::VectorXd tolerances_;                         // of rows_
+  std::shared_ptr<const NormalFactor> normal_factor_;  // of A_b A_b^T; shared by copies
 };
 
 }  // namespace ashlar

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -21,7 +22,7 @@ constexpr double kAutomaticStep = 0.01;
 
 std::string number(double value) {
   std::ostringstream text;
-  text << value;
+  text << std::setprecision(10) << value;
   return text.str();
 }
 
@@ -31,9 +32,9 @@ struct Trial {
   std::string rejection;
   double value = 0.0;
   bool stable = false;
-  Eigen::VectorXd gradient;              // d value / d v
+  Eigen::VectorXd gradient;                // d value / d v
   Eigen::VectorXd unconstrained_gradient;  // before the chart's pull-back (designs)
-  Eigen::VectorXd point;                 // v moved onto the constraint set
+  Eigen::VectorXd point;                   // v moved onto the constraint set
 };
 
 // A minimisation in variables v within box bounds.
@@ -246,7 +247,8 @@ private:
     step.iteration = static_cast<int>(history_.size());
     step.value = trial.value;
     step.step = first ? 0.0 : problem_.distance(current_.point, trial.point);
-    step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    step.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     step.stable = trial.stable;
     const double previous = current_.value;
     v_ = v;
@@ -269,7 +271,8 @@ private:
     }
     const double change = std::abs(previous - trial.value);
     if (!first && change <= settings_.value_tolerance * std::max(1.0, std::abs(trial.value))) {
-      throw Stop{OptimizeStatus::converged, "converged" + after + ": the last step changed the value by " +
+      throw Stop{OptimizeStatus::converged, "converged" + after +
+                                                ": the last step changed the value by " +
                                                 number(change) + ", within value_tolerance"};
     }
     if (step.iteration >= settings_.max_iterations) {
@@ -292,9 +295,12 @@ private:
 
   // L-BFGS restarts from the last iterate, with a fresh curvature model and a
   // chart centred there, when its line search fails after some progress.
+  // LBFGS++, the line searches and the charts report failures as
+  // std::logic_error or std::runtime_error; objective errors are Stops.
   void run_with_restarts() {
     for (;;) {
       const size_t accepted_before = history_.size();
+      std::string failure;
       try {
         if (settings_.method == OptimizeMethod::gradient) {
           run_gradient_descent();
@@ -303,18 +309,30 @@ private:
         }
         // LBFGS++ returns by itself only when the gradient is lost in rounding.
         throw Stop{OptimizeStatus::converged, "converged: the gradient is below rounding"};
-      } catch (const std::exception& e) {
-        if (settings_.method == OptimizeMethod::gradient || history_.size() == accepted_before) {
-          std::string message = std::string("line search failed: ") + e.what();
-          if (!last_rejection_.empty()) {
-            message += " (the last trial design was rejected: " + last_rejection_ + ")";
-          }
-          throw Stop{OptimizeStatus::line_search_failed, message};
-        }
-        problem_.recenter(current_);
-        v_ = current_.point;
+      } catch (const std::logic_error& e) {
+        failure = e.what();
+      } catch (const std::runtime_error& e) {
+        failure = e.what();
       }
+      const bool progressed = history_.size() > accepted_before;
+      if (settings_.method == OptimizeMethod::lbfgs && progressed && recentered()) continue;
+      std::string message = "line search failed: " + failure;
+      if (!last_rejection_.empty()) {
+        message += " (the last trial design was rejected: " + last_rejection_ + ")";
+      }
+      throw Stop{OptimizeStatus::line_search_failed, message};
     }
+  }
+
+  // Re-linearises the problem at the current iterate; false when it cannot.
+  bool recentered() {
+    try {
+      problem_.recenter(current_);
+    } catch (const Error&) {
+      return false;
+    }
+    v_ = current_.point;
+    return true;
   }
 
   // The scale of v that makes L-BFGS's first step (a unit step along the
@@ -332,8 +350,7 @@ private:
   void run_gradient_descent() {
     double length = initial_step_ / current_.gradient.cwiseAbs().maxCoeff();
     for (;;) {
-      problem_.recenter(current_);
-      v_ = current_.point;
+      if (!recentered()) throw std::runtime_error("the constraints cannot be linearised here");
       const Eigen::VectorXd g = current_.gradient;
       for (int trial = 0;; ++trial, length /= 2) {
         if (trial == kMaxLineSearchTrials) {
@@ -471,9 +488,10 @@ ParameterResult optimize_parameters(const Eigen::VectorXd& lower, const Eigen::V
   if (!objective) throw InvalidArgument("optimize parameters: no objective given");
   const Eigen::Index n = initial.size();
   if (lower.size() != n || upper.size() != n) {
-    throw InvalidArgument("optimize parameters: lower, upper and initial must have equal sizes, got " +
-                          std::to_string(lower.size()) + ", " + std::to_string(upper.size()) +
-                          " and " + std::to_string(n));
+    throw InvalidArgument(
+        "optimize parameters: lower, upper and initial must have equal sizes, got " +
+        std::to_string(lower.size()) + ", " + std::to_string(upper.size()) + " and " +
+        std::to_string(n));
   }
   double widest = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {

@@ -49,15 +49,15 @@ struct OptimizeSettings {
   // Accepted steps at most (0: evaluate the start only).
   int max_iterations = 50;
   // Converged when the 2-norm of the gradient in the free variables (those
-  // not held by an active bound) is at most this (value per metre, for
-  // designs: per unit of the reduced displacement variables).
+  // not held by an active bound) is at most this (value per unit of the
+  // variables: per metre for designs, whose reduced variables are lengths).
   double gradient_tolerance = 1e-9;
   // Converged when a step changes the value by at most this x max(1, |value|).
   double value_tolerance = 1e-12;
-  // Length of the first step: the largest move of any position in it (m;
-  // parameters: the largest change of one parameter). 0: 1% of the model
-  // size; for parameters 1% of the widest finite range, else of
-  // max(1, largest |initial parameter|).
+  // Length of the first step: the largest change it makes to one variable
+  // (designs: a displacement component before the planar-face correction,
+  // m; parameters: one parameter). 0: 1% of the model size; for parameters
+  // 1% of the widest finite range, else of max(1, largest |initial|).
   double initial_step = 0.0;
   // Called after each accepted iterate, iteration 0 included. An exception
   // it throws ends the optimisation and propagates to the caller.
@@ -68,7 +68,7 @@ enum class OptimizeStatus {
   stable,              // an evaluation reported stable
   converged,           // stationary (gradient or value tolerance) but not stable
   max_iterations,      // max_iterations steps taken
-  line_search_failed,  // no step along the search direction was accepted
+  line_search_failed,  // no step was accepted (e.g. rejected designs block every one)
   evaluation_failed,   // the objective threw, or returned a non-finite value
 };
 // "stable", "converged", "max_iterations", "line_search_failed",
@@ -110,8 +110,9 @@ struct ParameterResult {
 
 // Minimises objective for lower <= parameters <= upper (bounds may be
 // infinite) from `initial`, which must lie within them: L-BFGS-B, or
-// projected gradient descent; every evaluated point lies within the bounds. Throws InvalidArgument for mismatched sizes, lower > upper,
-// NaN, an initial point outside the bounds, or invalid settings.
+// projected gradient descent; every evaluated point lies within the bounds.
+// Throws InvalidArgument for mismatched sizes, lower > upper, NaN, an
+// initial point outside the bounds, or invalid settings.
 ParameterResult optimize_parameters(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                     const Eigen::VectorXd& initial,
                                     const ParameterObjective& objective,
