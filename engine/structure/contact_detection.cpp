@@ -17,11 +17,6 @@ namespace {
 
 using BoxWithIndex = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 
-// Faces whose normals are further from opposite than about 8 degrees are never
-// in contact; nearer ones are judged by the gap at the contact polygon.
-constexpr double kOppositeNormals = -0.99;
-// Normals of faces of one block within this (1 - cos) are treated as one plane.
-constexpr double kSamePlaneNormals = 1e-9;
 // Above this many candidate face pairs in one block pair, pair the faces by
 // box intersection instead of testing all of them (meshes with many facets).
 constexpr size_t kBruteForceFacePairs = 1024;
@@ -30,10 +25,6 @@ BoxWithIndex make_box(const Box3& box, double grow, int index) {
   const CGAL::Bbox_3 bbox(box.lo.x() - grow, box.lo.y() - grow, box.lo.z() - grow,
                           box.hi.x() + grow, box.hi.y() + grow, box.hi.z() + grow);
   return BoxWithIndex(bbox, index);
-}
-
-bool boxes_overlap(const Box3& a, const Box3& b, double grow) {
-  return (a.lo.array() <= b.hi.array() + grow).all() && (b.lo.array() <= a.hi.array() + grow).all();
 }
 
 // Per-face data computed once per block.
@@ -138,14 +129,10 @@ public:
     std::vector<PlaneContact> planes;
     for_each_overlapping_face_pair(fa, box_a, fb, box_b, tol_, [&](int f, int g) {
       const FacePlane& pa = fa[f].plane;
-      const FacePlane& pb = fb[g].plane;
-      if (pa.normal.dot(pb.normal) > kOppositeNormals) return;
-      if (clear_of_plane(fb[g].loop, pa, tol_) || clear_of_plane(fa[f].loop, pb, tol_)) return;
+      if (!faces_may_touch(fa[f].loop, pa, fb[g].loop, fb[g].plane, tol_)) return;
       PlaneContact* target = nullptr;
       for (PlaneContact& contact : planes) {
-        const FacePlane& q = fa[contact.faces_a.front()].plane;
-        if (1.0 - q.normal.dot(pa.normal) <= kSamePlaneNormals &&
-            std::abs(q.offset - pa.offset) <= tol_) {
+        if (on_same_plane(pa.normal, pa.offset, fa[contact.faces_a.front()].plane, tol_)) {
           target = &contact;
         }
       }
@@ -258,6 +245,21 @@ private:
 };
 
 }  // namespace
+
+bool boxes_overlap(const Box3& a, const Box3& b, double grow) {
+  return (a.lo.array() <= b.hi.array() + grow).all() && (b.lo.array() <= a.hi.array() + grow).all();
+}
+
+bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
+                     const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol) {
+  return plane_a.normal.dot(plane_b.normal) <= kOppositeNormals &&
+         !clear_of_plane(loop_b, plane_a, tol) && !clear_of_plane(loop_a, plane_b, tol);
+}
+
+bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol) {
+  return 1.0 - plane.normal.dot(normal) <= kSamePlaneNormals &&
+         std::abs(plane.offset - offset) <= tol;
+}
 
 double effective_tolerance(const std::vector<const Block*>& blocks,
                            const ContactOptions& options) {

@@ -25,6 +25,25 @@ struct ContactOptions {
 std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
                                          const ContactOptions& options);
 
+// The rules by which detection pairs faces, shared with the interfaces'
+// derivatives (interface_gradient.cpp), which must find the faces an
+// interface was cut from.
+//
+// Faces whose normals are further from opposite than about 8 degrees are never
+// in contact; nearer ones are judged by the gap at the contact polygon.
+constexpr double kOppositeNormals = -0.99;
+// Normals of faces of one block within this (1 - cos) are treated as one plane.
+constexpr double kSamePlaneNormals = 1e-9;
+
+bool boxes_overlap(const Box3& a, const Box3& b, double grow);
+// Whether two faces (vertex loops and planes, m) may touch within `tol` (m):
+// opposite normals, and neither loop entirely more than tol to one side of
+// the other's plane. Their boxes are checked apart.
+bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
+                     const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol);
+// Whether the plane (normal, offset) is `plane` within `tol` (m).
+bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol);
+
 // The tolerance actually used for `blocks` under `options` (m).
 double effective_tolerance(const std::vector<const Block*>& blocks,
                            const ContactOptions& options);

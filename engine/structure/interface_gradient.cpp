@@ -15,10 +15,6 @@ namespace ashlar {
 
 namespace {
 
-// The face-pairing rules of contact_detection.cpp; they must stay in step with
-// it, since they tell which faces an interface was cut from.
-constexpr double kOppositeNormals = -0.99;
-constexpr double kSamePlaneNormals = 1e-9;
 // Points nearer than this fraction of the contact polygon's size are one point,
 // as contact detection's loop simplification treats them.
 constexpr double kSamePoint = 1e-9;
@@ -40,28 +36,11 @@ Box3 bounds_of(const std::vector<Vec3>& points) {
   return box;
 }
 
-bool boxes_overlap(const Box3& a, const Box3& b, double grow) {
-  return (a.lo.array() <= b.hi.array() + grow).all() && (b.lo.array() <= a.hi.array() + grow).all();
-}
-
-bool clear_of_plane(const std::vector<Vec3>& loop, const FacePlane& plane, double tol) {
-  bool above = true, below = true;
-  for (const Vec3& p : loop) {
-    const double d = plane.normal.dot(p) - plane.offset;
-    above = above && d > tol;
-    below = below && d < -tol;
-  }
-  return above || below;
-}
-
 // Whether contact detection intersects face f of block a with face g of block b.
 bool faces_touch(const Block& a, int f, const Block& b, int g, double tol) {
-  const FacePlane& plane_a = a.face_planes()[f];
-  const FacePlane& plane_b = b.face_planes()[g];
-  if (plane_a.normal.dot(plane_b.normal) > kOppositeNormals) return false;
   const std::vector<Vec3> loop_a = face_loop(a, f), loop_b = face_loop(b, g);
   return boxes_overlap(bounds_of(loop_a), bounds_of(loop_b), tol) &&
-         !clear_of_plane(loop_b, plane_a, tol) && !clear_of_plane(loop_a, plane_b, tol);
+         faces_may_touch(loop_a, a.face_planes()[f], loop_b, b.face_planes()[g], tol);
 }
 
 // The faces of blocks a and b that contact detection intersected on one plane.
@@ -78,9 +57,7 @@ ContactFaces find_contact_faces(const Block& a, const Block& b, const Interface&
   offset /= static_cast<double>(contact.vertices.size());
   std::vector<int> on_plane_a, facing_b;
   for (size_t f = 0; f < a.faces().size(); ++f) {
-    const FacePlane& plane = a.face_planes()[f];
-    const bool parallel = 1.0 - plane.normal.dot(n) <= kSamePlaneNormals;
-    if (parallel && std::abs(plane.offset - offset) <= tol) {
+    if (on_same_plane(n, offset, a.face_planes()[f], tol)) {
       on_plane_a.push_back(static_cast<int>(f));
     }
   }
