@@ -133,6 +133,15 @@ struct EquilibriumProblem {
     if (v.row_b >= 0) out.noalias() += v.on_b.topRows(d).transpose() * multipliers.segment(v.row_b, d);
     return out;
   }
+  // Where each group's inequality rows start in the stacked inequalities
+  // (the solver's slacks w and multipliers z); one more entry: the total.
+  std::vector<int> inequality_starts() const {
+    std::vector<int> starts(groups.size() + 1, 0);
+    for (size_t k = 0; k < groups.size(); ++k) {
+      starts[k + 1] = starts[k] + static_cast<int>(rules_of(groups[k]).rows.rows());
+    }
+    return starts;
+  }
   // The constant side of group k's inequality rows: rows . x_k >= lower.
   Eigen::VectorXd lower_bounds(const ForceGroup& v) const {
     const GroupRules& r = rules_of(v);

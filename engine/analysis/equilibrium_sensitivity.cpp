@@ -75,10 +75,7 @@ EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
   // Cables: -y^T A x through the pull's direction and arms; z^T dl through
   // the tension bound (scaled by wu); +y^T b through their own weight.
   double d_weight_unit_bounds = 0.0;
-  std::vector<int> first_row(problem.groups.size() + 1, 0);
-  for (size_t k = 0; k < problem.groups.size(); ++k) {
-    first_row[k + 1] = first_row[k] + static_cast<int>(problem.rules_of(problem.groups[k]).rows.rows());
-  }
+  const std::vector<int> first_row = problem.inequality_starts();
   for (size_t k = problem.contact_vertex_count; k < problem.groups.size(); ++k) {
     const ForceGroup& g = problem.groups[k];
     if (g.kind != GroupKind::cable && g.kind != GroupKind::bounded_cable) continue;
@@ -91,13 +88,17 @@ EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
         {g.block_a, g.row_a, cable.from.point, 1.0, out.cable_from[g.source]},
         {g.block_b, g.row_b, cable.to.point, -1.0, out.cable_to[g.source]}};
     Vec3 d_along = Vec3::Zero();  // d(y^T A x)/d(along)
+    // d(y^T b)/d(cable weight): half of it hangs at each end.
+    double weight_multiplier = 0.0;
     for (const auto& end : ends) {
       if (end.row < 0) continue;
       const BodyMultipliers m = multipliers_of(problem, y, end.row, rows);
       const Vec3 force = end.sign * pull * along;
       d_along += end.sign * pull * m.force;
+      weight_multiplier += 0.5 * m.force.z() / wu;
       if (end.block < 0) continue;  // junctions balance forces only
       const Vec3 arm = (end.point - structure.block(end.block).centroid()) / lu;
+      weight_multiplier += 0.5 * m.moment.dot(arm.cross(Vec3::UnitZ())) / wu;
       d_along += end.sign * pull * m.moment.cross(arm);
       const Vec3 lever = force.cross(m.moment) / lu;
       end.gradient -= lever;
@@ -114,18 +115,7 @@ EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
     const Vec3 d_to = -(d_along - along * along.dot(d_along)) / length;
     out.cable_to[g.source] += d_to;
     out.cable_from[g.source] -= d_to;
-    // The weight's size: d(half weight)/d(to) = rho g along / 2.
-    double weight_multiplier = 0.0;
-    for (const auto& end : ends) {
-      if (end.row < 0) continue;
-      const BodyMultipliers m = multipliers_of(problem, y, end.row, rows);
-      double effect = m.force.z();
-      if (end.block >= 0) {
-        const Vec3 arm = (end.point - structure.block(end.block).centroid()) / lu;
-        effect += m.moment.dot(arm.cross(Vec3::UnitZ()));
-      }
-      weight_multiplier += 0.5 * effect / wu;
-    }
+    // The weight's size: d(weight)/d(to) = rho g along.
     const Vec3 d_weight_d_to = cable.mass_per_length * kGravity * along;
     out.cable_to[g.source] += weight_multiplier * d_weight_d_to;
     out.cable_from[g.source] -= weight_multiplier * d_weight_d_to;

@@ -115,10 +115,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   const Eigen::VectorXd& b = problem.rhs;
   // Each group's inequality rows start at first_row[k] in w and z; `lower`
   // holds their constant sides (G x_k >= lower).
-  std::vector<int> first_row(nv + 1, 0);
-  for (int k = 0; k < nv; ++k) {
-    first_row[k + 1] = first_row[k] + static_cast<int>(problem.rules_of(problem.groups[k]).rows.rows());
-  }
+  const std::vector<int> first_row = problem.inequality_starts();
   const int m_total = first_row[nv];
   Eigen::VectorXd lower(m_total);
   for (int k = 0; k < nv; ++k) {
