@@ -449,6 +449,16 @@ void check_settings(const OptimizeSettings& settings) {
   check(settings.initial_step, "initial_step", " (m; 0 for automatic)");
 }
 
+// The parts of a design's and a parameter run's results that are alike.
+template <class Result>
+void report_outcome(Outcome&& outcome, int evaluations, Result& result) {
+  result.status = outcome.status;
+  result.stable = outcome.status == OptimizeStatus::stable;
+  result.history = std::move(outcome.history);
+  result.evaluations = evaluations;
+  result.message = std::move(outcome.message);
+}
+
 }  // namespace
 
 const char* status_name(OptimizeStatus status) {
@@ -472,11 +482,7 @@ OptimizeResult optimize_design(const DesignSpace& space, const DesignObjective& 
   Outcome outcome = Driver(problem, settings, initial_step).run();
   OptimizeResult result;
   result.design = space.design(outcome.point);
-  result.status = outcome.status;
-  result.stable = outcome.status == OptimizeStatus::stable;
-  result.history = std::move(outcome.history);
-  result.evaluations = problem.evaluations();
-  result.message = std::move(outcome.message);
+  report_outcome(std::move(outcome), problem.evaluations(), result);
   return result;
 }
 
@@ -514,11 +520,7 @@ ParameterResult optimize_parameters(const Eigen::VectorXd& lower, const Eigen::V
   Outcome outcome = Driver(problem, settings, initial_step).run();
   ParameterResult result;
   result.parameters = std::move(outcome.point);
-  result.status = outcome.status;
-  result.stable = outcome.status == OptimizeStatus::stable;
-  result.history = std::move(outcome.history);
-  result.evaluations = problem.evaluations();
-  result.message = std::move(outcome.message);
+  report_outcome(std::move(outcome), problem.evaluations(), result);
   return result;
 }
 
