@@ -106,7 +106,7 @@ int w_export(lua_State* L) {
     const Structure& s = *luax_checkStructure(L, 1);
     const std::string path = check_string(L, 2, "path");
     const OptionTable options(L, 3, {"color", "interfaces", "tolerance", "result", "forces",
-                                     "thrust", "force_scale", "opacity"});
+                                     "thrust", "force_scale", "opacity", "cable_color"});
     ExportOptions exported;
     exported.block_colors = block_colors(L, options, s.size());
     exported.interfaces = options.boolean("interfaces").value_or(false);
@@ -122,6 +122,10 @@ int w_export(lua_State* L) {
     exported.forces = options.boolean("forces").value_or(false);
     exported.thrust = options.boolean("thrust").value_or(false);
     exported.force_scale = options.positive("force_scale", 0.0, true);
+    if (options.push("cable_color") != LUA_TNIL) {
+      exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
+    }
+    lua_pop(L, 1);
     if (const std::optional<double> opacity = options.number("opacity")) {
       if (!(*opacity >= 0.0 && *opacity <= 1.0)) {
         throw ArgError(3, "opacity: expected a number in [0, 1], got " + std::to_string(*opacity));

@@ -180,10 +180,11 @@ PositionRef vertex_ref(lua_State* L, const Structure& s, int arg, const std::str
   return PositionRef::vertex(block, static_cast<int>(vertex - 1));
 }
 
-// A free block's face resting on a fixed block (a voussoir's springing on
-// its abutment) must stay on it, or the contact opens: its vertices are
-// fixed too. (Coincident vertices are welded by the design space; a vertex
-// inside a face of another free block is not held to it.)
+// By default a free block's face resting on a fixed block (a voussoir's
+// springing on its abutment) stays where it is: its vertices are fixed too,
+// so the bearing a designer drew is kept. With slide_on_fixed the design
+// space keeps them in the fixed face's plane instead, and the bearing may
+// move or change size.
 void hold_faces_on_fixed_blocks(const Structure& s, DesignConstraints& c) {
   std::vector<bool> fixed(s.size(), false);
   for (int block : c.fixed_blocks) fixed[block] = true;
@@ -305,7 +306,7 @@ DesignConstraints design_constraints(lua_State* L, const Structure& s, const Opt
     }
   }
   lua_pop(L, 1);
-  hold_faces_on_fixed_blocks(s, c);
+  if (!options.boolean("slide_on_fixed").value_or(false)) hold_faces_on_fixed_blocks(s, c);
   c.max_displacement = options.positive("max_displacement", c.max_displacement);
   c.min_block_volume = options.positive("min_volume", 0.0, true);
   return c;
@@ -330,7 +331,8 @@ int optimize_structure(lua_State* L) {
   const OptionTable options(
       L, 2, {"method", "max_iterations", "gradient_tolerance", "value_tolerance", "initial_step",
              "analysis", "progress", "fixed", "fixed_names", "fixed_vertices", "fixed_cables",
-             "together", "symmetry", "keep_normal", "max_displacement", "min_volume"});
+             "together", "symmetry", "keep_normal", "max_displacement", "min_volume",
+             "slide_on_fixed"});
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
   std::vector<std::vector<FaceLoop>> faces;

@@ -106,6 +106,8 @@ constexpr double kHeadRadiusOfLargestArrow = 0.16;
 constexpr double kHeadLengthOfLargestArrow = 0.35;
 // Thinner than a shaft: arrows run along the thrust line and must show.
 constexpr double kThrustRadiusOfBlockSize = 0.012;
+// Thicker than the thrust line so that a cable reads as a member.
+constexpr double kCableRadiusOfBlockSize = 0.02;
 constexpr int kGlyphSides = 6;
 
 double mean_free_block_size(const Structure& structure) {
@@ -158,8 +160,16 @@ void add_force_arrows(const EquilibriumResult& result, const ExportOptions& opti
 std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
                                            const ExportOptions& options) {
   std::vector<NamedGlyph> glyphs;
-  if (!options.result) return glyphs;
   const double block_size = mean_free_block_size(structure);
+  for (std::size_t c = 0; c < structure.cables().size(); ++c) {
+    const Cable& cable = structure.cables()[c];
+    GlyphFaces tube = tube_faces({cable.from.point, cable.to.point},
+                                 kCableRadiusOfBlockSize * block_size, kGlyphSides);
+    if (!tube.empty()) {
+      glyphs.push_back({"cable " + std::to_string(c + 1), std::move(tube), options.cable_color});
+    }
+  }
+  if (!options.result) return glyphs;
   if (options.forces) add_force_arrows(*options.result, options, block_size, glyphs);
   if (options.thrust) {
     std::vector<Vec3> points = thrust_line(structure, *options.result);

@@ -63,6 +63,7 @@ struct ExportOptions {
   Rgb compression_color{0.15, 0.35, 0.9};  // arrows of interfaces in compression only
   Rgb tension_color{0.9, 0.1, 0.1};        // arrows of interfaces carrying tension
   Rgb thrust_color{1.0, 0.65, 0.0};
+  Rgb cable_color{0.2, 0.2, 0.22};  // cables are always drawn, as thin tubes
   // Opacity of the blocks in [0, 1] (glTF and OBJ; PLY and STL have no
   // materials). Unset: opaque, except 0.35 when forces or the thrust line
   // are drawn, since they run inside the blocks.
@@ -70,7 +71,8 @@ struct ExportOptions {
 };
 
 // Format from the extension: .glb, .gltf (glTF 2.0), .obj, .ply, .stl.
-// Each block is a node named after it; every file is written atomically.
+// Each block is a node named after it, each cable a tube "cable c"; every
+// file is written atomically.
 // Throws InvalidArgument for an unknown extension, bad options (forces or
 // thrust without a result, a result of another structure), IoError on
 // failure.

@@ -116,6 +116,11 @@ describe("cables", function()
     local text = assert(io.open(folder .. "/cable.qps")):read("a")
     assert.truthy(text:find(" UP BND T1 ", 1, true))
     assert.truthy(text:find("    P2 B2M2 1", 1, true))
+    ashlar.export(s, folder .. "/cable.gltf", { cable_color = { 1, 0, 0 } })
+    local gltf = assert(io.open(folder .. "/cable.gltf")):read("a")
+    assert.truthy(gltf:find('"name":%s*"cable 1"'))
+    expect_error({ "cable_color: colour components must lie in [0, 1]" },
+      function() ashlar.export(s, folder .. "/bad.glb", { cable_color = { 2, 0, 0 } }) end)
     os.execute("rm -r " .. support.quote(folder))
   end)
 

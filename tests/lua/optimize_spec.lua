@@ -79,6 +79,33 @@ describe("ashlar.optimize", function()
     assert.is_true(largest_move(arch, r.structure) > 0)
   end)
 
+  it("holds springings on their supports, or lets them slide in the support's plane", function()
+    local arch = thin_arch()
+    local function springing(structure)  -- voussoir 1's vertices on the support's top, z = 0
+      local points = {}
+      for _, p in ipairs(structure:block(1):vertices()) do
+        if math.abs(p[3]) < 1e-9 then points[#points + 1] = p end
+      end
+      return points
+    end
+    local options = { analysis = NO_SLIDING, symmetry = { point = { 0, 0, 0 }, normal = { 1, 0, 0 } },
+                      progress = false }
+    local held = ashlar.optimize(arch, options)
+    assert.is_true(held.stable, held.message)
+    assert.are.same(springing(arch), springing(held.structure))
+    options.slide_on_fixed = true
+    local slid = ashlar.optimize(arch, options)
+    assert.is_true(slid.stable, slid.message)
+    local before, after = springing(arch), springing(slid.structure)
+    assert.are.equal(#before, #after)  -- still on the support's plane
+    local moved = 0
+    for k = 1, #before do
+      for axis = 1, 3 do moved = math.max(moved, math.abs(after[k][axis] - before[k][axis])) end
+    end
+    assert.is_true(moved > 1e-3, "the springing moves along the support: " .. moved)
+    assert.is_true(ashlar.analyze(slid.structure, NO_SLIDING).stable)
+  end)
+
   it("optimises a generator's parameters to the minimum thickness", function()
     local function arch_of(p) return models.arch{ radius = 5, thickness = p.thickness, voussoirs = 24 } end
     local r = ashlar.optimize(arch_of, { params = { thickness = 0.4 }, lower = { thickness = 0.2 },

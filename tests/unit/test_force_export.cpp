@@ -159,6 +159,31 @@ TEST(MeshExport, ForceArrowsAndThrustLineAreNodes) {
   EXPECT_EQ(dir.entries().size(), 2u + 7u);  // s.gltf, s.bin; all.* with .bin and .mtl
 }
 
+TEST(MeshExport, CablesAreTubesBetweenTheirEnds) {
+  Structure s = overhanging_structure(0.3);
+  Cable cable;
+  cable.from = {0, {1.5, 0, 0}};
+  cable.to = {2, {0.3, 0, 1.0}};
+  s.add_cable(cable);
+  TempDir dir;
+  export_structure(s, dir.file("s.gltf"), {});  // cables need no result
+  const GltfFile gltf(dir, "s.gltf");
+  EXPECT_EQ(gltf.triangles("cable 1"), 20);  // one hexagonal prism
+  // Every tube vertex lies at the cable's radius from its axis, between
+  // its ends: 2% of the mean free-block size (diagonal 1.5 m).
+  const Vec3 axis = (cable.to.point - cable.from.point).normalized();
+  const double radius = 0.02 * 1.5;
+  for (const Vec3& p : gltf.positions("cable 1")) {
+    const Vec3 offset = p - cable.from.point;
+    const double along = offset.dot(axis);
+    EXPECT_NEAR((offset - along * axis).norm(), radius, 1e-6);
+    EXPECT_GT(along, -1e-6);
+    EXPECT_LT(along, (cable.to.point - cable.from.point).norm() + 1e-6);
+  }
+  EXPECT_LT(gltf.base_color("cable 1")[0].get<double>(), 0.3);  // dark, opaque
+  EXPECT_EQ(gltf.base_color("cable 1")[3].get<double>(), 1.0);
+}
+
 TEST(MeshExport, TensionGetsARedArrow) {
   const Structure s = overhanging_structure(0.7);
   const EquilibriumResult result = analyze_equilibrium(s, {});
