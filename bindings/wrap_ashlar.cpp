@@ -12,8 +12,11 @@
 #include "wrap_Block.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
+#include "wrap_draw.hpp"
+#include "wrap_force_flow.hpp"
 #include "wrap_gradient.hpp"
 #include "wrap_optimize.hpp"
+#include "wrap_weights.hpp"
 
 namespace ashlar::lua {
 
@@ -101,12 +104,35 @@ std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int bloc
   return colors;
 }
 
+// `traces` export option: the table ashlar.trace_loads returned (its
+// polylines are drawn).
+std::vector<std::vector<Vec3>> load_traces(lua_State* L, const OptionTable& options) {
+  const int arg = options.arg();
+  std::vector<std::vector<Vec3>> traces;
+  if (options.push("traces") == LUA_TNIL) {
+    lua_pop(L, 1);
+    return traces;
+  }
+  if (lua_type(L, -1) != LUA_TTABLE || lua_getfield(L, -1, "polylines") != LUA_TTABLE) {
+    throw ArgError(arg, "traces: expected the table ashlar.trace_loads returned (with polylines)");
+  }
+  const lua_Unsigned count = lua_rawlen(L, -1);
+  for (lua_Unsigned k = 1; k <= count; ++k) {
+    lua_rawgeti(L, -1, static_cast<lua_Integer>(k));
+    traces.push_back(to_points(L, -1, arg, "traces.polylines[" + std::to_string(k) + "]"));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 2);
+  return traces;
+}
+
 int w_export(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
     const std::string path = check_string(L, 2, "path");
     const OptionTable options(L, 3, {"color", "interfaces", "tolerance", "result", "forces",
-                                     "thrust", "force_scale", "opacity", "cable_color"});
+                                     "thrust", "force_scale", "opacity", "cable_color", "traces",
+                                     "trace_color"});
     ExportOptions exported;
     exported.block_colors = block_colors(L, options, s.size());
     exported.interfaces = options.boolean("interfaces").value_or(false);
@@ -124,6 +150,11 @@ int w_export(lua_State* L) {
     exported.force_scale = options.positive("force_scale", 0.0, true);
     if (options.push("cable_color") != LUA_TNIL) {
       exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
+    }
+    lua_pop(L, 1);
+    exported.traces = load_traces(L, options);
+    if (options.push("trace_color") != LUA_TNIL) {
+      exported.trace_color = to_rgb(L, -1, options.arg(), "trace_color");
     }
     lua_pop(L, 1);
     if (const std::optional<double> opacity = options.number("opacity")) {
@@ -229,6 +260,9 @@ int ashlar_open_library(lua_State* L) {
   set_analysis_functions(L);
   set_gradient_functions(L);
   set_optimize_functions(L);
+  set_weights_functions(L);
+  set_force_flow_functions(L);
+  set_draw_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

@@ -24,14 +24,9 @@ void check_settings(const AnalysisSettings& settings) {
   }
 }
 
-// How far the forces x, with every tension set to zero, are from a
-// compression-only equilibrium that respects friction: the largest
-// imbalance of a block relative to its own load (or the mean block weight
-// when larger), or of a compression or friction bound relative to the mean
-// block weight. Small means the forces certify stability, whatever the
-// solver's status.
-double distance_from_compression_only_equilibrium(const EquilibriumProblem& problem,
-                                                  const Eigen::VectorXd& x) {
+}  // namespace
+
+double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
   Eigen::VectorXd imbalance = -problem.rhs;
   double worst = 0.0;
   for (size_t k = 0; k < problem.groups.size(); ++k) {
@@ -51,8 +46,6 @@ double distance_from_compression_only_equilibrium(const EquilibriumProblem& prob
   }
   return worst;
 }
-
-}  // namespace
 
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start,
@@ -129,7 +122,7 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
                                                   : interfaces[i].center;
   }
 
-  result.imbalance_without_tension = distance_from_compression_only_equilibrium(problem, x);
+  result.imbalance_without_tension = compression_only_imbalance(problem, x);
   // Stability is a question of feasibility: forces that balance every block
   // without tension prove it, converged or not. Without such forces only a
   // converged optimum (whose tension is then needed) proves instability.

@@ -89,6 +89,15 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
                                       const EquilibriumResult* warm_start = nullptr,
                                       EquilibriumProblem* problem = nullptr);
 
+// How far the scaled unknowns x, with every penalised unknown (tension,
+// cable compression, virtual torques) set to zero, are from a
+// compression-only equilibrium that respects friction: the largest
+// imbalance of a body relative to its own load (or the mean body weight
+// when larger), or of a bound relative to the mean body weight. Small (below
+// AnalysisSettings::stable_tolerance) means x certifies stability, whatever
+// the solver's status.
+double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x);
+
 // Centres of pressure along the structure: when the contact graph of the
 // free blocks is a chain from support to support (an arch, a column), in
 // chain order; otherwise in interface order. Interfaces without compression

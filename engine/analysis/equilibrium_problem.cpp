@@ -251,6 +251,13 @@ void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
   slack.rows = cable.rows;
   slack.hessian << tension, tension, regularisation, regularisation;
   slack.linear << 1.0, 1.0, 0.0, 0.0;
+
+  // Weights are regularised like forces: the thesis's eq. 8 minimises the
+  // squares of both, and tension stays far dearer than any weight.
+  GroupRules& weight = problem.rules[static_cast<int>(GroupKind::weight)];
+  weight.rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(1, 4);
+  weight.rows(0, 0) = 1.0;
+  weight.hessian = Eigen::Vector4d::Constant(regularisation);
 }
 
 }  // namespace

@@ -65,8 +65,9 @@ enum class GroupKind {
   cable,           // (t, k, -, -): a cable's tension t and penalised compression k
   bounded_cable,   // the same, with t <= the cable's max_tension
   slack,           // (p, n, -, -): a virtual torque (or, at a junction, force) p - n, penalised
+  weight,          // (w, -, -, -): a block's unknown weight w >= 0 (necessary weights, eq. 8)
 };
-constexpr int kGroupKinds = 4;
+constexpr int kGroupKinds = 5;
 
 // Inequalities and objective shared by every group of one kind: each row r
 // gives r . x_k >= 0, except bounded_row, which gives r . x_k >= -bound.
@@ -81,8 +82,8 @@ struct GroupRules {
 // most two) bodies it acts on. A body is a block or a cable junction.
 struct ForceGroup {
   GroupKind kind = GroupKind::contact_vertex;
-  // The interface (contact vertex), the cable (cables), or the body (slack:
-  // a block index, or block count + junction index).
+  // The interface (contact vertex), the cable (cables), the body (slack:
+  // a block index, or block count + junction index), or the block (weight).
   int source = -1;
   int component = -1;        // slack: which of its body's balance rows it relieves
   int block_a = -1, block_b = -1;  // contact: the interface's blocks; cable: the end blocks

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "analysis/sparse_cholesky.hpp"
 
@@ -105,13 +106,100 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
 
 EquilibriumSolver::~EquilibriumSolver() = default;
 
+void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem,
+                                               const std::vector<int>& first_row,
+                                               const Eigen::VectorXd& scaling,
+                                               std::vector<Eigen::Matrix4d>& inverse_phi) {
+  const int d = block_rows_;
+  const int nv = static_cast<int>(problem.groups.size());
+  double* values = cholesky_->values();
+  std::fill_n(values, cholesky_->nonzeros(), 0.0);
+  inverse_phi.resize(nv);
+  for (int k = 0; k < nv; ++k) {
+    const ForceGroup& v = problem.groups[k];
+    const GroupRules& rules = problem.rules_of(v);
+    Matrix4 phi = rules.hessian.asDiagonal();
+    for (int i = 0; i < rules.rows.rows(); ++i) {
+      phi.noalias() += scaling(first_row[k] + i) * rules.rows.row(i).transpose() * rules.rows.row(i);
+    }
+    inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
+    const VertexSlots& slot = slots_[k];
+    // Adds a d x d block to block column col_block at its rank-th block row.
+    auto add_block = [&](int col_block, int rank, const BlockByBlock& block, bool diagonal) {
+      for (int cj = 0; cj < d; ++cj) {
+        double* column = values + column_starts_[d * col_block + cj] + d * rank;
+        const int last = diagonal ? cj : d - 1;
+        for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
+      }
+    };
+    BlockByVertex a_phi, b_phi;
+    if (v.row_a >= 0) {
+      a_phi = v.on_a.topRows(d) * inverse_phi[k];
+      add_block(v.row_a / d, slot.aa, a_phi * v.on_a.topRows(d).transpose(), true);
+    }
+    if (v.row_b >= 0) {
+      b_phi = v.on_b.topRows(d) * inverse_phi[k];
+      add_block(v.row_b / d, slot.bb, b_phi * v.on_b.topRows(d).transpose(), true);
+    }
+    if (slot.ab >= 0) {
+      const BlockByBlock ab = a_phi * v.on_b.topRows(d).transpose();  // rows of a, columns of b
+      if (slot.ab_transposed) add_block(v.row_a / d, slot.ab, ab.transpose(), false);
+      else add_block(v.row_b / d, slot.ab, ab, false);
+    }
+  }
+}
+
+bool EquilibriumSolver::factorize_shifted() {
+  // Near the optimum the scales of z/w spread over many orders and the
+  // matrix can lose positive definiteness in rounding; a small diagonal
+  // shift, raised until the factorisation succeeds, restores it, and the
+  // next iterations correct the slightly perturbed step.
+  if (cholesky_->factorize()) return true;
+  double* values = cholesky_->values();
+  std::vector<double> unshifted(values, values + cholesky_->nonzeros());
+  double largest = 0.0;
+  for (int col = 0; col < size_; ++col) {
+    largest = std::max(largest, std::abs(values[column_starts_[col + 1] - 1]));
+  }
+  for (double shift = 1e-14; shift <= 1e-8; shift *= 100.0) {
+    std::copy(unshifted.begin(), unshifted.end(), values);
+    for (int col = 0; col < size_; ++col) values[column_starts_[col + 1] - 1] += shift * largest;
+    if (cholesky_->factorize()) return true;
+  }
+  return false;
+}
+
+bool EquilibriumSolver::prepare_response(const EquilibriumProblem& problem,
+                                         const InteriorPointSolution& solution) {
+  response_ready_ = false;
+  if (!cholesky_) return false;
+  const std::vector<int> first_row = problem.inequality_starts();
+  const int m_total = first_row.back();
+  if (solution.w.size() != m_total || solution.z.size() != m_total) return false;
+  // Slacks of active rows are near zero; keep the ratio finite.
+  const Eigen::VectorXd scaling =
+      solution.z.cwiseQuotient(solution.w.cwiseMax(std::numeric_limits<double>::min()));
+  assemble_normal_matrix(problem, first_row, scaling, response_phi_);
+  response_ready_ = factorize_shifted();
+  return response_ready_;
+}
+
+Eigen::VectorXd EquilibriumSolver::multiplier_response(const Eigen::VectorXd& delta_rhs) const {
+  if (!response_ready_) throw std::logic_error("multiplier_response before prepare_response");
+  return cholesky_->solve(delta_rhs);
+}
+
+Eigen::Vector4d EquilibriumSolver::group_response(const EquilibriumProblem& problem, int group,
+                                                  const Eigen::VectorXd& multipliers) const {
+  return response_phi_[group] * problem.reaction(problem.groups[group], multipliers);
+}
+
 InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
                                            const InteriorPointSettings& settings,
                                            InteriorPointSolution& solution, bool warm_start) {
   using Clock = std::chrono::steady_clock;
   InteriorPointInfo info;
   const int nv = static_cast<int>(problem.groups.size());
-  const int d = block_rows_;
   const Eigen::VectorXd& b = problem.rhs;
   // Each group's inequality rows start at first_row[k] in w and z; `lower`
   // holds their constant sides (G x_k >= lower).
@@ -166,9 +254,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   std::vector<Matrix4> inverse_phi(nv);
   Eigen::VectorXd dx(4 * nv), dy(size_), dw(m_total), dz(m_total);
   Eigen::VectorXd dx_aff, dw_aff, dz_aff, rhs(size_);
-  double* values = cholesky_->values();
   const int factorizations_before = cholesky_->factorizations();
-  const int value_count = cholesky_->nonzeros();
 
 
   // Solves the Newton system for complementarity residual r_c (uses the
@@ -260,59 +346,10 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     }
 
     // Eliminate each vertex's unknowns and assemble the normal matrix.
-    std::fill_n(values, value_count, 0.0);
-    const Eigen::VectorXd scaling = z.cwiseQuotient(w);
-    for (int k = 0; k < nv; ++k) {
-      const ForceGroup& v = problem.groups[k];
-      const GroupRules& rules = problem.rules_of(v);
-      Matrix4 phi = rules.hessian.asDiagonal();
-      for (int i = 0; i < rules.rows.rows(); ++i) {
-        phi.noalias() += scaling(first_row[k] + i) * rules.rows.row(i).transpose() * rules.rows.row(i);
-      }
-      inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
-      const VertexSlots& slot = slots_[k];
-      // Adds a d x d block to block column col_block at its rank-th block row.
-      auto add_block = [&](int col_block, int rank, const BlockByBlock& block, bool diagonal) {
-        for (int cj = 0; cj < d; ++cj) {
-          double* column = values + column_starts_[d * col_block + cj] + d * rank;
-          const int last = diagonal ? cj : d - 1;
-          for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
-        }
-      };
-      BlockByVertex a_phi, b_phi;
-      if (v.row_a >= 0) {
-        a_phi = v.on_a.topRows(d) * inverse_phi[k];
-        add_block(v.row_a / d, slot.aa, a_phi * v.on_a.topRows(d).transpose(), true);
-      }
-      if (v.row_b >= 0) {
-        b_phi = v.on_b.topRows(d) * inverse_phi[k];
-        add_block(v.row_b / d, slot.bb, b_phi * v.on_b.topRows(d).transpose(), true);
-      }
-      if (slot.ab >= 0) {
-        const BlockByBlock ab = a_phi * v.on_b.topRows(d).transpose();  // rows of a, columns of b
-        if (slot.ab_transposed) add_block(v.row_a / d, slot.ab, ab.transpose(), false);
-        else add_block(v.row_b / d, slot.ab, ab, false);
-      }
-    }
+    assemble_normal_matrix(problem, first_row, z.cwiseQuotient(w), inverse_phi);
     info.assembly_seconds += seconds_since(start);
     start = Clock::now();
-    // Near the optimum the scales of z/w spread over many orders and the
-    // matrix can lose positive definiteness in rounding; a small diagonal
-    // shift, raised until the factorisation succeeds, restores it, and the
-    // next iterations correct the slightly perturbed step.
-    bool factored = cholesky_->factorize();
-    if (!factored) {
-      std::vector<double> unshifted(values, values + value_count);
-      double largest = 0.0;
-      for (int col = 0; col < size_; ++col) {
-        largest = std::max(largest, std::abs(values[column_starts_[col + 1] - 1]));
-      }
-      for (double shift = 1e-14; !factored && shift <= 1e-8; shift *= 100.0) {
-        std::copy(unshifted.begin(), unshifted.end(), values);
-        for (int col = 0; col < size_; ++col) values[column_starts_[col + 1] - 1] += shift * largest;
-        factored = cholesky_->factorize();
-      }
-    }
+    const bool factored = factorize_shifted();
     info.factorization_seconds += seconds_since(start);
     if (!factored) {
       info.status = SolverStatus::numerical_error;

@@ -70,7 +70,30 @@ public:
   InteriorPointInfo solve(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
                           InteriorPointSolution& solution, bool warm_start = false);
 
+  // The response of the optimum to a change of the balance rows' right-hand
+  // side with its active set held (Shin 2014 eq. 7): in interior-point
+  // form, the barrier terms z/w of the optimum stand for the active
+  // constraints (huge) and the inactive ones (vanishing), so
+  //     dx = Phi^-1 A^T (A Phi^-1 A^T)^-1 db
+  // with Phi the per-group matrices of the last Newton system. Factorises
+  // once (false when that fails or `solution` does not fit `problem`); then
+  // any number of directions cost a pair of triangular solves each.
+  bool prepare_response(const EquilibriumProblem& problem, const InteriorPointSolution& solution);
+  // (A Phi^-1 A^T)^-1 db, row_count long, scaled; db scaled as problem.rhs.
+  Eigen::VectorXd multiplier_response(const Eigen::VectorXd& delta_rhs) const;
+  // dx of group `group` (scaled, 4) from multiplier_response's answer.
+  Eigen::Vector4d group_response(const EquilibriumProblem& problem, int group,
+                                 const Eigen::VectorXd& multipliers) const;
+
 private:
+  // Fills the normal matrix A Phi^-1 A^T for barrier scaling z/w (one entry
+  // per inequality row, rows of group k from first_row[k]) and each group's
+  // Phi^-1.
+  void assemble_normal_matrix(const EquilibriumProblem& problem, const std::vector<int>& first_row,
+                              const Eigen::VectorXd& scaling,
+                              std::vector<Eigen::Matrix4d>& inverse_phi);
+  bool factorize_shifted();
+
   struct VertexSlots {
     int aa = -1, bb = -1, ab = -1;  // pattern slots of the 6 x 6 blocks, -1 if absent
     bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
@@ -80,6 +103,8 @@ private:
   std::unique_ptr<SparseCholesky> cholesky_;
   int size_ = 0;
   int block_rows_ = 6;
+  std::vector<Eigen::Matrix4d> response_phi_;  // Phi^-1 per group at prepare_response
+  bool response_ready_ = false;
 };
 
 }  // namespace ashlar

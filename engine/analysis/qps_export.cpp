@@ -79,6 +79,9 @@ std::vector<std::vector<std::string>> column_names(const EquilibriumProblem& pro
         ++slack;
         names[k] = {"P" + std::to_string(slack), "N" + std::to_string(slack)};
         break;
+      case GroupKind::weight:
+        names[k] = {"W" + std::to_string(group.source + 1)};
+        break;
     }
   }
   return names;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 
 #include "analysis/equilibrium.hpp"
@@ -106,6 +107,8 @@ constexpr double kHeadRadiusOfLargestArrow = 0.16;
 constexpr double kHeadLengthOfLargestArrow = 0.35;
 // Thinner than a shaft: arrows run along the thrust line and must show.
 constexpr double kThrustRadiusOfBlockSize = 0.012;
+// Thinner than the thrust line: hundreds of traces share a post.
+constexpr double kTraceRadiusOfBlockSize = 0.006;
 // Thicker than the thrust line so that a cable reads as a member.
 constexpr double kCableRadiusOfBlockSize = 0.02;
 constexpr int kGlyphSides = 6;
@@ -169,6 +172,13 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
       glyphs.push_back({"cable " + std::to_string(c + 1), std::move(tube), options.cable_color});
     }
   }
+  GlyphFaces traces;
+  for (const std::vector<Vec3>& trace : options.traces) {
+    GlyphFaces tube = tube_faces(trace, kTraceRadiusOfBlockSize * block_size, kGlyphSides);
+    traces.insert(traces.end(), std::make_move_iterator(tube.begin()),
+                  std::make_move_iterator(tube.end()));
+  }
+  if (!traces.empty()) glyphs.push_back({"load traces", std::move(traces), options.trace_color});
   if (!options.result) return glyphs;
   if (options.forces) add_force_arrows(*options.result, options, block_size, glyphs);
   if (options.thrust) {

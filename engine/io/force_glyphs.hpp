@@ -40,8 +40,9 @@ struct NamedGlyph {
   Rgb color;
 };
 
-// Every cable as a tube, node "cable c" (1-based), then the force arrows
-// and the thrust line that `options` asks for (see ExportOptions). Expects options already checked against
+// Every cable as a tube, node "cable c" (1-based), the load traces as one
+// node "load traces", then the force arrows and the thrust line that
+// `options` asks for (see ExportOptions). Expects options already checked against
 // the structure: options.result set when forces or thrust are.
 std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
                                            const ExportOptions& options);

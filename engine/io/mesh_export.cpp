@@ -344,7 +344,8 @@ FlatMesh block_mesh(const Block& block) {
 std::unique_ptr<aiScene> build_scene(const Structure& structure, const ExportOptions& options,
                                      bool y_up) {
   SceneBuilder builder(y_up);
-  const bool glyphs_inside = options.result && (options.forces || options.thrust);
+  const bool glyphs_inside =
+      (options.result && (options.forces || options.thrust)) || !options.traces.empty();
   const double opacity = options.block_opacity.value_or(glyphs_inside ? 0.35 : 1.0);
   for (int i = 0; i < structure.size(); ++i) {
     const Rgb color = options.block_colors.empty() ? Rgb{} : options.block_colors[i];

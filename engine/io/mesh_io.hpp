@@ -64,9 +64,15 @@ struct ExportOptions {
   Rgb tension_color{0.9, 0.1, 0.1};        // arrows of interfaces carrying tension
   Rgb thrust_color{1.0, 0.65, 0.0};
   Rgb cable_color{0.2, 0.2, 0.22};  // cables are always drawn, as thin tubes
+  // Load traces (ForceFlow::polylines of trace_loads, m), drawn as thin
+  // tubes merged into one node "load traces": hundreds of traces as nodes
+  // of their own would bloat files and slow viewers for no use. Like the
+  // force glyphs they run inside the blocks; set block_opacity to see them.
+  std::vector<std::vector<Vec3>> traces;
+  Rgb trace_color{0.1, 0.6, 0.25};
   // Opacity of the blocks in [0, 1] (glTF and OBJ; PLY and STL have no
-  // materials). Unset: opaque, except 0.35 when forces or the thrust line
-  // are drawn, since they run inside the blocks.
+  // materials). Unset: opaque, except 0.35 when forces, the thrust line or
+  // load traces are drawn, since they run inside the blocks.
   std::optional<double> block_opacity;
 };
 

@@ -1,0 +1,226 @@
+// ashlar.draw (elevation drawings with the line of thrust) and ashlar.legend
+// (colour-map legend images).
+#include "wrap_draw.hpp"
+
+#include <algorithm>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "io/color_map.hpp"
+#include "io/drawing.hpp"
+#include "luax.hpp"
+#include "wrap_Result.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+namespace {
+
+Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what) {
+  const Vec3 v = to_vec3(L, idx, arg, what);
+  if ((v.array() < 0.0).any() || (v.array() > 1.0).any()) {
+    throw ArgError(arg, what + ": colour components must lie in [0, 1]");
+  }
+  return {v.x(), v.y(), v.z()};
+}
+
+// The {lo, hi} table at idx, two finite numbers; `what` names it.
+std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  if (lua_type(L, idx) != LUA_TTABLE || lua_rawlen(L, idx) != 2) {
+    throw ArgError(arg, what + ": expected {lo, hi}, got " + type_name(L, idx));
+  }
+  lua_rawgeti(L, idx, 1);
+  lua_rawgeti(L, idx, 2);
+  const double lo = check_number(L, -2, (what + "[1]").c_str());
+  const double hi = check_number(L, -1, (what + "[2]").c_str());
+  lua_pop(L, 2);
+  return {lo, hi};
+}
+
+// Colours from a values table: one number per block, mapped with `map`
+// over `range` (default: the values' own range).
+std::vector<Rgb> mapped_colors(lua_State* L, int color, int arg, int block_count) {
+  const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
+  if (mapped.push("values") != LUA_TTABLE) {
+    throw ArgError(arg, "color.values: expected a list of numbers, one per block");
+  }
+  const int values_index = lua_gettop(L);
+  if (lua_rawlen(L, values_index) != static_cast<lua_Unsigned>(block_count)) {
+    throw ArgError(arg, "color.values: needs one value per block (" +
+                            std::to_string(block_count) + "), got " +
+                            std::to_string(lua_rawlen(L, values_index)));
+  }
+  std::vector<double> values;
+  for (int i = 1; i <= block_count; ++i) {
+    lua_rawgeti(L, values_index, i);
+    if (lua_type(L, -1) != LUA_TNUMBER) {
+      throw ArgError(arg, "color.values[" + std::to_string(i) + "]: expected a number, got " +
+                              type_name(L, -1));
+    }
+    values.push_back(lua_tonumber(L, -1));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  double lo = 0.0, hi = 0.0;
+  if (!values.empty()) {
+    lo = *std::min_element(values.begin(), values.end());
+    hi = *std::max_element(values.begin(), values.end());
+  }
+  if (mapped.push("range") != LUA_TNIL) std::tie(lo, hi) = to_range(L, -1, arg, "color.range");
+  lua_pop(L, 1);
+  return map_colors(values, lo, hi, mapped.string("map").value_or("viridis"));
+}
+
+// The `color` option, as in ashlar.export: {r, g, b} for every block, a
+// list with one {r, g, b} per block, or {values = {...}, map = "viridis",
+// range = {lo, hi}}. Empty when absent.
+std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count) {
+  const int arg = options.arg();
+  if (options.push("color") == LUA_TNIL) {
+    lua_pop(L, 1);
+    return {};
+  }
+  const int color = lua_gettop(L);
+  if (lua_type(L, color) != LUA_TTABLE) {
+    throw ArgError(arg, "color: expected {r, g, b}, a list of {r, g, b} per block, or "
+                        "{values = {...}, map = name, range = {lo, hi}}, got " +
+                            type_name(L, color));
+  }
+  std::vector<Rgb> colors;
+  lua_rawgeti(L, color, 1);
+  const int first = lua_type(L, -1);
+  lua_pop(L, 1);
+  if (first == LUA_TNUMBER) {
+    colors.assign(block_count, to_rgb(L, color, arg, "color"));
+  } else if (first == LUA_TTABLE) {
+    if (lua_rawlen(L, color) != static_cast<lua_Unsigned>(block_count)) {
+      throw ArgError(arg, "color: a list of colours needs one per block (" +
+                              std::to_string(block_count) + "), got " +
+                              std::to_string(lua_rawlen(L, color)));
+    }
+    for (int i = 1; i <= block_count; ++i) {
+      lua_rawgeti(L, color, i);
+      colors.push_back(to_rgb(L, -1, arg, "color[" + std::to_string(i) + "]"));
+      lua_pop(L, 1);
+    }
+  } else {
+    colors = mapped_colors(L, color, arg, block_count);
+  }
+  lua_pop(L, 1);
+  return colors;
+}
+
+// An image size option: a positive whole number of px (pt for SVG); the
+// engine checks its range.
+int image_size(const OptionTable& options, const char* key, int fallback) {
+  lua_State* L = options.state();
+  if (options.push(key) == LUA_TNIL) {
+    lua_pop(L, 1);
+    return fallback;
+  }
+  int is_integer = 0;
+  const lua_Integer value = lua_tointegerx(L, -1, &is_integer);
+  const bool number = lua_type(L, -1) == LUA_TNUMBER;
+  const std::string got = number ? lua_tostring(L, -1) : type_name(L, -1);
+  lua_pop(L, 1);
+  if (!number || !is_integer || value <= 0) {
+    throw ArgError(options.arg(),
+                   std::string(key) + ": expected a positive whole number of pixels, got " + got);
+  }
+  // Large values reach the engine's range check, not an int overflow.
+  return static_cast<int>(std::min<lua_Integer>(value, 1 << 30));
+}
+
+// The `view` option: "front" (looking along +y at the x-z plane), "side"
+// (looking along -x at the y-z plane) or a horizontal direction {x, y, z}.
+Vec3 view_direction(const OptionTable& options) {
+  lua_State* L = options.state();
+  const int type = options.push("view");
+  Vec3 direction(0.0, 1.0, 0.0);
+  if (type == LUA_TSTRING) {
+    const std::string name = lua_tostring(L, -1);
+    if (name == "side") {
+      direction = Vec3(-1.0, 0.0, 0.0);
+    } else if (name != "front") {
+      throw ArgError(options.arg(), "view: expected 'front', 'side' or a horizontal direction "
+                                    "{x, y, z}, got '" + name + "'");
+    }
+  } else if (type == LUA_TTABLE) {
+    direction = to_vec3(L, -1, options.arg(), "view");
+  } else if (type != LUA_TNIL) {
+    throw ArgError(options.arg(), "view: expected 'front', 'side' or a horizontal direction "
+                                  "{x, y, z}, got " + type_name(L, -1));
+  }
+  lua_pop(L, 1);
+  return direction;
+}
+
+int w_draw(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const std::string path = check_string(L, 2, "path");
+    const OptionTable options(L, 3, {"result", "thrust", "forces", "force_scale", "view", "width",
+                                     "height", "title", "color", "thrust_color", "tolerance"});
+    ElevationOptions drawing;
+    drawing.block_colors = block_colors(L, options, s.size());
+    drawing.contact.tolerance = options.positive("tolerance", 0.0, true);
+    // The Result stays pushed, so it cannot be collected while drawing.
+    if (options.push("result") != LUA_TNIL) {
+      drawing.result = luax_testResult(L, -1);
+      if (!drawing.result) {
+        throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " +
+                              type_name(L, -1));
+      }
+    }
+    // Drawing a result mostly means drawing its line of thrust.
+    drawing.thrust = options.boolean("thrust").value_or(drawing.result != nullptr);
+    drawing.forces = options.boolean("forces").value_or(false);
+    drawing.force_scale = options.positive("force_scale", 0.0, true);
+    drawing.view_direction = view_direction(options);
+    drawing.width = image_size(options, "width", drawing.width);
+    drawing.height = image_size(options, "height", drawing.height);
+    drawing.title = options.string("title").value_or("");
+    if (options.push("thrust_color") != LUA_TNIL) {
+      drawing.thrust_color = to_rgb(L, -1, options.arg(), "thrust_color");
+    }
+    lua_pop(L, 1);
+    draw_elevation(s, path, drawing);
+    return 0;
+  });
+}
+
+int w_legend(lua_State* L) {
+  return guard(L, [&] {
+    const std::string path = check_string(L, 1, "path");
+    const OptionTable options(L, 2, {"map", "range", "label", "width", "height", "orientation"});
+    LegendOptions legend;
+    legend.map = options.string("map").value_or(legend.map);
+    if (options.push("range") == LUA_TNIL) {
+      throw ArgError(2, "range: expected {lo, hi}, the values at the ends of the colour bar");
+    }
+    std::tie(legend.lo, legend.hi) = to_range(L, -1, 2, "range");
+    lua_pop(L, 1);
+    legend.label = options.string("label").value_or("");
+    const std::string orientation = options.string("orientation").value_or("vertical");
+    if (orientation != "vertical" && orientation != "horizontal") {
+      throw ArgError(2, "orientation: expected 'vertical' or 'horizontal', got '" + orientation +
+                            "'");
+    }
+    legend.vertical = orientation == "vertical";
+    legend.width = image_size(options, "width", 0);
+    legend.height = image_size(options, "height", 0);
+    draw_legend(path, legend);
+    return 0;
+  });
+}
+
+}  // namespace
+
+void set_draw_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"draw", w_draw}, {"legend", w_legend}, {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua

@@ -1,0 +1,136 @@
+// ashlar.weight_sensitivity, ashlar.load_capacity, ashlar.necessary_weights
+// and ashlar.important_weights: per-block answers to how the blocks'
+// weights hold a structure up.
+#include "wrap_weights.hpp"
+
+#include <cmath>
+
+#include "analysis/load_capacity.hpp"
+#include "analysis/weight_analysis.hpp"
+#include "luax.hpp"
+#include "wrap_Result.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+void set_boolean(lua_State* L, const char* key, bool value) {
+  lua_pushboolean(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_string(lua_State* L, const char* key, const char* value) {
+  lua_pushstring(L, value);
+  lua_setfield(L, -2, key);
+}
+
+// The list t[i] = values[i] (i 1-based) into the table on top of the stack.
+void set_list(lua_State* L, const std::vector<double>& values) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    lua_pushnumber(L, values[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+int w_weight_sensitivity(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const int block = check_block_index(L, s, 2, 2, "block");
+    const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
+    const WeightSensitivity sensitivity = weight_sensitivity(s, block, settings);
+    lua_createtable(L, s.size(), 6);
+    set_list(L, sensitivity.block_change);
+    const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
+    lua_createtable(L, static_cast<int>(sensitivity.interface_change.size()), 0);
+    for (size_t k = 0; k < sensitivity.interface_change.size(); ++k) {
+      lua_createtable(L, 0, 4);
+      set_index_field(L, "a", interfaces[k].a);
+      set_index_field(L, "b", interfaces[k].b);
+      set_field(L, "change", sensitivity.interface_change[k]);
+      set_field(L, "resultant", sensitivity.interface_resultant_change[k]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "interfaces");
+    set_boolean(L, "valid", sensitivity.valid);
+    set_boolean(L, "stable", sensitivity.analysis.stable);
+    set_string(L, "status", status_name(sensitivity.analysis.status));
+    set_field(L, "seconds", sensitivity.seconds);
+    set_field(L, "analysis_seconds", sensitivity.analysis.seconds);
+    return 1;
+  });
+}
+
+int w_load_capacity(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
+    const LoadCapacity capacity = load_capacity(s, settings);
+    lua_createtable(L, s.size(), 5);
+    for (int i = 0; i < s.size(); ++i) {
+      if (std::isnan(capacity.max[i])) {
+        lua_pushboolean(L, false);
+      } else {
+        lua_createtable(L, 0, 2);
+        set_field(L, "min", capacity.min[i]);
+        set_field(L, "max", capacity.max[i]);  // inf is math.huge
+      }
+      lua_rawseti(L, -2, i + 1);
+    }
+    set_boolean(L, "stable", capacity.stable);
+    set_string(L, "status", capacity.status.c_str());
+    set_field(L, "programs", capacity.programs);
+    set_field(L, "iterations", capacity.simplex_iterations);
+    set_field(L, "seconds", capacity.seconds);
+    return 1;
+  });
+}
+
+int w_necessary_weights(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const int block = check_block_index(L, s, 2, 2, "block");
+    const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
+    const NecessaryWeights needed = necessary_weights(s, block, settings);
+    lua_createtable(L, s.size(), 5);
+    set_list(L, needed.weights);
+    set_boolean(L, "stable", needed.stable);
+    set_field(L, "infeasibility", needed.infeasibility);
+    set_string(L, "status", status_name(needed.status));
+    set_field(L, "iterations", needed.iterations);
+    set_field(L, "seconds", needed.seconds);
+    return 1;
+  });
+}
+
+int w_important_weights(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
+    const ImportantWeights important = important_weights(s, settings);
+    lua_createtable(L, s.size(), 3);
+    set_list(L, important.per_volume);
+    lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);
+    for (size_t k = 0; k < important.unstable_blocks.size(); ++k) {
+      lua_pushinteger(L, important.unstable_blocks[k] + 1);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "unstable");
+    set_field(L, "solves", important.solves);
+    set_field(L, "seconds", important.seconds);
+    return 1;
+  });
+}
+
+}  // namespace
+
+void set_weights_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"weight_sensitivity", w_weight_sensitivity},
+                                       {"load_capacity", w_load_capacity},
+                                       {"necessary_weights", w_necessary_weights},
+                                       {"important_weights", w_important_weights},
+                                       {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua

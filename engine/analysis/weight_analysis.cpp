@@ -1,0 +1,200 @@
+#include "analysis/weight_analysis.hpp"
+
+#include <chrono>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace ashlar {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void check_free_block(const Structure& structure, int block) {
+  if (block < 0 || block >= structure.size()) {
+    throw InvalidArgument("block " + std::to_string(block + 1) + " is out of range (the structure has " +
+                          std::to_string(structure.size()) + " blocks)");
+  }
+  if (structure.is_support(block)) {
+    throw InvalidArgument("block " + std::to_string(block + 1) + " ('" + structure.name(block) +
+                          "') is a support: its weight goes straight to the ground");
+  }
+}
+
+void check_analysed(const EquilibriumProblem& problem, const Structure& structure, int block) {
+  if (problem.row_of_block[block] < 0) {
+    throw InvalidArgument("block " + std::to_string(block + 1) + " ('" + structure.name(block) +
+                          "') touches nothing that leads to a support");
+  }
+}
+
+// Position of the vertical force (Fz) among a body's balance rows.
+int vertical_row(const EquilibriumProblem& problem) {
+  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
+  for (int r = 0; r < problem.block_rows; ++r) {
+    if (rows[r] == 2) return r;
+  }
+  throw std::logic_error("balance rows without a vertical force");
+}
+
+// The necessary-weights problem of eq. 8 for every choice of the block
+// that keeps its weight: the free blocks' weights leave the right-hand side
+// and become unknowns w_j >= 0 (one group each, acting on its block's
+// vertical row only, so the normal matrix's pattern is unchanged and one
+// symbolic analysis serves every choice). The chosen block's weight goes
+// back into the right-hand side and its unknown is cut off.
+class NecessaryWeightsProblem {
+public:
+  NecessaryWeightsProblem(const Structure& structure, const AnalysisSettings& settings)
+      : structure_(structure),
+        settings_(settings),
+        problem_(build_equilibrium_problem(structure, settings.problem)),
+        vertical_(vertical_row(problem_)) {
+    const double wu = problem_.weight_unit;
+    group_of_block_.assign(structure.size(), -1);
+    for (int j = 0; j < structure.size(); ++j) {
+      const int row = problem_.row_of_block[j];
+      if (row < 0) continue;
+      problem_.rhs(row + vertical_) -= structure.block(j).mass() * kGravity / wu;
+      ForceGroup weight;
+      weight.kind = GroupKind::weight;
+      weight.source = j;
+      weight.block_a = j;
+      weight.row_a = row;
+      weight.position = structure.block(j).centroid();
+      weight.on_a(vertical_, 0) = -1.0;  // the weight joins the loads the contacts carry
+      group_of_block_[j] = static_cast<int>(problem_.groups.size());
+      problem_.groups.push_back(weight);
+    }
+    rhs_without_weights_ = problem_.rhs;
+    solver_ = std::make_unique<EquilibriumSolver>(problem_);
+  }
+
+  const EquilibriumProblem& problem() const { return problem_; }
+
+  NecessaryWeights solve(int block, bool warm_start) {
+    const auto start = Clock::now();
+    check_analysed(problem_, structure_, block);
+    const double wu = problem_.weight_unit;
+    const double own_weight = structure_.block(block).mass() * kGravity;
+    if (chosen_ >= 0) problem_.groups[group_of_block_[chosen_]].on_a(vertical_, 0) = -1.0;
+    chosen_ = block;
+    problem_.groups[group_of_block_[block]].on_a(vertical_, 0) = 0.0;
+    problem_.rhs = rhs_without_weights_;
+    problem_.rhs(problem_.row_of_block[block] + vertical_) += own_weight / wu;
+
+    const InteriorPointInfo info =
+        solver_->solve(problem_, settings_.solver, solution_, warm_start);
+    NecessaryWeights result;
+    result.status = info.status;
+    result.iterations = info.iterations;
+    result.weights.assign(structure_.size(), 0.0);
+    double penalised = 0.0;
+    for (size_t k = 0; k < problem_.groups.size(); ++k) {
+      const ForceGroup& group = problem_.groups[k];
+      const Eigen::Vector4d x = solution_.x.segment<4>(4 * static_cast<Eigen::Index>(k));
+      penalised += problem_.rules_of(group).linear.dot(x);
+      if (group.kind == GroupKind::weight && group.source != block) {
+        result.weights[group.source] = x(0) * wu;
+      }
+    }
+    result.weights[block] = own_weight;
+    const bool floating = !problem_.floating_blocks.empty() || !problem_.floating_junctions.empty();
+    result.stable = !floating && info.status != SolverStatus::numerical_error &&
+                    compression_only_imbalance(problem_, solution_.x) <= settings_.stable_tolerance;
+    if (floating || info.status == SolverStatus::numerical_error) {
+      result.infeasibility = std::numeric_limits<double>::infinity();
+    } else {
+      result.infeasibility = result.stable ? 0.0 : penalised / std::max(problem_.body_count, 1);
+    }
+    result.seconds = seconds_since(start);
+    return result;
+  }
+
+private:
+  const Structure& structure_;
+  const AnalysisSettings& settings_;
+  EquilibriumProblem problem_;
+  int vertical_ = 2;
+  std::vector<int> group_of_block_;  // the weight group of each analysed block, else -1
+  Eigen::VectorXd rhs_without_weights_;
+  std::unique_ptr<EquilibriumSolver> solver_;
+  InteriorPointSolution solution_;
+  int chosen_ = -1;
+};
+
+}  // namespace
+
+WeightSensitivity weight_sensitivity(const Structure& structure, int block,
+                                     const AnalysisSettings& settings) {
+  check_free_block(structure, block);
+  WeightSensitivity result;
+  EquilibriumProblem problem;
+  result.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
+  check_analysed(problem, structure, block);
+  const auto start = Clock::now();
+  if (result.analysis.status == SolverStatus::numerical_error) return result;
+  EquilibriumSolver solver(problem);
+  if (!solver.prepare_response(problem, result.analysis.solution)) return result;
+
+  // One newton more on the block is 1 / weight_unit on its vertical row;
+  // the scaled force change is then in weight units per weight unit: N/N.
+  Eigen::VectorXd more_weight = Eigen::VectorXd::Zero(problem.row_count);
+  more_weight(problem.row_of_block[block] + vertical_row(problem)) = 1.0;
+  const Eigen::VectorXd multipliers = solver.multiplier_response(more_weight);
+
+  const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);
+  result.interface_change.assign(interfaces.size(), 0.0);
+  result.interface_resultant_change.assign(interfaces.size(), Vec3::Zero());
+  result.block_change.assign(structure.size(), 0.0);
+  for (int k = 0; k < problem.contact_vertex_count; ++k) {
+    const ForceGroup& vertex = problem.groups[k];
+    const Interface& contact = interfaces[vertex.source];
+    const Eigen::Vector4d dx = solver.group_response(problem, k, multipliers);
+    const Vec3 change = (dx(0) - dx(1)) * contact.normal + dx(2) * contact.u + dx(3) * contact.v;
+    result.interface_change[vertex.source] += change.norm();
+    result.interface_resultant_change[vertex.source] += change;
+  }
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.block_change[interfaces[i].a] += result.interface_change[i];
+    result.block_change[interfaces[i].b] += result.interface_change[i];
+  }
+  result.valid = true;
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+NecessaryWeights necessary_weights(const Structure& structure, int block,
+                                   const AnalysisSettings& settings) {
+  check_free_block(structure, block);
+  NecessaryWeightsProblem problem(structure, settings);
+  return problem.solve(block, false);
+}
+
+ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings) {
+  const auto start = Clock::now();
+  NecessaryWeightsProblem problem(structure, settings);
+  ImportantWeights result;
+  result.per_volume.assign(structure.size(), 0.0);
+  for (int i = 0; i < structure.size(); ++i) {
+    if (problem.problem().row_of_block[i] < 0) continue;
+    const NecessaryWeights needed = problem.solve(i, result.solves > 0);
+    ++result.solves;
+    if (!needed.stable) result.unstable_blocks.push_back(i);
+    for (int j = 0; j < structure.size(); ++j) {
+      if (j != i) result.per_volume[j] += needed.weights[j];
+    }
+  }
+  for (int j = 0; j < structure.size(); ++j) {
+    if (result.per_volume[j] != 0.0) result.per_volume[j] /= structure.block(j).volume();
+  }
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace ashlar

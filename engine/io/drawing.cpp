@@ -1,0 +1,812 @@
+// Elevation drawings and colour-map legends with cairo.
+//
+// Both render into memory (the SVG surface writes to a stream, the image
+// surface is encoded as PNG into a string), so the file is written whole by
+// write_file_atomically or not at all. Blocks are drawn face by face: every
+// face turned towards the viewer is projected and painted, farthest first
+// (painter's algorithm on the face centroids), which is exact for the
+// extruded planar models and a fair picture of 3D ones. Sizes that depend
+// on the image (margins, fonts, line widths) grow with its smaller side so
+// that a larger image looks the same, only sharper.
+#include "io/drawing.hpp"
+
+#include <cairo-svg.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <new>
+#include <sstream>
+
+#include "analysis/equilibrium.hpp"
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/color_map.hpp"
+
+namespace ashlar {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr int kMinImageSize = 100;
+constexpr int kMaxImageSize = 16384;
+constexpr int kLegendTicks = 5;
+// A face turns towards the viewer when its outward normal has at least this
+// component against the view direction; faces seen edge-on are skipped.
+constexpr double kFacingViewer = 1e-6;
+// Arrow sizes, as in the mesh export: the largest arrow is this fraction of
+// the mean free-block size. Forces smaller than this fraction of the largest
+// (solver round-off, blocks that merely touch) get no arrow, and no part in
+// the thrust line.
+constexpr double kLargestArrowOfBlockSize = 0.25;
+constexpr double kNegligibleForce = 1e-3;
+
+const Rgb kFreeBlockFill{0.87, 0.86, 0.83};
+const Rgb kSupportFill{0.70, 0.69, 0.66};
+const Rgb kCableColor{0.2, 0.2, 0.22};
+const Rgb kCompressionColor{0.15, 0.35, 0.9};
+const Rgb kTensionColor{0.9, 0.1, 0.1};
+
+// ---------------------------------------------------------------------------
+// Files
+
+enum class DrawingFormat { svg, png };
+
+DrawingFormat format_for(const std::string& path, const std::string& what) {
+  const std::string extension = file_extension(path);
+  if (extension == "svg") return DrawingFormat::svg;
+  if (extension == "png") return DrawingFormat::png;
+  throw InvalidArgument(what + ": cannot tell the format of '" + path +
+                        "' from its extension; use .svg or .png");
+}
+
+void check_size(int width, int height, const std::string& what) {
+  for (const int size : {width, height}) {
+    if (size < kMinImageSize || size > kMaxImageSize) {
+      throw InvalidArgument(what + ": width and height must lie in [" +
+                            std::to_string(kMinImageSize) + ", " + std::to_string(kMaxImageSize) +
+                            "], got " + std::to_string(width) + " x " + std::to_string(height));
+    }
+  }
+}
+
+cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
+  // No exception may unwind through cairo's C frames.
+  try {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  } catch (const std::bad_alloc&) {
+    return CAIRO_STATUS_NO_MEMORY;
+  }
+  return CAIRO_STATUS_SUCCESS;
+}
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* surface) const { cairo_surface_destroy(surface); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* cr) const { cairo_destroy(cr); }
+};
+
+// Paints a white image of the given size with `paint` and writes it to path
+// atomically in the given format. `paint` must not throw.
+void render_file(const std::string& path, DrawingFormat format, int width, int height,
+                 const std::string& what, const std::function<void(cairo_t*)>& paint) {
+  std::string bytes;
+  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
+      format == DrawingFormat::svg
+          ? cairo_svg_surface_create_for_stream(append_to_string, &bytes, width, height)
+          : cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
+  cairo_status_t status = cairo_surface_status(surface.get());
+  if (status == CAIRO_STATUS_SUCCESS) {
+    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    cairo_set_source_rgb(cr.get(), 1.0, 1.0, 1.0);
+    cairo_paint(cr.get());
+    paint(cr.get());
+    status = cairo_status(cr.get());
+  }
+  if (status == CAIRO_STATUS_SUCCESS && format == DrawingFormat::png) {
+    status = cairo_surface_write_to_png_stream(surface.get(), append_to_string, &bytes);
+  }
+  // Finishing the SVG surface writes its last part into `bytes`.
+  cairo_surface_finish(surface.get());
+  if (status == CAIRO_STATUS_SUCCESS) status = cairo_surface_status(surface.get());
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw IoError(what + ": cannot draw '" + path + "': " + cairo_status_to_string(status));
+  }
+  write_file_atomically(path, bytes);
+}
+
+// ---------------------------------------------------------------------------
+// Painting helpers
+
+// Sizes that follow the image's smaller side (px).
+struct Metrics {
+  double line;    // unit of line widths: 1 px for a smaller side of 800 px
+  double font;    // size of body text, 16 px at 800 px
+  double margin;  // around the drawing, 32 px at 800 px
+
+  Metrics(int width, int height) {
+    const double side = std::min(width, height);
+    line = std::max(0.5, side / 800.0);
+    font = std::clamp(side / 50.0, 9.0, 48.0);
+    margin = std::max(12.0, 0.04 * side);
+  }
+};
+
+void set_color(cairo_t* cr, const Rgb& color) {
+  cairo_set_source_rgb(cr, color.r, color.g, color.b);
+}
+
+Rgb darker(const Rgb& color, double factor) {
+  return {color.r * factor, color.g * factor, color.b * factor};
+}
+
+void set_font(cairo_t* cr, double size) {
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+}
+
+double text_width(cairo_t* cr, const std::string& text) {
+  cairo_text_extents_t extents;
+  cairo_text_extents(cr, text.c_str(), &extents);
+  return extents.x_advance;
+}
+
+// Draws text with its anchor at (x, y): align_x 0 puts its left end there,
+// 0.5 its middle, 1 its right end; the text's capital height is centred on y.
+void show_text(cairo_t* cr, const std::string& text, double x, double y, double align_x) {
+  cairo_text_extents_t capital;
+  cairo_text_extents(cr, "H", &capital);
+  cairo_move_to(cr, x - align_x * text_width(cr, text), y - capital.y_bearing / 2);
+  cairo_show_text(cr, text.c_str());
+}
+
+void move_or_line(cairo_t* cr, const Vec2& p, bool first) {
+  if (first) {
+    cairo_move_to(cr, p.x(), p.y());
+  } else {
+    cairo_line_to(cr, p.x(), p.y());
+  }
+}
+
+// Diagonal lines over the current path's area, on a grid anchored at the
+// image origin so that neighbouring faces' hatching lines up. Consumes the
+// path.
+void hatch_path(cairo_t* cr, const Rgb& color, double spacing, double width) {
+  double x0, y0, x1, y1;
+  cairo_path_extents(cr, &x0, &y0, &x1, &y1);
+  cairo_save(cr);
+  cairo_clip_preserve(cr);
+  cairo_new_path(cr);
+  // Lines x - y = c for every multiple c of the spacing that meets the box.
+  for (double c = std::floor((x0 - y1) / spacing) * spacing; c <= x1 - y0; c += spacing) {
+    cairo_move_to(cr, c + y0, y0);
+    cairo_line_to(cr, c + y1, y1);
+  }
+  set_color(cr, color);
+  cairo_set_line_width(cr, width);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+}
+
+// ---------------------------------------------------------------------------
+// Elevation
+
+void check_color(const Rgb& color, const std::string& what) {
+  for (const double component : {color.r, color.g, color.b}) {
+    if (!(component >= 0.0 && component <= 1.0)) {
+      std::ostringstream message;
+      message << "draw: " << what << " must have components in [0, 1], got (" << color.r << ", "
+              << color.g << ", " << color.b << ")";
+      throw InvalidArgument(message.str());
+    }
+  }
+}
+
+void check_result(const Structure& structure, const ElevationOptions& options) {
+  if ((options.forces || options.thrust) && !options.result) {
+    throw InvalidArgument(std::string("draw: ") + (options.forces ? "forces" : "thrust") +
+                          " needs the result of an analysis of the structure (result = r)");
+  }
+  if (!options.result) return;
+  const EquilibriumResult& result = *options.result;
+  const size_t blocks = result.block_tension.size();
+  if (blocks != static_cast<size_t>(structure.size())) {
+    throw InvalidArgument("draw: the result is of a structure with " + std::to_string(blocks) +
+                          " blocks, this one has " + std::to_string(structure.size()));
+  }
+  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
+  bool same = interfaces.size() == result.interfaces.size();
+  for (size_t i = 0; same && i < interfaces.size(); ++i) {
+    same = interfaces[i].a == result.interfaces[i].a && interfaces[i].b == result.interfaces[i].b;
+  }
+  if (!same) {
+    throw InvalidArgument("draw: the result's " + std::to_string(result.interfaces.size()) +
+                          " interfaces are not this structure's " +
+                          std::to_string(interfaces.size()) +
+                          "; draw the structure that was analysed, with the analysis's "
+                          "contact tolerance");
+  }
+}
+
+void check_options(const Structure& structure, const ElevationOptions& options) {
+  check_size(options.width, options.height, "draw");
+  if (structure.size() == 0) throw InvalidArgument("draw: the structure has no blocks");
+  const size_t colors = options.block_colors.size();
+  if (colors != 0 && colors != static_cast<size_t>(structure.size())) {
+    throw InvalidArgument("draw: block_colors has " + std::to_string(colors) +
+                          " colours but the structure has " + std::to_string(structure.size()) +
+                          " blocks (give one per block, or none)");
+  }
+  for (size_t i = 0; i < colors; ++i) {
+    check_color(options.block_colors[i], "colour " + std::to_string(i + 1));
+  }
+  check_color(options.thrust_color, "thrust_color");
+  if (!(options.force_scale >= 0.0) || !std::isfinite(options.force_scale)) {
+    throw InvalidArgument("draw: force_scale must be a finite number >= 0 (0: automatic)");
+  }
+  check_result(structure, options);
+}
+
+struct ProjectedFace {
+  std::vector<Vec2> outline;  // px
+  double depth = 0.0;         // m, of the face centroid
+  int block = -1;
+};
+
+// Every face of every block that turns towards the viewer, farthest first;
+// faces at equal depth stay in block order.
+std::vector<ProjectedFace> visible_faces(const Structure& structure,
+                                         const ElevationProjection& projection) {
+  std::vector<ProjectedFace> faces;
+  for (int i = 0; i < structure.size(); ++i) {
+    const Block& block = structure.block(i);
+    for (size_t f = 0; f < block.faces().size(); ++f) {
+      if (block.face_planes()[f].normal.dot(projection.view()) > -kFacingViewer) continue;
+      ProjectedFace face;
+      face.block = i;
+      Vec3 centroid = Vec3::Zero();
+      for (const int v : block.faces()[f]) {
+        face.outline.push_back(projection(block.vertices()[v]));
+        centroid += block.vertices()[v];
+      }
+      face.depth = projection.depth(centroid / static_cast<double>(block.faces()[f].size()));
+      faces.push_back(std::move(face));
+    }
+  }
+  std::stable_sort(faces.begin(), faces.end(), [](const ProjectedFace& a, const ProjectedFace& b) {
+    return a.depth > b.depth;
+  });
+  return faces;
+}
+
+void paint_blocks(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
+                  const ElevationOptions& options, const Metrics& metrics) {
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const ProjectedFace& face : visible_faces(structure, projection)) {
+    const bool support = structure.is_support(face.block);
+    const Rgb fill = options.block_colors.empty() ? (support ? kSupportFill : kFreeBlockFill)
+                                                  : options.block_colors[face.block];
+    const auto trace = [&] {
+      cairo_new_path(cr);
+      for (size_t k = 0; k < face.outline.size(); ++k) move_or_line(cr, face.outline[k], k == 0);
+      cairo_close_path(cr);
+    };
+    trace();
+    set_color(cr, fill);
+    cairo_fill_preserve(cr);
+    if (support) {
+      hatch_path(cr, darker(fill, 0.6), 9.0 * metrics.line, 0.8 * metrics.line);
+      trace();  // hatching used the path up
+    }
+    set_color(cr, darker(fill, 0.4));
+    cairo_set_line_width(cr, 0.9 * metrics.line);
+    cairo_stroke(cr);
+  }
+}
+
+void paint_cables(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
+                  const Metrics& metrics) {
+  set_color(cr, kCableColor);
+  cairo_set_line_width(cr, 1.5 * metrics.line);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (const Cable& cable : structure.cables()) {
+    move_or_line(cr, projection(cable.from.point), true);
+    move_or_line(cr, projection(cable.to.point), false);
+    cairo_stroke(cr);
+  }
+}
+
+double mean_free_block_size(const Structure& structure) {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < structure.size(); ++i) {
+    if (structure.is_support(i)) continue;
+    sum += structure.block(i).bounds().diagonal();
+    ++count;
+  }
+  return count > 0 ? sum / count : structure.bounds().diagonal();
+}
+
+// An arrow from tail to tip (px) whose head is a filled triangle.
+void paint_arrow(cairo_t* cr, const Vec2& tail, const Vec2& tip, const Metrics& metrics) {
+  const double length = (tip - tail).norm();
+  // Short arrows keep a shaft, so that their direction still reads.
+  const double head = std::min(9.0 * metrics.line, 0.5 * length);
+  const Vec2 along = (tip - tail) / length;
+  const Vec2 across(-along.y(), along.x());
+  const Vec2 base = tip - head * along;
+  move_or_line(cr, tail, true);
+  move_or_line(cr, base, false);
+  cairo_stroke(cr);
+  move_or_line(cr, tip, true);
+  move_or_line(cr, base + 0.45 * head * across, false);
+  move_or_line(cr, base - 0.45 * head * across, false);
+  cairo_close_path(cr);
+  cairo_fill(cr);
+}
+
+void paint_forces(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
+                  const ElevationOptions& options, const Metrics& metrics) {
+  const EquilibriumResult& result = *options.result;
+  double largest = 0.0;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (f.resultant.allFinite()) largest = std::max(largest, f.resultant.norm());
+  }
+  if (largest == 0.0) return;
+  const double metres_per_newton =
+      options.force_scale > 0.0
+          ? options.force_scale
+          : kLargestArrowOfBlockSize * mean_free_block_size(structure) / largest;
+  const double negligible = kNegligibleForce * largest;
+  cairo_set_line_width(cr, 1.5 * metrics.line);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  for (const InterfaceForces& f : result.interfaces) {
+    if (!(f.resultant.norm() > negligible) || !f.resultant.allFinite() ||
+        !f.center_of_pressure.allFinite()) {
+      continue;
+    }
+    const Vec2 tail = projection(f.center_of_pressure);
+    const Vec2 tip = projection(f.center_of_pressure + metres_per_newton * f.resultant);
+    // A resultant along the view direction has no arrow to show.
+    if ((tip - tail).norm() < metrics.line) continue;
+    set_color(cr, f.tension > negligible ? kTensionColor : kCompressionColor);
+    paint_arrow(cr, tail, tip, metrics);
+  }
+}
+
+// The polylines as one stroked path, then a dot at every centre of pressure
+// on them.
+void paint_thrust(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
+                  const ElevationOptions& options, const Metrics& metrics) {
+  set_color(cr, options.thrust_color);
+  cairo_set_line_width(cr, 2.0 * metrics.line);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  const std::vector<std::vector<Vec3>> polylines = thrust_polylines(structure, *options.result);
+  std::vector<Vec3> points;
+  for (const std::vector<Vec3>& polyline : polylines) {
+    if (polyline.size() >= 2) {
+      for (size_t k = 0; k < polyline.size(); ++k) {
+        move_or_line(cr, projection(polyline[k]), k == 0);
+      }
+    }
+    points.insert(points.end(), polyline.begin(), polyline.end());
+  }
+  cairo_stroke(cr);
+  // Polylines share their branch points: one dot each.
+  const auto before = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::sort(points.begin(), points.end(), before);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  for (const Vec3& point : points) {
+    const Vec2 p = projection(point);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, p.x(), p.y(), 3.0 * metrics.line, 0.0, 2.0 * kPi);
+  }
+  cairo_fill(cr);
+}
+
+// A bar of round length under the drawing's left end, half black and half
+// white, with its length written after it.
+void paint_scale_bar(cairo_t* cr, const ElevationProjection& projection, const ImageRect& fitted,
+                     int height, const Metrics& metrics) {
+  // A quarter of the drawing's larger side, so that slender drawings get a
+  // readable bar too.
+  const double length = scale_bar_length(0.25 * std::max(fitted.width, fitted.height) /
+                                         projection.scale());
+  const double pixels = length * projection.scale();
+  const double bar = 0.45 * metrics.font;
+  const double middle = height - metrics.margin - 0.5 * metrics.font;
+  const double left = fitted.left;
+  cairo_set_line_width(cr, metrics.line);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_MITER);
+  cairo_rectangle(cr, left, middle - bar / 2, pixels / 2, bar);
+  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+  cairo_fill(cr);
+  cairo_rectangle(cr, left, middle - bar / 2, pixels, bar);
+  cairo_stroke(cr);
+  char label[32];
+  std::snprintf(label, sizeof label, "%g m", length);
+  set_font(cr, metrics.font);
+  show_text(cr, label, left + pixels + 0.5 * metrics.font, middle, 0.0);
+}
+
+// The title, centred at the top, shrunk to fit the width if need be.
+void paint_title(cairo_t* cr, const std::string& title, int width, const Metrics& metrics) {
+  const double size = 1.3 * metrics.font;
+  set_font(cr, size);
+  const double room = width - 2 * metrics.margin;
+  const double needed = text_width(cr, title);
+  if (needed > room) set_font(cr, size * room / needed);
+  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+  show_text(cr, title, width / 2.0, metrics.margin + 0.65 * size, 0.5);
+}
+
+// Title band height: the title's line and a gap below it.
+double title_band(const ElevationOptions& options, const Metrics& metrics) {
+  return options.title.empty() ? 0.0 : 2.2 * metrics.font;
+}
+
+std::vector<Vec3> fitted_points(const Structure& structure) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < structure.size(); ++i) {
+    const auto& vertices = structure.block(i).vertices();
+    points.insert(points.end(), vertices.begin(), vertices.end());
+  }
+  for (const Cable& cable : structure.cables()) {
+    points.push_back(cable.from.point);
+    points.push_back(cable.to.point);
+  }
+  return points;
+}
+
+// The image rectangle that the projections of points cover.
+ImageRect covered_rect(const ElevationProjection& projection, const std::vector<Vec3>& points) {
+  Vec2 lo = Vec2::Constant(kInfinity), hi = Vec2::Constant(-kInfinity);
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(projection(p));
+    hi = hi.cwiseMax(projection(p));
+  }
+  return {lo.x(), lo.y(), hi.x() - lo.x(), hi.y() - lo.y()};
+}
+
+// ---------------------------------------------------------------------------
+// Legend
+
+std::string trimmed_fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  std::string label = text;
+  if (label.find('.') != std::string::npos) {
+    label.erase(label.find_last_not_of('0') + 1);
+    if (label.back() == '.') label.pop_back();
+  }
+  return label == "-0" ? "0" : label;
+}
+
+std::string tick_label(double value, double spacing, double largest) {
+  // Round-off of lo + k * spacing must not print as "-2.8e-17".
+  if (std::abs(value) < 1e-9 * spacing) return "0";
+  const int spacing_exponent = static_cast<int>(std::floor(std::log10(spacing)));
+  if (largest >= 1e6 || largest < 1e-3) {
+    const int largest_exponent = static_cast<int>(std::floor(std::log10(largest)));
+    const int digits = std::clamp(largest_exponent - spacing_exponent + 3, 3, 15);
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    return text;
+  }
+  return trimmed_fixed(value, std::clamp(2 - spacing_exponent, 0, 15));
+}
+
+void check_legend(const LegendOptions& options) {
+  if (!std::isfinite(options.lo) || !std::isfinite(options.hi) || !(options.lo < options.hi)) {
+    std::ostringstream message;
+    message << "legend: range must be finite with lo < hi, got [" << options.lo << ", "
+            << options.hi << "]";
+    throw InvalidArgument(message.str());
+  }
+  map_colors({}, options.lo, options.hi, options.map);  // throws for an unknown map
+}
+
+// The colour bar as a gradient over the rectangle, lo at `from`, hi at `to`.
+void paint_color_bar(cairo_t* cr, const std::string& map, const ImageRect& bar, const Vec2& from,
+                     const Vec2& to, const Metrics& metrics) {
+  // The maps are piecewise linear over at most 17 control points; 65 evenly
+  // spaced stops reproduce them to well under an 8-bit step.
+  constexpr int kStops = 65;
+  std::vector<double> positions;
+  for (int k = 0; k < kStops; ++k) positions.push_back(k / double(kStops - 1));
+  const std::vector<Rgb> colors = map_colors(positions, 0.0, 1.0, map);
+  cairo_pattern_t* gradient = cairo_pattern_create_linear(from.x(), from.y(), to.x(), to.y());
+  for (int k = 0; k < kStops; ++k) {
+    cairo_pattern_add_color_stop_rgb(gradient, positions[k], colors[k].r, colors[k].g,
+                                     colors[k].b);
+  }
+  cairo_rectangle(cr, bar.left, bar.top, bar.width, bar.height);
+  cairo_set_source(cr, gradient);
+  cairo_fill_preserve(cr);
+  cairo_pattern_destroy(gradient);
+  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+  cairo_set_line_width(cr, metrics.line);
+  cairo_stroke(cr);
+}
+
+void paint_legend(cairo_t* cr, const LegendOptions& options, int width, int height) {
+  // A legend is a long strip: its text and lines follow its length, so that
+  // both orientations of the same length look alike.
+  Metrics metrics(width, height);
+  metrics.font = std::clamp(0.025 * std::max(width, height), 9.0, 32.0);
+  metrics.line = std::max(1.0, metrics.line);
+  const std::vector<LegendTick> ticks = legend_ticks(options.lo, options.hi, kLegendTicks);
+  set_font(cr, metrics.font);
+  double widest = 0.0;
+  for (const LegendTick& tick : ticks) widest = std::max(widest, text_width(cr, tick.label));
+  const double tick_length = 0.4 * metrics.font;
+  const double gap = 0.3 * metrics.font;
+  const double label_band = options.label.empty() ? 0.0 : 1.8 * metrics.font;
+  const double thickness_cap = 2.5 * metrics.font;
+  ImageRect bar;
+  std::function<Vec2(double)> tick_anchor;  // where a tick at fraction t starts on the bar
+  Vec2 from, to;
+  if (options.vertical) {
+    // Label (turned), bar, ticks and their labels side by side, centred.
+    const double labels = tick_length + gap + widest;
+    bar.width = std::clamp(width - 2 * metrics.margin - label_band - labels, 6.0, thickness_cap);
+    const double group = label_band + bar.width + labels;
+    bar.left = std::max(metrics.margin, (width - group) / 2) + label_band;
+    bar.top = metrics.margin + metrics.font;
+    bar.height = height - 2 * bar.top;
+    from = {0.0, bar.top + bar.height};
+    to = {0.0, bar.top};
+    tick_anchor = [&](double t) {
+      return Vec2(bar.left + bar.width, bar.top + (1 - t) * bar.height);
+    };
+  } else {
+    // Label above the bar, tick labels below, centred vertically.
+    const double labels = tick_length + gap + metrics.font;
+    bar.height = std::clamp(height - 2 * metrics.margin - label_band - labels, 6.0, thickness_cap);
+    const double group = label_band + bar.height + labels;
+    bar.top = std::max(metrics.margin, (height - group) / 2) + label_band;
+    // Room for half of the end labels beyond the bar's ends.
+    bar.left = metrics.margin + std::max(text_width(cr, ticks.front().label) / 2, metrics.font);
+    bar.width = width - bar.left - metrics.margin -
+                std::max(text_width(cr, ticks.back().label) / 2, metrics.font);
+    from = {bar.left, 0.0};
+    to = {bar.left + bar.width, 0.0};
+    tick_anchor = [&](double t) { return Vec2(bar.left + t * bar.width, bar.top + bar.height); };
+  }
+  paint_color_bar(cr, options.map, bar, from, to, metrics);
+
+  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+  cairo_set_line_width(cr, metrics.line);
+  for (size_t k = 0; k < ticks.size(); ++k) {
+    const double t = k / double(ticks.size() - 1);
+    const Vec2 start = tick_anchor(t);
+    const Vec2 direction = options.vertical ? Vec2(1.0, 0.0) : Vec2(0.0, 1.0);
+    const Vec2 end = start + tick_length * direction;
+    move_or_line(cr, start, true);
+    move_or_line(cr, end, false);
+    cairo_stroke(cr);
+    if (options.vertical) {
+      show_text(cr, ticks[k].label, end.x() + gap, end.y(), 0.0);
+    } else {
+      show_text(cr, ticks[k].label, end.x(), end.y() + gap + metrics.font / 2, 0.5);
+    }
+  }
+  if (options.label.empty()) return;
+  // The label reads along the bar, shrunk to the bar's length if need be.
+  const double room = options.vertical ? bar.height : width - 2 * metrics.margin;
+  const double needed = text_width(cr, options.label);
+  if (needed > room) set_font(cr, metrics.font * room / needed);
+  if (options.vertical) {
+    cairo_save(cr);
+    cairo_translate(cr, bar.left - label_band / 2, bar.top + bar.height / 2);
+    cairo_rotate(cr, -kPi / 2);
+    show_text(cr, options.label, 0.0, 0.0, 0.5);
+    cairo_restore(cr);
+  } else {
+    show_text(cr, options.label, width / 2.0, bar.top - label_band / 2, 0.5);
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Public functions
+
+ElevationProjection::ElevationProjection(const Vec3& view_direction,
+                                         const std::vector<Vec3>& points, const ImageRect& area) {
+  const Vec3 horizontal(view_direction.x(), view_direction.y(), 0.0);
+  if (!view_direction.allFinite() || horizontal.norm() == 0.0 ||
+      std::abs(view_direction.z()) > 1e-9 * view_direction.norm()) {
+    std::ostringstream message;
+    message << "view direction must be horizontal (z = 0), non-zero and finite, got ("
+            << view_direction.x() << ", " << view_direction.y() << ", " << view_direction.z()
+            << ")";
+    throw InvalidArgument(message.str());
+  }
+  if (points.empty()) throw InvalidArgument("elevation projection: no points to fit");
+  if (!(area.width > 0.0 && area.height > 0.0)) {
+    throw InvalidArgument("elevation projection: the image area has no room");
+  }
+  view_ = horizontal.normalized();
+  right_ = view_.cross(Vec3::UnitZ());
+  Vec2 lo = Vec2::Constant(kInfinity), hi = Vec2::Constant(-kInfinity);
+  for (const Vec3& p : points) {
+    const Vec2 plane(right_.dot(p), p.z());
+    lo = lo.cwiseMin(plane);
+    hi = hi.cwiseMax(plane);
+  }
+  const Vec2 extent = hi - lo;
+  if (extent.x() > 0.0 && extent.y() > 0.0) {
+    scale_ = std::min(area.width / extent.x(), area.height / extent.y());
+  } else if (extent.x() > 0.0) {
+    scale_ = area.width / extent.x();
+  } else if (extent.y() > 0.0) {
+    scale_ = area.height / extent.y();
+  }
+  const Vec2 middle = (lo + hi) / 2;
+  offset_ = {area.left + area.width / 2 - scale_ * middle.x(),
+             area.top + area.height / 2 + scale_ * middle.y()};
+}
+
+Vec2 ElevationProjection::operator()(const Vec3& p) const {
+  return {offset_.x() + scale_ * right_.dot(p), offset_.y() - scale_ * p.z()};
+}
+
+double scale_bar_length(double at_most) {
+  if (!(at_most > 0.0) || !std::isfinite(at_most)) {
+    throw InvalidArgument("scale bar: the longest length must be finite and > 0");
+  }
+  const double power = std::pow(10.0, std::floor(std::log10(at_most)));
+  // Round-off in log10 can leave the mantissa a hair outside [1, 10).
+  const double mantissa = at_most / power;
+  for (const double round : {10.0, 5.0, 2.0}) {
+    if (mantissa >= round * (1 - 1e-12)) return round * power;
+  }
+  return power;
+}
+
+std::vector<std::vector<Vec3>> thrust_polylines(const Structure& structure,
+                                                const EquilibriumResult& result) {
+  // The graph: a node per compressed interface, an edge per pair of them on
+  // one free block.
+  const int count = static_cast<int>(result.interfaces.size());
+  double largest = 0.0;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (std::isfinite(f.normal_force)) largest = std::max(largest, f.normal_force);
+  }
+  std::vector<bool> compressed(count, false);
+  std::vector<std::vector<int>> compressed_of_block(structure.size());
+  for (int i = 0; i < count; ++i) {
+    const InterfaceForces& f = result.interfaces[i];
+    compressed[i] = f.normal_force > kNegligibleForce * largest && std::isfinite(f.normal_force) &&
+                    f.center_of_pressure.allFinite();
+    if (!compressed[i]) continue;
+    for (const int block : {f.a, f.b}) {
+      if (!structure.is_support(block)) compressed_of_block[block].push_back(i);
+    }
+  }
+  struct Edge {
+    int to, id;
+  };
+  std::vector<std::vector<Edge>> edges(count);
+  int edge_count = 0;
+  for (const std::vector<int>& nodes : compressed_of_block) {
+    for (size_t p = 0; p < nodes.size(); ++p) {
+      for (size_t q = p + 1; q < nodes.size(); ++q) {
+        edges[nodes[p]].push_back({nodes[q], edge_count});
+        edges[nodes[q]].push_back({nodes[p], edge_count});
+        ++edge_count;
+      }
+    }
+  }
+  // Walks from a node along unused edges, through nodes with two edges.
+  std::vector<bool> used(edge_count, false);
+  const auto walk = [&](int node) {
+    std::vector<Vec3> polyline{result.interfaces[node].center_of_pressure};
+    while (true) {
+      const auto next = std::find_if(edges[node].begin(), edges[node].end(),
+                                     [&](const Edge& e) { return !used[e.id]; });
+      if (next == edges[node].end()) break;
+      used[next->id] = true;
+      node = next->to;
+      polyline.push_back(result.interfaces[node].center_of_pressure);
+      if (edges[node].size() != 2) break;
+    }
+    return polyline;
+  };
+  const auto has_unused = [&](int node) {
+    return std::any_of(edges[node].begin(), edges[node].end(),
+                       [&](const Edge& e) { return !used[e.id]; });
+  };
+  std::vector<std::vector<Vec3>> polylines;
+  // Ends and branch points first, so that open lines are never cut; then
+  // whatever is left is closed loops.
+  for (const bool loops : {false, true}) {
+    for (int node = 0; node < count; ++node) {
+      if (!loops && edges[node].size() == 2) continue;
+      while (has_unused(node)) polylines.push_back(walk(node));
+    }
+  }
+  for (int node = 0; node < count; ++node) {
+    if (compressed[node] && edges[node].empty()) {
+      polylines.push_back({result.interfaces[node].center_of_pressure});
+    }
+  }
+  return polylines;
+}
+
+ImageRect elevation_area(const ElevationOptions& options) {
+  check_size(options.width, options.height, "draw");
+  const Metrics metrics(options.width, options.height);
+  // The scale bar's band: its label's height and a gap above it.
+  const double scale_band = 2.0 * metrics.font;
+  const double top = metrics.margin + title_band(options, metrics);
+  return {metrics.margin, top, options.width - 2 * metrics.margin,
+          options.height - top - metrics.margin - scale_band};
+}
+
+ElevationProjection elevation_projection(const Structure& structure,
+                                         const ElevationOptions& options) {
+  if (structure.size() == 0) throw InvalidArgument("draw: the structure has no blocks");
+  try {
+    return ElevationProjection(options.view_direction, fitted_points(structure),
+                               elevation_area(options));
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string("draw: ") + e.what());
+  }
+}
+
+void draw_elevation(const Structure& structure, const std::string& path,
+                    const ElevationOptions& options) {
+  const DrawingFormat format = format_for(path, "draw");
+  check_options(structure, options);
+  const ElevationProjection projection = elevation_projection(structure, options);
+  const ImageRect fitted = covered_rect(projection, fitted_points(structure));
+  const Metrics metrics(options.width, options.height);
+  render_file(path, format, options.width, options.height, "draw", [&](cairo_t* cr) {
+    paint_blocks(cr, structure, projection, options, metrics);
+    paint_cables(cr, structure, projection, metrics);
+    // Arrows run along the thrust line: on top, so that they show.
+    if (options.thrust) paint_thrust(cr, structure, projection, options, metrics);
+    if (options.forces) paint_forces(cr, structure, projection, options, metrics);
+    paint_scale_bar(cr, projection, fitted, options.height, metrics);
+    if (!options.title.empty()) paint_title(cr, options.title, options.width, metrics);
+  });
+}
+
+std::vector<LegendTick> legend_ticks(double lo, double hi, int count) {
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || count < 2) {
+    std::ostringstream message;
+    message << "legend ticks: need a finite range with lo < hi and at least 2 ticks, got [" << lo
+            << ", " << hi << "] and " << count;
+    throw InvalidArgument(message.str());
+  }
+  const double spacing = (hi - lo) / (count - 1);
+  const double largest = std::max(std::abs(lo), std::abs(hi));
+  std::vector<LegendTick> ticks;
+  for (int k = 0; k < count; ++k) {
+    const double value = k == count - 1 ? hi : lo + k * spacing;
+    ticks.push_back({value, tick_label(value, spacing, largest)});
+  }
+  return ticks;
+}
+
+void draw_legend(const std::string& path, const LegendOptions& options) {
+  const DrawingFormat format = format_for(path, "legend");
+  check_legend(options);
+  const int width = options.width != 0 ? options.width : (options.vertical ? 300 : 600);
+  const int height = options.height != 0 ? options.height : (options.vertical ? 600 : 150);
+  check_size(width, height, "legend");
+  render_file(path, format, width, height, "legend",
+              [&](cairo_t* cr) { paint_legend(cr, options, width, height); });
+}
+
+}  // namespace ashlar

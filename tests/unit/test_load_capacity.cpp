@@ -1,0 +1,94 @@
+// Load capacity by linear programming against the analysis's own verdict:
+// just inside each bound the structure stands, just outside it does not.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/load_capacity.hpp"
+#include "test_support.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+// A semicircular arch of `count` voussoirs (centreline radius 5 m,
+// thickness t, depth 1 m, x-z plane) on two support blocks.
+Structure arch(int count, double thickness) {
+  const double inner = 5.0 - thickness / 2, outer = 5.0 + thickness / 2;
+  auto joint = [&](double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return std::vector<Vec3>{{outer * c, -0.5, outer * s}, {inner * c, -0.5, inner * s},
+                             {inner * c, 0.5, inner * s}, {outer * c, 0.5, outer * s}};
+  };
+  Structure s;
+  for (int k = 0; k < count; ++k) {
+    const double a = M_PI * (1.0 - static_cast<double>(k) / count);
+    const double b = M_PI * (1.0 - static_cast<double>(k + 1) / count);
+    s.add(std::make_shared<const Block>(make_loft(joint(a), joint(b))));
+  }
+  s.add(box({2 * thickness, 1, 1}, {-5, 0, -0.5}), true);
+  s.add(box({2 * thickness, 1, 1}, {5, 0, -0.5}), true);
+  return s;
+}
+
+// Whether the structure stands with block i's weight times `multiple`
+// (the difference as a point load at its centroid).
+bool stands_with(Structure s, int block, double multiple, const AnalysisSettings& settings) {
+  const double weight = s.block(block).mass() * kGravity;
+  s.add_load({block, Vec3(0, 0, -(multiple - 1.0) * weight), s.block(block).centroid()});
+  return analyze_equilibrium(s, settings).stable;
+}
+
+}  // namespace
+
+TEST(LoadCapacity, BoundsAgreeWithTheAnalysis) {
+  const Structure s = arch(9, 0.8);
+  for (double friction : {std::numeric_limits<double>::infinity(), 0.5}) {
+    AnalysisSettings settings;
+    settings.problem.friction = friction;
+    const LoadCapacity capacity = load_capacity(s, settings);
+    ASSERT_EQ(capacity.status, "optimal");
+    EXPECT_TRUE(capacity.stable);
+    EXPECT_EQ(capacity.programs, 1 + 2 * 9);
+    int finite_maxima = 0;
+    for (int i = 0; i < 9; ++i) {
+      const double lo = capacity.min[i], hi = capacity.max[i];
+      ASSERT_FALSE(std::isnan(lo)) << i;
+      EXPECT_LE(lo, 1.0);
+      EXPECT_GE(hi, 1.0);
+      EXPECT_NEAR(lo, capacity.min[8 - i], 1e-6) << "symmetric arch";
+      if (std::isfinite(hi)) {
+        EXPECT_NEAR(hi, capacity.max[8 - i], 1e-6 * hi) << "symmetric arch";
+        ++finite_maxima;
+        EXPECT_TRUE(stands_with(s, i, hi * (1 - 1e-4), settings)) << i;
+        EXPECT_FALSE(stands_with(s, i, hi * (1 + 1e-4), settings)) << i;
+      }
+      if (lo > 0.0) {
+        EXPECT_TRUE(stands_with(s, i, lo * (1 + 1e-4), settings)) << i;
+        EXPECT_FALSE(stands_with(s, i, lo * (1 - 1e-4), settings)) << i;
+      } else {
+        EXPECT_TRUE(stands_with(s, i, 0.0, settings)) << i;
+      }
+      if (std::isinf(hi)) {
+        EXPECT_TRUE(std::isinf(capacity.max[8 - i])) << "symmetric arch";
+      }
+    }
+    EXPECT_GT(finite_maxima, 0);
+    for (int support : {9, 10}) EXPECT_TRUE(std::isnan(capacity.max[support]));
+  }
+}
+
+TEST(LoadCapacity, UnstableStructureHasNoMultipleForTheOthers) {
+  Structure s;
+  s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
+  s.add(box({1, 1, 0.5}, {0, 0, 0.25}));
+  s.add(box({1, 1, 0.5}, {0.7, 0, 0.75}));  // its centroid past the edge below
+  const LoadCapacity capacity = load_capacity(s, {});
+  EXPECT_FALSE(capacity.stable);
+  // Any weight of the top block tips it; a weightless one stands, and the
+  // bottom block's weight cannot help.
+  EXPECT_NEAR(capacity.min[2], 0.0, 1e-9);
+  EXPECT_NEAR(capacity.max[2], 0.0, 1e-9);
+  EXPECT_TRUE(std::isnan(capacity.min[1]));
+  EXPECT_TRUE(std::isnan(capacity.max[1]));
+}

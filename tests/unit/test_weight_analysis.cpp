@@ -1,0 +1,136 @@
+// Weight sensitivity (Shin 2014 eq. 7) against finite differences, and
+// necessary weights (eq. 8) against hand statics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/weight_analysis.hpp"
+#include "test_support.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+// A semicircular arch of `count` voussoirs (centreline radius 5 m,
+// thickness t, depth 1 m, x-z plane) on two support blocks.
+Structure arch(int count, double thickness) {
+  const double inner = 5.0 - thickness / 2, outer = 5.0 + thickness / 2;
+  auto joint = [&](double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return std::vector<Vec3>{{outer * c, -0.5, outer * s}, {inner * c, -0.5, inner * s},
+                             {inner * c, 0.5, inner * s}, {outer * c, 0.5, outer * s}};
+  };
+  Structure s;
+  for (int k = 0; k < count; ++k) {
+    const double a = M_PI * (1.0 - static_cast<double>(k) / count);
+    const double b = M_PI * (1.0 - static_cast<double>(k + 1) / count);
+    s.add(std::make_shared<const Block>(make_loft(joint(a), joint(b))));
+  }
+  s.add(box({2 * thickness, 1, 1}, {-5, 0, -0.5}), true);
+  s.add(box({2 * thickness, 1, 1}, {5, 0, -0.5}), true);
+  return s;
+}
+
+AnalysisSettings precise(double friction) {
+  AnalysisSettings settings;
+  settings.problem.friction = friction;
+  settings.solver.tolerance = 1e-13;
+  return settings;
+}
+
+// Resultants of every interface with `extra` newtons added to block i's
+// weight, as a point load at its centroid (the QP's units stay put).
+std::vector<Vec3> resultants(Structure s, int block, double extra, const AnalysisSettings& settings) {
+  s.add_load({block, Vec3(0, 0, -extra), s.block(block).centroid()});
+  const EquilibriumResult r = analyze_equilibrium(s, settings);
+  EXPECT_TRUE(r.stable);
+  std::vector<Vec3> out;
+  for (const InterfaceForces& f : r.interfaces) out.push_back(f.resultant);
+  return out;
+}
+
+}  // namespace
+
+TEST(WeightSensitivity, MatchesCentralDifferencesOnAnArch) {
+  const Structure s = arch(9, 1.0);
+  for (double friction : {std::numeric_limits<double>::infinity(), 0.6}) {
+    const AnalysisSettings settings = precise(friction);
+    for (int block : {1, 4}) {
+      const WeightSensitivity sensitivity = weight_sensitivity(s, block, settings);
+      ASSERT_TRUE(sensitivity.valid);
+      ASSERT_TRUE(sensitivity.analysis.stable);
+      const double weight = s.block(block).mass() * kGravity;
+      const double step = 1e-4 * weight;
+      const std::vector<Vec3> plus = resultants(s, block, step, settings);
+      const std::vector<Vec3> minus = resultants(s, block, -step, settings);
+      double largest = 0.0;
+      for (const Vec3& change : sensitivity.interface_resultant_change) {
+        largest = std::max(largest, change.norm());
+      }
+      for (size_t i = 0; i < plus.size(); ++i) {
+        const Vec3 difference = (plus[i] - minus[i]) / (2 * step);
+        EXPECT_LT((sensitivity.interface_resultant_change[i] - difference).norm(), 1e-4 * largest)
+            << "interface " << i << " block " << block << " friction " << friction;
+      }
+      // The supports carry the added weight: vertical resultants add up to 1.
+      double vertical = 0.0;
+      for (size_t i = 0; i < plus.size(); ++i) {
+        const Interface& contact = s.interfaces()[i];
+        if (s.is_support(contact.a)) vertical += sensitivity.interface_resultant_change[i].z();
+        if (s.is_support(contact.b)) vertical -= sensitivity.interface_resultant_change[i].z();
+      }
+      EXPECT_NEAR(std::abs(vertical), 1.0, 1e-6);
+    }
+  }
+}
+
+TEST(WeightSensitivity, ColumnPassesTheWholeChangeDown) {
+  Structure s;
+  s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
+  for (int k = 0; k < 3; ++k) s.add(box({1, 1, 0.5}, {0, 0, 0.25 + 0.5 * k}));
+  const WeightSensitivity top = weight_sensitivity(s, 3, precise(0.7));
+  ASSERT_TRUE(top.valid);
+  for (size_t i = 0; i < s.interfaces().size(); ++i) {
+    EXPECT_NEAR(top.interface_resultant_change[i].norm(), 1.0, 1e-7);
+  }
+  const WeightSensitivity bottom = weight_sensitivity(s, 1, precise(0.7));
+  EXPECT_NEAR(bottom.block_change[3], 0.0, 1e-7);  // nothing above it changes
+  EXPECT_GT(bottom.block_change[1], 0.9);
+  EXPECT_TRUE(contains(error_of([&] { weight_sensitivity(s, 0, precise(0.7)); }), "is a support"));
+  EXPECT_TRUE(contains(error_of([&] { weight_sensitivity(s, 7, precise(0.7)); }), "out of range"));
+}
+
+// Figure 8 (a): three stacked blocks, the middle one's centroid 0.1 m
+// beyond the bottom one's edge, the top one set back on it. With only the
+// middle block weighted, the top block must hold its back end down; the
+// top block presses at its own centroid, 0.3 m behind the edge, so it
+// needs at least a third of the middle's weight. The bottom block only
+// passes forces down and needs none.
+TEST(NecessaryWeights, TopBlockHoldsTheOverhangingMiddleOne) {
+  Structure s;
+  s.add(box({4, 2, 0.2}, {0, 0, -0.1}), true);
+  s.add(box({1, 1, 0.5}, {0, 0, 0.25}));     // x in [-0.5, 0.5]
+  s.add(box({1, 1, 0.5}, {0.6, 0, 0.75}));   // x in [0.1, 1.1]: centroid beyond the edge
+  s.add(box({1, 1, 0.5}, {0.2, 0, 1.25}));   // x in [-0.3, 0.7]: rests on [0.1, 0.7]
+  const AnalysisSettings settings = precise(0.7);
+  ASSERT_TRUE(analyze_equilibrium(s, settings).stable);  // stands as built
+  const NecessaryWeights needed = necessary_weights(s, 2, settings);
+  EXPECT_TRUE(needed.stable);
+  const double middle = s.block(2).mass() * kGravity;
+  EXPECT_EQ(needed.weights[2], middle);
+  EXPECT_EQ(needed.weights[0], 0.0);
+  EXPECT_GT(needed.weights[3], middle / 3 * (1 - 1e-6));
+  EXPECT_LT(needed.weights[3], middle);
+  EXPECT_LT(needed.weights[1], 1e-6 * middle);
+
+  // The top block on its own needs nothing from the others.
+  const NecessaryWeights top = necessary_weights(s, 3, settings);
+  EXPECT_TRUE(top.stable);
+  EXPECT_LT(top.weights[1] + top.weights[2], 1e-6 * middle);
+
+  const ImportantWeights important = important_weights(s, settings);
+  EXPECT_EQ(important.solves, 3);
+  EXPECT_TRUE(important.unstable_blocks.empty());
+  EXPECT_NEAR(important.per_volume[3] * s.block(3).volume(),
+              needed.weights[3] + necessary_weights(s, 1, settings).weights[3], 1e-6 * middle);
+}
