@@ -12,6 +12,7 @@
 #include "wrap_Block.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
+#include "wrap_colors.hpp"
 #include "wrap_draw.hpp"
 #include "wrap_force_flow.hpp"
 #include "wrap_gradient.hpp"
@@ -22,87 +23,6 @@ namespace ashlar::lua {
 
 namespace {
 
-Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what) {
-  const Vec3 v = to_vec3(L, idx, arg, what);
-  if ((v.array() < 0.0).any() || (v.array() > 1.0).any()) {
-    throw ArgError(arg, what + ": colour components must lie in [0, 1]");
-  }
-  return {v.x(), v.y(), v.z()};
-}
-
-// `color` export option: {r, g, b} for every block, a list with one {r, g, b}
-// per block, or {values = {...}, map = "viridis", range = {lo, hi}}.
-std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count) {
-  const int arg = options.arg();
-  if (options.push("color") == LUA_TNIL) {
-    lua_pop(L, 1);
-    return {};
-  }
-  const int color = lua_gettop(L);
-  if (lua_type(L, color) != LUA_TTABLE) {
-    throw ArgError(arg, "color: expected {r, g, b}, a list of {r, g, b} per block, or "
-                        "{values = {...}, map = name, range = {lo, hi}}, got " +
-                            type_name(L, color));
-  }
-  std::vector<Rgb> colors;
-  lua_rawgeti(L, color, 1);
-  const int first = lua_type(L, -1);
-  lua_pop(L, 1);
-  if (first == LUA_TNUMBER) {
-    colors.assign(block_count, to_rgb(L, color, arg, "color"));
-  } else if (first == LUA_TTABLE) {
-    if (lua_rawlen(L, color) != static_cast<lua_Unsigned>(block_count)) {
-      throw ArgError(arg, "color: a list of colours needs one per block (" +
-                              std::to_string(block_count) + "), got " +
-                              std::to_string(lua_rawlen(L, color)));
-    }
-    for (int i = 1; i <= block_count; ++i) {
-      lua_rawgeti(L, color, i);
-      colors.push_back(to_rgb(L, -1, arg, "color[" + std::to_string(i) + "]"));
-      lua_pop(L, 1);
-    }
-  } else {
-    const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
-    if (mapped.push("values") != LUA_TTABLE) {
-      throw ArgError(arg, "color.values: expected a list of numbers, one per block");
-    }
-    const int values_index = lua_gettop(L);
-    if (lua_rawlen(L, values_index) != static_cast<lua_Unsigned>(block_count)) {
-      throw ArgError(arg, "color.values: needs one value per block (" +
-                              std::to_string(block_count) + "), got " +
-                              std::to_string(lua_rawlen(L, values_index)));
-    }
-    std::vector<double> values;
-    for (int i = 1; i <= block_count; ++i) {
-      lua_rawgeti(L, values_index, i);
-      if (lua_type(L, -1) != LUA_TNUMBER) {
-        throw ArgError(arg, "color.values[" + std::to_string(i) + "]: expected a number, got " +
-                                type_name(L, -1));
-      }
-      values.push_back(lua_tonumber(L, -1));
-      lua_pop(L, 1);
-    }
-    lua_pop(L, 1);
-    double lo = 0.0, hi = 0.0;
-    if (mapped.has("range")) {
-      mapped.push("range");
-      if (lua_type(L, -1) != LUA_TTABLE || lua_rawlen(L, -1) != 2) {
-        throw ArgError(arg, "color.range: expected {lo, hi}");
-      }
-      lua_rawgeti(L, -1, 1);
-      lua_rawgeti(L, -2, 2);
-      lo = check_number(L, -2, "color.range[1]");
-      hi = check_number(L, -1, "color.range[2]");
-      lua_pop(L, 3);
-    } else if (!values.empty()) {
-      lo = *std::min_element(values.begin(), values.end());
-      hi = *std::max_element(values.begin(), values.end());
-    }
-    colors = map_colors(values, lo, hi, mapped.string("map").value_or("viridis"));
-  }
-  lua_pop(L, 1);
-  return colors;
-}
 
 // `traces` export option: the table ashlar.trace_loads returned (its
 // polylines are drawn).

@@ -6,12 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
+#include "structure/structure.hpp"
 
 // The message of the ashlar::Error that action throws, or "(no error)".
 inline std::string error_of(const std::function<void()>& action) {
@@ -26,6 +28,27 @@ inline std::string error_of(const std::function<void()>& action) {
 // A shared axis-aligned box block of default density, for building structures.
 inline ashlar::BlockPtr box(const ashlar::Vec3& size, const ashlar::Vec3& center) {
   return std::make_shared<const ashlar::Block>(ashlar::make_box(size, center));
+}
+
+// A semicircular arch of `count` voussoirs (centreline radius 5 m,
+// thickness t, depth 1 m, x-z plane) on two support blocks.
+inline ashlar::Structure semicircular_arch(int count, double thickness) {
+  using ashlar::Vec3;
+  const double inner = 5.0 - thickness / 2, outer = 5.0 + thickness / 2;
+  auto joint = [&](double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return std::vector<Vec3>{{outer * c, -0.5, outer * s}, {inner * c, -0.5, inner * s},
+                             {inner * c, 0.5, inner * s}, {outer * c, 0.5, outer * s}};
+  };
+  ashlar::Structure s;
+  for (int k = 0; k < count; ++k) {
+    const double a = M_PI * (1.0 - static_cast<double>(k) / count);
+    const double b = M_PI * (1.0 - static_cast<double>(k + 1) / count);
+    s.add(std::make_shared<const ashlar::Block>(ashlar::make_loft(joint(a), joint(b))));
+  }
+  s.add(box({2 * thickness, 1, 1}, {-5, 0, -0.5}), true);
+  s.add(box({2 * thickness, 1, 1}, {5, 0, -0.5}), true);
+  return s;
 }
 
 inline bool contains(const std::string& text, const std::string& part) {

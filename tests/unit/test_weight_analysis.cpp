@@ -11,26 +11,6 @@ using namespace ashlar;
 
 namespace {
 
-// A semicircular arch of `count` voussoirs (centreline radius 5 m,
-// thickness t, depth 1 m, x-z plane) on two support blocks.
-Structure arch(int count, double thickness) {
-  const double inner = 5.0 - thickness / 2, outer = 5.0 + thickness / 2;
-  auto joint = [&](double angle) {
-    const double c = std::cos(angle), s = std::sin(angle);
-    return std::vector<Vec3>{{outer * c, -0.5, outer * s}, {inner * c, -0.5, inner * s},
-                             {inner * c, 0.5, inner * s}, {outer * c, 0.5, outer * s}};
-  };
-  Structure s;
-  for (int k = 0; k < count; ++k) {
-    const double a = M_PI * (1.0 - static_cast<double>(k) / count);
-    const double b = M_PI * (1.0 - static_cast<double>(k + 1) / count);
-    s.add(std::make_shared<const Block>(make_loft(joint(a), joint(b))));
-  }
-  s.add(box({2 * thickness, 1, 1}, {-5, 0, -0.5}), true);
-  s.add(box({2 * thickness, 1, 1}, {5, 0, -0.5}), true);
-  return s;
-}
-
 AnalysisSettings precise(double friction) {
   AnalysisSettings settings;
   settings.problem.friction = friction;
@@ -52,7 +32,7 @@ std::vector<Vec3> resultants(Structure s, int block, double extra, const Analysi
 }  // namespace
 
 TEST(WeightSensitivity, MatchesCentralDifferencesOnAnArch) {
-  const Structure s = arch(9, 1.0);
+  const Structure s = semicircular_arch(9, 1.0);
   for (double friction : {std::numeric_limits<double>::infinity(), 0.6}) {
     const AnalysisSettings settings = precise(friction);
     for (int block : {1, 4}) {

@@ -1,0 +1,106 @@
+#include "wrap_colors.hpp"
+
+#include <algorithm>
+#include <tuple>
+
+#include "io/color_map.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+// Colours from a values table: one number per block, mapped with `map`
+// over `range` (default: the values' own range).
+std::vector<Rgb> mapped_colors(lua_State* L, int color, int arg, int block_count) {
+  const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
+  if (mapped.push("values") != LUA_TTABLE) {
+    throw ArgError(arg, "color.values: expected a list of numbers, one per block");
+  }
+  const int values_index = lua_gettop(L);
+  if (lua_rawlen(L, values_index) != static_cast<lua_Unsigned>(block_count)) {
+    throw ArgError(arg, "color.values: needs one value per block (" +
+                            std::to_string(block_count) + "), got " +
+                            std::to_string(lua_rawlen(L, values_index)));
+  }
+  std::vector<double> values;
+  for (int i = 1; i <= block_count; ++i) {
+    lua_rawgeti(L, values_index, i);
+    if (lua_type(L, -1) != LUA_TNUMBER) {
+      throw ArgError(arg, "color.values[" + std::to_string(i) + "]: expected a number, got " +
+                              type_name(L, -1));
+    }
+    values.push_back(lua_tonumber(L, -1));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  double lo = 0.0, hi = 0.0;
+  if (!values.empty()) {
+    lo = *std::min_element(values.begin(), values.end());
+    hi = *std::max_element(values.begin(), values.end());
+  }
+  if (mapped.push("range") != LUA_TNIL) std::tie(lo, hi) = to_range(L, -1, arg, "color.range");
+  lua_pop(L, 1);
+  return map_colors(values, lo, hi, mapped.string("map").value_or("viridis"));
+}
+
+}  // namespace
+
+Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what) {
+  const Vec3 v = to_vec3(L, idx, arg, what);
+  if ((v.array() < 0.0).any() || (v.array() > 1.0).any()) {
+    throw ArgError(arg, what + ": colour components must lie in [0, 1]");
+  }
+  return {v.x(), v.y(), v.z()};
+}
+
+// The {lo, hi} table at idx, two finite numbers; `what` names it.
+std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  if (lua_type(L, idx) != LUA_TTABLE || lua_rawlen(L, idx) != 2) {
+    throw ArgError(arg, what + ": expected {lo, hi}, got " + type_name(L, idx));
+  }
+  lua_rawgeti(L, idx, 1);
+  lua_rawgeti(L, idx, 2);
+  const double lo = check_number(L, -2, (what + "[1]").c_str());
+  const double hi = check_number(L, -1, (what + "[2]").c_str());
+  lua_pop(L, 2);
+  return {lo, hi};
+}
+
+std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count) {
+  const int arg = options.arg();
+  if (options.push("color") == LUA_TNIL) {
+    lua_pop(L, 1);
+    return {};
+  }
+  const int color = lua_gettop(L);
+  if (lua_type(L, color) != LUA_TTABLE) {
+    throw ArgError(arg, "color: expected {r, g, b}, a list of {r, g, b} per block, or "
+                        "{values = {...}, map = name, range = {lo, hi}}, got " +
+                            type_name(L, color));
+  }
+  std::vector<Rgb> colors;
+  lua_rawgeti(L, color, 1);
+  const int first = lua_type(L, -1);
+  lua_pop(L, 1);
+  if (first == LUA_TNUMBER) {
+    colors.assign(block_count, to_rgb(L, color, arg, "color"));
+  } else if (first == LUA_TTABLE) {
+    if (lua_rawlen(L, color) != static_cast<lua_Unsigned>(block_count)) {
+      throw ArgError(arg, "color: a list of colours needs one per block (" +
+                              std::to_string(block_count) + "), got " +
+                              std::to_string(lua_rawlen(L, color)));
+    }
+    for (int i = 1; i <= block_count; ++i) {
+      lua_rawgeti(L, color, i);
+      colors.push_back(to_rgb(L, -1, arg, "color[" + std::to_string(i) + "]"));
+      lua_pop(L, 1);
+    }
+  } else {
+    colors = mapped_colors(L, color, arg, block_count);
+  }
+  lua_pop(L, 1);
+  return colors;
+}
+
+}  // namespace ashlar::lua

@@ -1,0 +1,24 @@
+// Colour options shared by ashlar.export and ashlar.draw.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <lua.hpp>
+
+#include "io/mesh_io.hpp"
+#include "luax.hpp"
+
+namespace ashlar::lua {
+
+// {r, g, b} at idx, each in [0, 1]; `what` names it in errors.
+Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what);
+// The {lo, hi} table at idx, two finite numbers; `what` names it.
+std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::string& what);
+// The `color` option: {r, g, b} for every block, a list with one {r, g, b}
+// per block, or {values = {...}, map = "viridis", range = {lo, hi}}. Empty
+// when absent.
+std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count);
+
+}  // namespace ashlar::lua
