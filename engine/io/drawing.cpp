@@ -9,6 +9,7 @@
 // on the image (margins, fonts, line widths) grow with its smaller side so
 // that a larger image looks the same, only sharper.
 #include "io/drawing.hpp"
+#include "io/force_glyphs.hpp"
 
 #include <cairo-svg.h>
 #include <cairo.h>
@@ -319,17 +320,6 @@ void paint_cables(cairo_t* cr, const Structure& structure, const ElevationProjec
     move_or_line(cr, projection(cable.to.point), false);
     cairo_stroke(cr);
   }
-}
-
-double mean_free_block_size(const Structure& structure) {
-  double sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < structure.size(); ++i) {
-    if (structure.is_support(i)) continue;
-    sum += structure.block(i).bounds().diagonal();
-    ++count;
-  }
-  return count > 0 ? sum / count : structure.bounds().diagonal();
 }
 
 // An arrow from tail to tip (px) whose head is a filled triangle.

@@ -113,17 +113,6 @@ constexpr double kTraceRadiusOfBlockSize = 0.006;
 constexpr double kCableRadiusOfBlockSize = 0.02;
 constexpr int kGlyphSides = 6;
 
-double mean_free_block_size(const Structure& structure) {
-  double sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < structure.size(); ++i) {
-    if (structure.is_support(i)) continue;
-    sum += structure.block(i).bounds().diagonal();
-    ++count;
-  }
-  return count > 0 ? sum / count : structure.bounds().diagonal();
-}
-
 bool finite(const Vec3& v) { return v.allFinite(); }
 
 void add_force_arrows(const EquilibriumResult& result, const ExportOptions& options,
@@ -159,6 +148,17 @@ void add_force_arrows(const EquilibriumResult& result, const ExportOptions& opti
 }
 
 }  // namespace
+
+double mean_free_block_size(const Structure& structure) {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < structure.size(); ++i) {
+    if (structure.is_support(i)) continue;
+    sum += structure.block(i).bounds().diagonal();
+    ++count;
+  }
+  return count > 0 ? sum / count : structure.bounds().diagonal();
+}
 
 std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
                                            const ExportOptions& options) {

@@ -34,6 +34,10 @@ GlyphFaces arrow_faces(const Vec3& tail, const Vec3& tip, const ArrowShape& shap
 // the radius of the previous one is skipped.
 GlyphFaces tube_faces(const std::vector<Vec3>& points, double radius, int sides);
 
+// The mean bounding-box diagonal of the free blocks (m), or of the whole
+// structure when none is free: the size glyphs are drawn in proportion to.
+double mean_free_block_size(const Structure& structure);
+
 struct NamedGlyph {
   std::string name;
   GlyphFaces faces;
