@@ -26,6 +26,7 @@
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/option_checks.hpp"
 #include "io/color_map.hpp"
 
 namespace ashlar {
@@ -197,43 +198,6 @@ void hatch_path(cairo_t* cr, const Rgb& color, double spacing, double width) {
 // ---------------------------------------------------------------------------
 // Elevation
 
-void check_color(const Rgb& color, const std::string& what) {
-  for (const double component : {color.r, color.g, color.b}) {
-    if (!(component >= 0.0 && component <= 1.0)) {
-      std::ostringstream message;
-      message << "draw: " << what << " must have components in [0, 1], got (" << color.r << ", "
-              << color.g << ", " << color.b << ")";
-      throw InvalidArgument(message.str());
-    }
-  }
-}
-
-void check_result(const Structure& structure, const ElevationOptions& options) {
-  if ((options.forces || options.thrust) && !options.result) {
-    throw InvalidArgument(std::string("draw: ") + (options.forces ? "forces" : "thrust") +
-                          " needs the result of an analysis of the structure (result = r)");
-  }
-  if (!options.result) return;
-  const EquilibriumResult& result = *options.result;
-  const size_t blocks = result.block_tension.size();
-  if (blocks != static_cast<size_t>(structure.size())) {
-    throw InvalidArgument("draw: the result is of a structure with " + std::to_string(blocks) +
-                          " blocks, this one has " + std::to_string(structure.size()));
-  }
-  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
-  bool same = interfaces.size() == result.interfaces.size();
-  for (size_t i = 0; same && i < interfaces.size(); ++i) {
-    same = interfaces[i].a == result.interfaces[i].a && interfaces[i].b == result.interfaces[i].b;
-  }
-  if (!same) {
-    throw InvalidArgument("draw: the result's " + std::to_string(result.interfaces.size()) +
-                          " interfaces are not this structure's " +
-                          std::to_string(interfaces.size()) +
-                          "; draw the structure that was analysed, with the analysis's "
-                          "contact tolerance");
-  }
-}
-
 void check_options(const Structure& structure, const ElevationOptions& options) {
   check_size(options.width, options.height, "draw");
   if (structure.size() == 0) throw InvalidArgument("draw: the structure has no blocks");
@@ -244,13 +208,14 @@ void check_options(const Structure& structure, const ElevationOptions& options) 
                           " blocks (give one per block, or none)");
   }
   for (size_t i = 0; i < colors; ++i) {
-    check_color(options.block_colors[i], "colour " + std::to_string(i + 1));
+    check_color(options.block_colors[i], "colour " + std::to_string(i + 1), "draw");
   }
-  check_color(options.thrust_color, "thrust_color");
+  check_color(options.thrust_color, "thrust_color", "draw");
   if (!(options.force_scale >= 0.0) || !std::isfinite(options.force_scale)) {
     throw InvalidArgument("draw: force_scale must be a finite number >= 0 (0: automatic)");
   }
-  check_result(structure, options);
+  check_result_of_structure(structure, options.result, options.forces, options.thrust,
+                            options.contact, "draw");
 }
 
 struct ProjectedFace {

@@ -38,12 +38,12 @@
 #include <map>
 #include <memory>
 #include <numeric>
-#include <sstream>
 
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
 #include "io/atomic_file.hpp"
+#include "io/option_checks.hpp"
 #include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"
 
@@ -76,43 +76,6 @@ const ExportFormat& format_for(const std::string& path) {
                         "' from its extension; use one of: " + extensions_list());
 }
 
-void check_color(const Rgb& color, const std::string& what) {
-  for (double component : {color.r, color.g, color.b}) {
-    if (!(component >= 0.0 && component <= 1.0)) {
-      std::ostringstream message;
-      message << "export: " << what << " must have components in [0, 1], got (" << color.r
-              << ", " << color.g << ", " << color.b << ")";
-      throw InvalidArgument(message.str());
-    }
-  }
-}
-
-void check_result(const Structure& structure, const ExportOptions& options) {
-  if ((options.forces || options.thrust) && !options.result) {
-    throw InvalidArgument(std::string("export: ") + (options.forces ? "forces" : "thrust") +
-                          " needs the result of an analysis of the structure (result = r)");
-  }
-  if (!options.result) return;
-  const EquilibriumResult& result = *options.result;
-  const size_t blocks = result.block_tension.size();
-  if (blocks != static_cast<size_t>(structure.size())) {
-    throw InvalidArgument("export: the result is of a structure with " + std::to_string(blocks) +
-                          " blocks, this one has " + std::to_string(structure.size()));
-  }
-  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
-  bool same = interfaces.size() == result.interfaces.size();
-  for (size_t i = 0; same && i < interfaces.size(); ++i) {
-    same = interfaces[i].a == result.interfaces[i].a && interfaces[i].b == result.interfaces[i].b;
-  }
-  if (!same) {
-    throw InvalidArgument("export: the result's " + std::to_string(result.interfaces.size()) +
-                          " interfaces are not this structure's " +
-                          std::to_string(interfaces.size()) +
-                          "; export the structure that was analysed, with the analysis's "
-                          "contact tolerance");
-  }
-}
-
 void check_options(const Structure& structure, const ExportOptions& options) {
   if (structure.size() == 0) throw InvalidArgument("export: the structure has no blocks");
   const auto colors = options.block_colors.size();
@@ -122,12 +85,12 @@ void check_options(const Structure& structure, const ExportOptions& options) {
                           " blocks (give one per block, or none)");
   }
   for (size_t i = 0; i < colors; ++i) {
-    check_color(options.block_colors[i], "colour " + std::to_string(i + 1));
+    check_color(options.block_colors[i], "colour " + std::to_string(i + 1), "export");
   }
-  check_color(options.interface_color, "interface_color");
-  check_color(options.compression_color, "compression_color");
-  check_color(options.tension_color, "tension_color");
-  check_color(options.thrust_color, "thrust_color");
+  check_color(options.interface_color, "interface_color", "export");
+  check_color(options.compression_color, "compression_color", "export");
+  check_color(options.tension_color, "tension_color", "export");
+  check_color(options.thrust_color, "thrust_color", "export");
   if (options.block_opacity && !(*options.block_opacity >= 0.0 && *options.block_opacity <= 1.0)) {
     throw InvalidArgument("export: block_opacity must lie in [0, 1], got " +
                           std::to_string(*options.block_opacity));
@@ -138,7 +101,8 @@ void check_options(const Structure& structure, const ExportOptions& options) {
   if (!(options.negligible_force >= 0.0 && options.negligible_force < 1.0)) {
     throw InvalidArgument("export: negligible_force must lie in [0, 1)");
   }
-  check_result(structure, options);
+  check_result_of_structure(structure, options.result, options.forces, options.thrust,
+                            options.contact, "export");
 }
 
 // ---------------------------------------------------------------------------
