@@ -306,6 +306,24 @@ std::optional<std::string> OptionTable::string(const char* key) const {
   return value;
 }
 
+std::optional<lua_Integer> OptionTable::whole(const char* key, lua_Integer least, lua_Integer most,
+                                              const std::string& expected) const {
+  push(key);
+  if (lua_isnil(L_, -1)) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  int is_integer = 0;
+  const lua_Integer value = lua_tointegerx(L_, -1, &is_integer);
+  const bool number = lua_type(L_, -1) == LUA_TNUMBER;
+  const std::string got = number ? lua_tostring(L_, -1) : type_name(L_, -1);
+  lua_pop(L_, 1);
+  if (!number || !is_integer || value < least || value > most) {
+    fail(key, "expected " + expected + ", got " + got);
+  }
+  return value;
+}
+
 std::optional<bool> OptionTable::boolean(const char* key) const {
   push(key);
   if (lua_isnil(L_, -1)) {

@@ -93,6 +93,10 @@ public:
   double positive(const char* key, double fallback, bool zero_allowed = false) const;
   std::optional<Vec3> vec3(const char* key) const;
   std::optional<std::string> string(const char* key) const;
+  // A whole number in [least, most]; otherwise an error "key: expected
+  // <expected>, got <value>".
+  std::optional<lua_Integer> whole(const char* key, lua_Integer least, lua_Integer most,
+                                   const std::string& expected) const;
   std::optional<bool> boolean(const char* key) const;
   // Pushes the value of key (nil if absent) and returns its Lua type.
   int push(const char* key) const;

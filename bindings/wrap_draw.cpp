@@ -21,22 +21,10 @@ namespace {
 // An image size option: a positive whole number of px (pt for SVG); the
 // engine checks its range.
 int image_size(const OptionTable& options, const char* key, int fallback) {
-  lua_State* L = options.state();
-  if (options.push(key) == LUA_TNIL) {
-    lua_pop(L, 1);
-    return fallback;
-  }
-  int is_integer = 0;
-  const lua_Integer value = lua_tointegerx(L, -1, &is_integer);
-  const bool number = lua_type(L, -1) == LUA_TNUMBER;
-  const std::string got = number ? lua_tostring(L, -1) : type_name(L, -1);
-  lua_pop(L, 1);
-  if (!number || !is_integer || value <= 0) {
-    throw ArgError(options.arg(),
-                   std::string(key) + ": expected a positive whole number of pixels, got " + got);
-  }
+  const std::optional<lua_Integer> value =
+      options.whole(key, 1, LUA_MAXINTEGER, "a positive whole number of pixels");
   // Large values reach the engine's range check, not an int overflow.
-  return static_cast<int>(std::min<lua_Integer>(value, 1 << 30));
+  return value ? static_cast<int>(std::min<lua_Integer>(*value, 1 << 30)) : fallback;
 }
 
 // The `view` option: "front" (looking along +y at the x-z plane), "side"

@@ -15,22 +15,10 @@ namespace {
 
 // Integer option `key`, at least `least` (and an int); `fallback` when absent.
 int integer_option(const OptionTable& options, const char* key, int fallback, int least) {
-  lua_State* L = options.state();
-  if (options.push(key) == LUA_TNIL) {
-    lua_pop(L, 1);
-    return fallback;
-  }
-  int is_integer = 0;
-  const lua_Integer value = lua_tointegerx(L, -1, &is_integer);
-  const bool number = lua_type(L, -1) == LUA_TNUMBER;
-  const std::string got = number ? lua_tostring(L, -1) : type_name(L, -1);
-  lua_pop(L, 1);
-  if (!number || !is_integer || value < least || value > INT_MAX) {
-    throw ArgError(options.arg(), std::string(key) + ": expected an integer from " +
-                                      std::to_string(least) + " to " + std::to_string(INT_MAX) +
-                                      ", got " + got);
-  }
-  return static_cast<int>(value);
+  const std::optional<lua_Integer> value =
+      options.whole(key, least, INT_MAX,
+                    "an integer from " + std::to_string(least) + " to " + std::to_string(INT_MAX));
+  return value ? static_cast<int>(*value) : fallback;
 }
 
 ForceFlowOptions flow_options(const OptionTable& options) {
