@@ -331,11 +331,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   std::vector<Eigen::Matrix<double, 6, 1>> external(bodies, Eigen::Matrix<double, 6, 1>::Zero());
   for (int i = 0; i < n; ++i) external[i](2) = structure.block(i).mass() * kGravity / wu;
   auto add_force = [&](int body, const Vec3& force, const Vec3& at) {
-    external[body].head<3>() -= force / wu;
-    if (body < n) {
-      const Vec3 arm = (at - structure.block(body).centroid()) / lu;
-      external[body].tail<3>() -= arm.cross(force / wu);
-    }
+    const Vec3* centroid = body < n ? &structure.block(body).centroid() : nullptr;
+    external[body] += applied_force_rhs(force, at, centroid, wu, lu);
   };
   for (const PointLoad& load : structure.loads()) add_force(load.block, load.force, load.at);
   for (size_t c = 0; c < cables.size(); ++c) {
@@ -413,6 +410,21 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   }
   set_rules(problem, options);
   return problem;
+}
+
+Eigen::Matrix<double, 6, 1> applied_force_rhs(const Vec3& force, const Vec3& at,
+                                              const Vec3* centroid, double weight_unit,
+                                              double length_unit) {
+  // The contact forces balance what is applied: it enters with a minus.
+  Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
+  rhs.head<3>() = -force / weight_unit;
+  if (centroid) rhs.tail<3>() = -((at - *centroid) / length_unit).cross(force / weight_unit);
+  return rhs;
+}
+
+int EquilibriumProblem::vertical_row() const {
+  const std::array<int, 6>& rows = balance_rows(block_rows == 3);
+  return static_cast<int>(std::find(rows.begin(), rows.end(), 2) - rows.begin());
 }
 
 Eigen::SparseMatrix<double> EquilibriumProblem::equality_matrix() const {

@@ -150,6 +150,9 @@ struct EquilibriumProblem {
     if (r.bounded_row >= 0) lower(r.bounded_row) = -v.bound;
     return lower;
   }
+  // Position of the vertical force (Fz) among a body's balance rows, where
+  // its weight enters: 2, or 1 for planar problems.
+  int vertical_row() const;
   // The equality constraint matrix (row_count x variable_count), for export
   // and residual checks; the solver works with the per-group blocks.
   Eigen::SparseMatrix<double> equality_matrix() const;
@@ -178,6 +181,13 @@ const std::array<int, 6>& balance_rows(bool planar);
 Eigen::Matrix<double, 6, 4> contact_vertex_effect(const Interface& contact, const Vec3& position,
                                                   const Vec3& centroid, double length_unit,
                                                   double sign, const std::array<int, 6>& rows);
+
+// The right-hand side of a body's six balance rows (Fx, Fy, Fz, Mx, My, Mz,
+// scaled) for a force `force` (N) applied at `at` (m): moments about
+// `centroid` over length_unit (m), none when centroid is null (a junction).
+Eigen::Matrix<double, 6, 1> applied_force_rhs(const Vec3& force, const Vec3& at,
+                                              const Vec3* centroid, double weight_unit,
+                                              double length_unit);
 
 // The friction rows (over c, f_u, f_v) for the options; empty for mu = inf.
 Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options);

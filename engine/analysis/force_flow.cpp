@@ -305,10 +305,9 @@ private:
 
 Eigen::VectorXd point_force_rows(const EquilibriumProblem& problem, const Structure& structure,
                                  int block, const Vec3& force, const Vec3& at) {
-  Eigen::Matrix<double, 6, 1> external;
-  external.head<3>() = -force / problem.weight_unit;
-  const Vec3 arm = (at - structure.block(block).centroid()) / problem.length_unit;
-  external.tail<3>() = -arm.cross(force / problem.weight_unit);
+  const Eigen::Matrix<double, 6, 1> external =
+      applied_force_rhs(force, at, &structure.block(block).centroid(), problem.weight_unit,
+                        problem.length_unit);
   const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
   Eigen::VectorXd out(problem.block_rows);
   for (int r = 0; r < problem.block_rows; ++r) out(r) = external(rows[r]);

@@ -69,9 +69,7 @@ EquilibriumProgram equilibrium_program(const Structure& structure, const Equilib
   EquilibriumProgram program;
   // Balance rows first, equal to the right-hand side less the weights.
   for (int r = 0; r < problem.row_count; ++r) program.add_row(problem.rhs(r), problem.rhs(r));
-  const std::array<int, 6>& kept = balance_rows(problem.block_rows == 3);
-  int vertical = 0;
-  while (kept[vertical] != 2) ++vertical;
+  const int vertical = problem.vertical_row();
   // A column for the combination `unknowns` (c, s, f_u, f_v) of a group.
   auto add_combination = [&](const ForceGroup& group, const Eigen::Vector4d& unknowns, double lower,
                              double upper) {

@@ -33,15 +33,6 @@ void check_analysed(const EquilibriumProblem& problem, const Structure& structur
   }
 }
 
-// Position of the vertical force (Fz) among a body's balance rows.
-int vertical_row(const EquilibriumProblem& problem) {
-  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
-  for (int r = 0; r < problem.block_rows; ++r) {
-    if (rows[r] == 2) return r;
-  }
-  throw std::logic_error("balance rows without a vertical force");
-}
-
 // The necessary-weights problem of eq. 8 for every choice of the block
 // that keeps its weight: the free blocks' weights leave the right-hand side
 // and become unknowns w_j >= 0 (one group each, acting on its block's
@@ -54,7 +45,7 @@ public:
       : structure_(structure),
         settings_(settings),
         problem_(build_equilibrium_problem(structure, settings.problem)),
-        vertical_(vertical_row(problem_)) {
+        vertical_(problem_.vertical_row()) {
     const double wu = problem_.weight_unit;
     group_of_block_.assign(structure.size(), -1);
     for (int j = 0; j < structure.size(); ++j) {
@@ -145,7 +136,7 @@ WeightSensitivity weight_sensitivity(const Structure& structure, int block,
   // One newton more on the block is 1 / weight_unit on its vertical row;
   // the scaled force change is then in weight units per weight unit: N/N.
   Eigen::VectorXd more_weight = Eigen::VectorXd::Zero(problem.row_count);
-  more_weight(problem.row_of_block[block] + vertical_row(problem)) = 1.0;
+  more_weight(problem.row_of_block[block] + problem.vertical_row()) = 1.0;
   const Eigen::VectorXd multipliers = solver.multiplier_response(more_weight);
 
   const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);
