@@ -64,8 +64,11 @@ int w_weight_sensitivity(lua_State* L) {
 int w_load_capacity(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
-    const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
-    const LoadCapacity capacity = load_capacity(s, settings);
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads"});
+    const AnalysisSettings settings = analysis_settings(options);
+    const int threads = static_cast<int>(
+        options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
+    const LoadCapacity capacity = load_capacity(s, settings, threads);
     lua_createtable(L, s.size(), 5);
     for (int i = 0; i < s.size(); ++i) {
       if (std::isnan(capacity.max[i])) {

@@ -1,10 +1,14 @@
 #include "analysis/load_capacity.hpp"
 
 #include <ClpSimplex.hpp>
+#include <ClpSolve.hpp>
 #include <CoinPackedMatrix.hpp>
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace ashlar {
 
@@ -136,9 +140,155 @@ const char* failure(int status) {
   }
 }
 
+// The first cap on a largest multiple; raised a hundredfold while a finite
+// maximum lies beyond it.
+constexpr double kFirstCap = 1e4;
+// Simplex pivots allowed for a largest multiple before the barrier takes over.
+constexpr int kSimplexBudget = 50;
+constexpr double kLastCap = 1e12;
+
+// The as-built optimum, where every multiple is 1: each block's least
+// multiple starts from it, as one block's extreme basis (a ray, when
+// unbounded) is a poor start for the next block's.
+struct Basis {
+  std::vector<unsigned char> status;
+  std::vector<double> columns, rows;
+
+  explicit Basis(ClpSimplex& simplex)
+      : status(simplex.statusArray(), simplex.statusArray() + simplex.numberColumns() + simplex.numberRows()),
+        columns(simplex.primalColumnSolution(), simplex.primalColumnSolution() + simplex.numberColumns()),
+        rows(simplex.primalRowSolution(), simplex.primalRowSolution() + simplex.numberRows()) {}
+
+  void restore(ClpSimplex& simplex) const {
+    simplex.copyinStatus(status.data());
+    std::copy(columns.begin(), columns.end(), simplex.primalColumnSolution());
+    std::copy(rows.begin(), rows.end(), simplex.primalRowSolution());
+  }
+};
+
+// The recession directions of the feasible set: forces d with A d = -g_j
+// (block j's weight alone, carried without tension or any other load). The
+// largest multiple of block j is unbounded exactly when such a d exists.
+// The cost (total compression) only gives the dual simplex a bounded
+// program to warm-start from the previous block's.
+ClpSimplex recession_program(const CoinPackedMatrix& matrix, const EquilibriumProgram& program) {
+  std::vector<double> lower(program.columns), upper(program.columns), cost(program.columns);
+  for (int c = 0; c < program.columns; ++c) {
+    // A bounded column (a capped cable, a fixed multiple) cannot grow along a ray.
+    lower[c] = program.column_lower[c] <= -COIN_DBL_MAX ? -COIN_DBL_MAX : 0.0;
+    upper[c] = program.column_upper[c] >= COIN_DBL_MAX ? COIN_DBL_MAX : 0.0;
+    cost[c] = lower[c] == 0.0 && upper[c] > 0.0 ? 1.0 : 0.0;
+  }
+  const std::vector<double> zero(program.rows, 0.0);
+  ClpSimplex rays;
+  rays.setLogLevel(0);
+  rays.loadProblem(matrix, lower.data(), upper.data(), cost.data(), zero.data(), zero.data());
+  return rays;
+}
+
+struct BlockBounds {
+  double min = kNaN, max = kNaN;
+  int failure = 0;  // Clp's status when a program failed
+  int programs = 0, pivots = 0;
+};
+
+// One worker's programs, on its own copies of the models (a Clp model is
+// not shared between threads).
+class BlockPrograms {
+public:
+  BlockPrograms(const ClpSimplex& capacity, const ClpSimplex& rays, const Basis* as_built)
+      : capacity_(capacity), rays_(rays), as_built_(as_built) {}
+
+  // The bounds of the multiple in `column` (fixed at 1 between calls).
+  BlockBounds solve(int column) {
+    BlockBounds bounds;
+    // Least: from the as-built basis, where the multiple 1 is feasible, by
+    // the primal simplex (a few dozen pivots).
+    capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
+    capacity_.setObjectiveCoefficient(column, 1.0);
+    if (as_built_) as_built_->restore(capacity_);
+    capacity_.primal();
+    count(bounds, capacity_);
+    if (capacity_.status() == 0) {
+      bounds.min = capacity_.primalColumnSolution()[column];
+      bounds.max = largest(column, bounds);
+    } else if (capacity_.status() != 1) {  // 1: no multiple lets the rest stand
+      bounds.failure = capacity_.status();
+    }
+    if (bounds.failure != 0 || std::isnan(bounds.max)) bounds.min = bounds.max = kNaN;
+    capacity_.setObjectiveCoefficient(column, 0.0);
+    capacity_.setColumnBounds(column, 1.0, 1.0);
+    return bounds;
+  }
+
+private:
+  // Largest: first by the primal simplex from the least's optimum, with a
+  // small pivot budget: on arches it ends in a few pivots, at the optimum
+  // or on a ray. Past the budget, by the barrier method under a cap, then
+  // the ray test when the cap binds: from the as-built basis the simplex
+  // takes 10^4 pivots on a friction dome, whose blocks carry hundreds of
+  // times their weight; the barrier takes about 30 iterations.
+  double largest(int column, BlockBounds& bounds) {
+    capacity_.setObjectiveCoefficient(column, -1.0);
+    const int unlimited = capacity_.maximumIterations();
+    capacity_.setMaximumIterations(kSimplexBudget);
+    capacity_.primal();
+    capacity_.setMaximumIterations(unlimited);
+    count(bounds, capacity_);
+    if (capacity_.status() == 0) return capacity_.primalColumnSolution()[column];
+    if (capacity_.status() == 2) return std::numeric_limits<double>::infinity();
+    if (capacity_.status() != 3) {  // 3: the budget ran out
+      bounds.failure = capacity_.status() == 1 ? 4 : capacity_.status();
+      return kNaN;
+    }
+    for (double cap = kFirstCap; cap <= kLastCap; cap *= 100) {
+      capacity_.setColumnBounds(column, 0.0, cap);
+      ClpSolve barrier;
+      barrier.setSolveType(ClpSolve::useBarrier);
+      barrier.setSpecialOption(2, 1);  // no interrupt handler: workers run side by side
+      capacity_.initialSolve(barrier);
+      count(bounds, capacity_);
+      if (capacity_.status() != 0) {
+        bounds.failure = capacity_.status() == 1 ? 4 : capacity_.status();
+        return kNaN;
+      }
+      const double multiple = capacity_.primalColumnSolution()[column];
+      if (multiple < cap * (1 - 1e-9)) return multiple;
+      if (has_ray(column, bounds)) return std::numeric_limits<double>::infinity();
+      if (bounds.failure != 0) return kNaN;
+    }
+    bounds.failure = 4;
+    return kNaN;
+  }
+
+  bool has_ray(int column, BlockBounds& bounds) {
+    if (ray_column_ >= 0) rays_.setColumnBounds(ray_column_, 0.0, 0.0);
+    rays_.setColumnBounds(column, 1.0, 1.0);
+    ray_column_ = column;
+    rays_.dual();  // the previous block's optimum stays dual feasible
+    count(bounds, rays_);
+    if (rays_.status() > 1) bounds.failure = rays_.status();
+    return rays_.status() == 0;
+  }
+
+  static void count(BlockBounds& bounds, const ClpSimplex& simplex) {
+    ++bounds.programs;
+    bounds.pivots += simplex.numberIterations();
+  }
+
+  ClpSimplex capacity_, rays_;
+  const Basis* as_built_;
+  int ray_column_ = -1;
+};
+
+int worker_count(int requested, int blocks) {
+  const int available = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, std::min(requested > 0 ? requested : available, blocks));
+}
+
 }  // namespace
 
-LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings) {
+LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
@@ -147,63 +297,52 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   LoadCapacity result;
   result.min.assign(structure.size(), kNaN);
   result.max.assign(structure.size(), kNaN);
-  ClpSimplex simplex;
-  simplex.setLogLevel(0);
   const CoinPackedMatrix matrix(true, program.row_index.data(), program.column_index.data(),
                                 program.value.data(), static_cast<CoinBigIndex>(program.value.size()));
+  ClpSimplex capacity;
+  capacity.setLogLevel(0);
   const std::vector<double> no_objective(program.columns, 0.0);
-  simplex.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
-                      no_objective.data(), program.row_lower.data(), program.row_upper.data());
-  // Returns Clp's status: 0 optimal, 1 infeasible, 2 unbounded, else failed.
+  capacity.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
+                       no_objective.data(), program.row_lower.data(), program.row_upper.data());
   // The as-built program from scratch by the dual simplex (about half the
-  // primal's pivots on domes); each block's programs by the primal, whose
-  // start (the as-built basis with the block's bounds widened) is feasible.
-  auto solve = [&] {
-    if (result.programs == 0) simplex.dual();
-    else simplex.primal();
-    ++result.programs;
-    result.simplex_iterations += simplex.numberIterations();
-    return simplex.status();
-  };
-
-  const int as_built = solve();
-  // Every block's programs start from the as-built optimum, where its
-  // multiple 1 is feasible: one block's extreme basis (a ray, when
-  // unbounded) is a poor start for the next block's.
-  const int variables = program.columns + program.rows;
-  const std::vector<unsigned char> built_status(simplex.statusArray(), simplex.statusArray() + variables);
-  const std::vector<double> built_columns(simplex.primalColumnSolution(),
-                                          simplex.primalColumnSolution() + program.columns);
-  const std::vector<double> built_rows(simplex.primalRowSolution(),
-                                       simplex.primalRowSolution() + program.rows);
-  auto restore = [&] {
-    simplex.copyinStatus(built_status.data());
-    std::copy(built_columns.begin(), built_columns.end(), simplex.primalColumnSolution());
-    std::copy(built_rows.begin(), built_rows.end(), simplex.primalRowSolution());
-  };
+  // primal's pivots on domes).
+  capacity.dual();
+  const int as_built = capacity.status();
+  result.programs = 1;
+  result.simplex_iterations = capacity.numberIterations();
   const bool floating = !problem.floating_blocks.empty() || !problem.floating_junctions.empty();
   result.stable = as_built == 0 && !floating;
-  if (as_built > 2) result.status = failure(as_built);
-  for (int j = 0; j < structure.size() && result.status == "optimal"; ++j) {
-    const int column = program.multiplier_column[j];
-    if (column < 0) continue;
-    simplex.setColumnBounds(column, 0.0, COIN_DBL_MAX);
-    for (const double direction : {1.0, -1.0}) {
-      if (as_built == 0) restore();
-      simplex.setObjectiveCoefficient(column, direction);
-      const int status = solve();
-      if (status > 2) {
-        result.status = failure(status);
-        break;
-      }
-      if (status == 1) break;  // no multiple lets the rest stand
-      const double bound = status == 2 ? std::numeric_limits<double>::infinity()
-                                       : simplex.primalColumnSolution()[column];
-      (direction > 0 ? result.min : result.max)[j] = bound;
+  if (as_built > 2) {
+    result.status = failure(as_built);
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+  }
+  const Basis basis(capacity);
+  const ClpSimplex rays = recession_program(matrix, program);
+
+  std::vector<int> blocks;
+  for (int j = 0; j < structure.size(); ++j) {
+    if (program.multiplier_column[j] >= 0) blocks.push_back(j);
+  }
+  std::vector<BlockBounds> bounds(blocks.size());
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    BlockPrograms programs(capacity, rays, as_built == 0 ? &basis : nullptr);
+    for (size_t k = next++; k < blocks.size(); k = next++) {
+      bounds[k] = programs.solve(program.multiplier_column[blocks[k]]);
     }
-    if (std::isnan(result.max[j])) result.min[j] = kNaN;
-    simplex.setObjectiveCoefficient(column, 0.0);
-    simplex.setColumnBounds(column, 1.0, 1.0);
+  };
+  std::vector<std::thread> workers;
+  for (int w = 1; w < worker_count(threads, static_cast<int>(blocks.size())); ++w) workers.emplace_back(work);
+  work();
+  for (std::thread& worker : workers) worker.join();
+
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    result.min[blocks[k]] = bounds[k].min;
+    result.max[blocks[k]] = bounds[k].max;
+    result.programs += bounds[k].programs;
+    result.simplex_iterations += bounds[k].pivots;
+    if (bounds[k].failure != 0 && result.status == "optimal") result.status = failure(bounds[k].failure);
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

@@ -5,10 +5,15 @@
 //
 // The thesis searches by trial; here each bound is one linear program in
 // the contact forces and the multiplier (feasibility of the equilibrium
-// equations, friction pyramids, no tension), solved by the simplex method
-// (COIN-OR Clp). All 2n programs share one constraint matrix and differ in
-// one column's bounds and objective, so each starts from the previous
-// optimal basis and takes a few pivots.
+// equations, friction pyramids, no tension), solved by COIN-OR Clp. All
+// programs share one constraint matrix and differ in one column's bounds
+// and objective. The least multiple starts from the as-built optimal basis
+// (the primal simplex, a few dozen pivots); the largest is found by the
+// barrier method under a cap, and when the cap binds, a ray test decides
+// whether it is unbounded: block j's weight alone can be carried
+// compression-only (a program that changes only in its right-hand side
+// from block to block, so the dual simplex warm-starts it). Blocks are
+// shared among worker threads, each with its own copy of the programs.
 #pragma once
 
 #include <string>
@@ -28,16 +33,18 @@ struct LoadCapacity {
   std::vector<double> min, max;
   // The structure stands as it is (every multiple 1).
   bool stable = false;
-  // "optimal", or the first program's failure ("stopped" on the iteration
-  // limit, "numerical difficulties"); the bounds of blocks solved before
-  // a failure stay, the rest are NaN.
+  // "optimal", or the failure of the first block (in block order) whose
+  // programs failed ("stopped" on the iteration limit, "numerical
+  // difficulties"); that block's bounds are NaN, the others stand.
   std::string status = "optimal";
   int programs = 0;            // linear programs solved
-  int simplex_iterations = 0;  // pivots over all of them
+  int simplex_iterations = 0;  // simplex pivots and barrier iterations over all of them
   double seconds = 0.0;
 };
 
 // Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
-LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings);
+// threads: worker threads, 0 for one per hardware thread; the bounds do not
+// depend on it.
+LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0);
 
 }  // namespace ashlar
