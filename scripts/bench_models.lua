@@ -14,6 +14,7 @@ local REFINED = {
   arch = { voussoirs = 240 },
   arch_bridge = { voussoirs = 260, pier_courses = 40 },
   barrel_vault = { voussoirs = 240, courses = 60 },
+  buttressed_vault = { voussoirs = 150, pier_blocks = 10, flyer_voussoirs = 60, buttress_blocks = 10 },
   column = { drums = 60 },
   dome = { meridians = 160, parallels = 180 },
   flying_buttress = { voussoirs = 600, pier_blocks = 40 },

@@ -36,6 +36,7 @@ local VIEWS = {
   wall = { azimuth = 30, elevation = 20, angle = 22 },
   -- Checked on the drafts of these generators before they were registered.
   flying_buttress = { azimuth = 35, elevation = 15, angle = 30 },
+  buttressed_vault = { azimuth = 25, elevation = 15, angle = 30 },
   groin_vault = { azimuth = 30, elevation = 25, angle = 28 },
 }
 

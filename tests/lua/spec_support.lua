@@ -42,6 +42,14 @@ function support.threshold(stands, failing, standing, tolerance)
 end
 
 -- Total volume of a structure's free blocks (supports left out).
+-- The keys of t, sorted.
+function support.sorted_keys(t)
+  local keys = {}
+  for key in pairs(t) do keys[#keys + 1] = key end
+  table.sort(keys)
+  return keys
+end
+
 function support.free_volume(s)
   local volume = 0
   for i = 1, #s do

@@ -4,7 +4,7 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local support = require "spec_support"
-local expect_error = support.expect_error
+local expect_error, near = support.expect_error, support.near
 
 local NO_SLIDING = { friction = math.huge }
 
@@ -43,7 +43,28 @@ describe("load_capacity", function()
     assert.is_false(stands_with(arch, 8, cap[8].min * (1 - 1e-3), NO_SLIDING))
   end)
 
-  it("of a flying buttress: only the pier needs weight, and once refined no single block does (figure 6)", function()
+  it("of a vault on flying buttresses: only the buttresses need weight; split, only their top blocks; split finer, none (figure 6)", function()
+    local function needing_weight(buttress_blocks)
+      local s = models.buttressed_vault{ buttress_blocks = buttress_blocks }
+      local cap = ashlar.load_capacity(s, { tolerance = 1e-7 })
+      assert.is_true(cap.stable)
+      local needs = {}
+      for i = 1, #s do
+        if cap[i] and cap[i].min > 1e-6 then needs[s:name(i)] = cap[i].min end
+      end
+      return needs
+    end
+    local whole = needing_weight(1)
+    assert.are.same({ "left buttress 1", "right buttress 1" }, support.sorted_keys(whole))
+    near(whole["left buttress 1"], 0.329, 1e-3); near(whole["right buttress 1"], whole["left buttress 1"], 1e-6)
+    local split = needing_weight(2)
+    assert.are.same({ "left buttress 2", "right buttress 2" }, support.sorted_keys(split))
+    near(split["left buttress 2"], 0.112, 1e-3)
+    assert.are.same({}, support.sorted_keys(needing_weight(3)))
+    assert.are.same({}, support.sorted_keys(needing_weight(4)))
+  end)
+
+  it("of a flying buttress: only the pier needs weight, and once refined no single block does", function()
     local options = { tolerance = 1e-7 }
     local function needing_weight(pier_blocks)
       local s = models.flying_buttress{ voussoirs = 16, pier_width = 2, pinnacle_height = 0, pier_blocks = pier_blocks }

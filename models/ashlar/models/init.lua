@@ -11,6 +11,7 @@ return {
   post_and_lintel = require "ashlar.models.post_and_lintel",
   h_frame = require "ashlar.models.h_frame",
   flying_buttress = require "ashlar.models.flying_buttress",
+  buttressed_vault = require "ashlar.models.buttressed_vault",
   arch_bridge = require "ashlar.models.arch_bridge",
   cable_stayed_bridge = require "ashlar.models.cable_stayed_bridge",
 }
