@@ -42,6 +42,26 @@ function support.threshold(stands, failing, standing, tolerance)
 end
 
 -- Total volume of a structure's free blocks (supports left out).
+-- Asserts that s's interfaces are exactly `contacts`, a list of
+-- { name_a, name_b, area } (either order), each area to 1e-12.
+function support.expect_contacts(s, contacts)
+  local expected, count = {}, 0
+  for _, c in ipairs(contacts) do
+    local i, j = s:find(c[1]), s:find(c[2])
+    assert(i and j, "no block " .. (i and c[2] or c[1]))
+    expected[math.min(i, j) .. "-" .. math.max(i, j)] = c[3]
+    count = count + 1
+  end
+  local interfaces = s:interfaces()
+  assert(count == #interfaces, ("expected %d contacts, got %d"):format(count, #interfaces))
+  for _, f in ipairs(interfaces) do
+    local key = math.min(f.a, f.b) .. "-" .. math.max(f.a, f.b)
+    assert(expected[key], "spurious contact " .. s:name(f.a) .. " / " .. s:name(f.b))
+    support.near(f.area, expected[key], 1e-12, s:name(f.a) .. " / " .. s:name(f.b))
+    expected[key] = nil  -- a second interface between the pair is spurious
+  end
+end
+
 -- The keys of t, sorted.
 function support.sorted_keys(t)
   local keys = {}

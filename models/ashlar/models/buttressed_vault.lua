@@ -52,15 +52,6 @@ local function fail(message)
   error("models.buttressed_vault: " .. message, 3)
 end
 
--- Direction (cos, sin) of flyer joint k of n, from the crown joint (k = 0,
--- vertical) to the springing (k = n, horizontal), set exactly at both ends.
-local function flyer_joint_direction(k, n)
-  if k == 0 then return 0, 1 end
-  if k == n then return 1, 0 end
-  local angle = 0.5 * math.pi * (1 - k / n)
-  return math.cos(angle), math.sin(angle)
-end
-
 return function(opts)
   local o = options.check("models.buttressed_vault", opts, spec)
   semicircle.check_thickness("models.buttressed_vault", o)
@@ -106,14 +97,8 @@ return function(opts)
 
     local wall = inner + o.pier_width  -- the pier's outer face
     local fin, fout = o.flyer_radius - o.flyer_thickness / 2, o.flyer_radius + o.flyer_thickness / 2
-    local function joint(k)
-      local c, si = flyer_joint_direction(k, o.flyer_voussoirs)
-      local a = { at(wall + fin * c), flyer_centre + fin * si }
-      local b = { at(wall + fout * c), flyer_centre + fout * si }
-      return { { a[1], y0, a[2] }, { b[1], y0, b[2] }, { b[1], y1, b[2] }, { a[1], y1, a[2] } }
-    end
     for k = 1, o.flyer_voussoirs do
-      s:add(ashlar.loft(joint(k - 1), joint(k), { density = o.density }),
+      s:add(semicircle.flyer_voussoir(k, o.flyer_voussoirs, fin, fout, at(wall), flyer_centre, side, y0, y1, o.density),
             { name = ("%s flyer %d"):format(label, k) })
     end
     column("buttress", wall + fin, o.buttress_width, flyer_centre, o.buttress_blocks)

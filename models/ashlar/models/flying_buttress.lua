@@ -28,6 +28,7 @@
 -- pier; every face is planar.
 local ashlar = require "ashlar"
 local options = require "ashlar.models.options"
+local semicircle = require "ashlar.models.semicircle"
 
 local spec = {
   radius = { type = "number", default = 6, above = 0 },          -- m, flyer centreline
@@ -45,16 +46,6 @@ local function fail(message)
   error("models.flying_buttress: " .. message, 3)
 end
 
--- Direction (cos, sin) of flyer joint k of n: k = 0 is the crown joint
--- (vertical, against the wall), k = n the springing (horizontal), set
--- exactly so that those joints are exactly vertical and horizontal.
-local function joint_direction(k, n)
-  if k == 0 then return 0, 1 end
-  if k == n then return 1, 0 end
-  local angle = 0.5 * math.pi * (1 - k / n)
-  return math.cos(angle), math.sin(angle)
-end
-
 return function(opts)
   local o = options.check("models.flying_buttress", opts, spec)
   if o.thickness >= 2 * o.radius then
@@ -70,13 +61,8 @@ return function(opts)
   local s = ashlar.structure()
 
   -- Flyer: voussoir 1 against the wall to voussoir N on the pier.
-  local function joint(k)
-    local c, si = joint_direction(k, n)
-    return { { inner * c, y0, h + inner * si }, { outer * c, y0, h + outer * si },
-             { outer * c, y1, h + outer * si }, { inner * c, y1, h + inner * si } }
-  end
   for i = 1, n do
-    s:add(ashlar.loft(joint(i - 1), joint(i), { density = o.density }),
+    s:add(semicircle.flyer_voussoir(i, n, inner, outer, 0, h, 1, y0, y1, o.density),
           { name = ("voussoir %d"):format(i) })
   end
 

@@ -1,5 +1,6 @@
 -- Geometry shared by the semicircular generators (models.arch,
--- models.barrel_vault): radial joints in the x-z plane around the y axis,
+-- models.barrel_vault, and the flyers of models.flying_buttress and
+-- models.buttressed_vault): radial joints in the x-z plane around the y axis,
 -- springing at z = 0, and the two supports under the springings.
 local ashlar = require "ashlar"
 
@@ -32,6 +33,27 @@ function semicircle.voussoir(k, n, inner, outer, y0, y1, density)
   end
   return ashlar.loft(joint(semicircle.joint_direction(k - 1, n)),
                      joint(semicircle.joint_direction(k, n)), { density = density })
+end
+
+-- Direction (cos, sin) of joint k of n of a flyer, the outer half of a
+-- semicircular arch: k = 0 is the crown joint (vertical), k = n the
+-- springing (horizontal), both set exactly.
+function semicircle.flyer_joint_direction(k, n)
+  if k == 0 then return 0, 1 end
+  if k == n then return 1, 0 end
+  local angle = 0.5 * math.pi * (1 - k / n)
+  return math.cos(angle), math.sin(angle)
+end
+
+-- Voussoir k of n of a flyer centred on (cx, cz), from y0 to y1, between
+-- radii inner and outer, reaching towards +x (side = 1) or -x (side = -1).
+function semicircle.flyer_voussoir(k, n, inner, outer, cx, cz, side, y0, y1, density)
+  local function joint(j)
+    local c, s = semicircle.flyer_joint_direction(j, n)
+    local a, b = { cx + side * inner * c, cz + inner * s }, { cx + side * outer * c, cz + outer * s }
+    return { { a[1], y0, a[2] }, { b[1], y0, b[2] }, { b[1], y1, b[2] }, { a[1], y1, a[2] } }
+  end
+  return ashlar.loft(joint(k - 1), joint(k), { density = density })
 end
 
 -- Adds "support left" and "support right": they reach from the intrados
