@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -325,17 +326,21 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
     if (program.multiplier_column[j] >= 0) blocks.push_back(j);
   }
   std::vector<BlockBounds> bounds(blocks.size());
+  // The copies are made here, one thread reading the models at a time.
+  std::vector<BlockPrograms> programs;
+  const int workers = worker_count(threads, static_cast<int>(blocks.size()));
+  programs.reserve(workers);
+  for (int w = 0; w < workers; ++w) programs.emplace_back(capacity, rays, as_built == 0 ? &basis : nullptr);
   std::atomic<size_t> next{0};
-  auto work = [&] {
-    BlockPrograms programs(capacity, rays, as_built == 0 ? &basis : nullptr);
+  auto work = [&](BlockPrograms& mine) {
     for (size_t k = next++; k < blocks.size(); k = next++) {
-      bounds[k] = programs.solve(program.multiplier_column[blocks[k]]);
+      bounds[k] = mine.solve(program.multiplier_column[blocks[k]]);
     }
   };
-  std::vector<std::thread> workers;
-  for (int w = 1; w < worker_count(threads, static_cast<int>(blocks.size())); ++w) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
+  std::vector<std::thread> helpers;
+  for (int w = 1; w < workers; ++w) helpers.emplace_back(work, std::ref(programs[w]));
+  work(programs[0]);
+  for (std::thread& thread : helpers) thread.join();
 
   for (size_t k = 0; k < blocks.size(); ++k) {
     result.min[blocks[k]] = bounds[k].min;
