@@ -200,16 +200,7 @@ void hatch_path(cairo_t* cr, const Rgb& color, double spacing, double width) {
 
 void check_options(const Structure& structure, const ElevationOptions& options) {
   check_size(options.width, options.height, "draw");
-  if (structure.size() == 0) throw InvalidArgument("draw: the structure has no blocks");
-  const size_t colors = options.block_colors.size();
-  if (colors != 0 && colors != static_cast<size_t>(structure.size())) {
-    throw InvalidArgument("draw: block_colors has " + std::to_string(colors) +
-                          " colours but the structure has " + std::to_string(structure.size()) +
-                          " blocks (give one per block, or none)");
-  }
-  for (size_t i = 0; i < colors; ++i) {
-    check_color(options.block_colors[i], "colour " + std::to_string(i + 1), "draw");
-  }
+  check_block_colors(structure, options.block_colors, "draw");
   check_color(options.thrust_color, "thrust_color", "draw");
   if (!(options.force_scale >= 0.0) || !std::isfinite(options.force_scale)) {
     throw InvalidArgument("draw: force_scale must be a finite number >= 0 (0: automatic)");

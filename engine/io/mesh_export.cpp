@@ -77,16 +77,7 @@ const ExportFormat& format_for(const std::string& path) {
 }
 
 void check_options(const Structure& structure, const ExportOptions& options) {
-  if (structure.size() == 0) throw InvalidArgument("export: the structure has no blocks");
-  const auto colors = options.block_colors.size();
-  if (colors != 0 && colors != static_cast<size_t>(structure.size())) {
-    throw InvalidArgument("export: block_colors has " + std::to_string(colors) +
-                          " colours but the structure has " + std::to_string(structure.size()) +
-                          " blocks (give one per block, or none)");
-  }
-  for (size_t i = 0; i < colors; ++i) {
-    check_color(options.block_colors[i], "colour " + std::to_string(i + 1), "export");
-  }
+  check_block_colors(structure, options.block_colors, "export");
   check_color(options.interface_color, "interface_color", "export");
   check_color(options.compression_color, "compression_color", "export");
   check_color(options.tension_color, "tension_color", "export");

@@ -18,6 +18,17 @@ void check_color(const Rgb& color, const std::string& what, const std::string& c
   }
 }
 
+void check_block_colors(const Structure& structure, const std::vector<Rgb>& colors,
+                        const std::string& caller) {
+  if (structure.size() == 0) throw InvalidArgument(caller + ": the structure has no blocks");
+  if (!colors.empty() && colors.size() != static_cast<size_t>(structure.size())) {
+    throw InvalidArgument(caller + ": block_colors has " + std::to_string(colors.size()) +
+                          " colours but the structure has " + std::to_string(structure.size()) +
+                          " blocks (give one per block, or none)");
+  }
+  for (size_t i = 0; i < colors.size(); ++i) check_color(colors[i], "colour " + std::to_string(i + 1), caller);
+}
+
 void check_result_of_structure(const Structure& structure, const EquilibriumResult* result,
                                bool forces, bool thrust, const ContactOptions& contact,
                                const std::string& caller) {

@@ -1,9 +1,10 @@
-// Checks of the options that ashlar.export and ashlar.draw share: colours,
-// and an analysis result that must be of the structure being drawn.
+// Checks of the options that ashlar.export and ashlar.draw share: colours
+// (one per block, or single ones), and an analysis result that must be of the structure being drawn.
 // `caller` ("export", "draw") begins every message.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/mesh_io.hpp"
 
@@ -12,6 +13,11 @@ namespace ashlar {
 // Throws InvalidArgument unless every component lies in [0, 1]; `what`
 // names the colour.
 void check_color(const Rgb& color, const std::string& what, const std::string& caller);
+
+// Throws InvalidArgument unless the structure has blocks and `colors` is
+// empty or holds one valid colour per block.
+void check_block_colors(const Structure& structure, const std::vector<Rgb>& colors,
+                        const std::string& caller);
 
 // Throws InvalidArgument when forces or thrust are asked for without a
 // result, or when `result` is of another structure: other block count, or
