@@ -189,6 +189,16 @@ void set_field(lua_State* L, const char* key, const Vec3& value) {
   lua_setfield(L, -2, key);
 }
 
+void set_boolean(lua_State* L, const char* key, bool value) {
+  lua_pushboolean(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_string(lua_State* L, const char* key, const char* value) {
+  lua_pushstring(L, value);
+  lua_setfield(L, -2, key);
+}
+
 void set_index_field(lua_State* L, const char* key, int zero_based) {
   lua_pushinteger(L, static_cast<lua_Integer>(zero_based) + 1);
   lua_setfield(L, -2, key);

@@ -72,6 +72,8 @@ void push_points(lua_State* L, const std::vector<Vec3>& points);
 // Fields of the table on top of the stack.
 void set_field(lua_State* L, const char* key, double value);
 void set_field(lua_State* L, const char* key, const Vec3& value);
+void set_boolean(lua_State* L, const char* key, bool value);
+void set_string(lua_State* L, const char* key, const char* value);
 // A 0-based engine index stored as the 1-based Lua index.
 void set_index_field(lua_State* L, const char* key, int zero_based);
 

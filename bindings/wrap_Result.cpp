@@ -133,8 +133,7 @@ void push_blocks(lua_State* L, const EquilibriumResult& result) {
     lua_createtable(L, 0, 3);
     set_field(L, "tension", result.block_tension[i]);
     set_field(L, "virtual_torque", result.virtual_torques[i]);
-    lua_pushboolean(L, floating[i]);
-    lua_setfield(L, -2, "floating");
+    set_boolean(L, "floating", floating[i]);
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
 }

@@ -65,12 +65,9 @@ void push_force_flow(lua_State* L, const ForceFlow& flow) {
   lua_setfield(L, -2, "shares");
   lua_pushinteger(L, flow.lost);
   lua_setfield(L, -2, "lost");
-  lua_pushboolean(L, flow.stable);
-  lua_setfield(L, -2, "stable");
-  lua_pushboolean(L, flow.valid);
-  lua_setfield(L, -2, "valid");
-  lua_pushstring(L, status_name(flow.analysis.status));
-  lua_setfield(L, -2, "status");
+  set_boolean(L, "stable", flow.stable);
+  set_boolean(L, "valid", flow.valid);
+  set_string(L, "status", status_name(flow.analysis.status));
   set_field(L, "seconds", flow.seconds);
 }
 

@@ -26,12 +26,9 @@ void push_structural_gradient(lua_State* L, const StructuralGradient& gradient) 
   lua_setfield(L, -2, "cables");
   set_field(L, "penalty", r.penalty);
   set_field(L, "infeasibility", r.infeasibility);
-  lua_pushboolean(L, r.stable);
-  lua_setfield(L, -2, "stable");
-  lua_pushboolean(L, gradient.valid);
-  lua_setfield(L, -2, "valid");
-  lua_pushstring(L, status_name(r.status));
-  lua_setfield(L, -2, "status");
+  set_boolean(L, "stable", r.stable);
+  set_boolean(L, "valid", gradient.valid);
+  set_string(L, "status", status_name(r.status));
   set_field(L, "seconds", gradient.seconds);
   set_field(L, "analysis_seconds", r.seconds);
 }

@@ -137,8 +137,7 @@ void push_history(lua_State* L, const Progress& progress) {
     set_field(L, "infeasibility", e.infeasibility);
     set_field(L, "step", e.step.step);
     set_field(L, "seconds", e.step.seconds);
-    lua_pushboolean(L, e.step.stable);
-    lua_setfield(L, -2, "stable");
+    set_boolean(L, "stable", e.step.stable);
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
   }
 }
@@ -314,12 +313,9 @@ DesignConstraints design_constraints(lua_State* L, const Structure& s, const Opt
 
 void push_outcome(lua_State* L, OptimizeStatus status, bool stable, const std::string& message,
                   int evaluations, const Progress& progress) {
-  lua_pushboolean(L, stable);
-  lua_setfield(L, -2, "stable");
-  lua_pushstring(L, status_name(status));
-  lua_setfield(L, -2, "status");
-  lua_pushstring(L, message.c_str());
-  lua_setfield(L, -2, "message");
+  set_boolean(L, "stable", stable);
+  set_string(L, "status", status_name(status));
+  set_string(L, "message", message.c_str());
   lua_pushinteger(L, evaluations);
   lua_setfield(L, -2, "evaluations");
   push_history(L, progress);

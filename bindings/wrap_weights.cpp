@@ -15,16 +15,6 @@ namespace ashlar::lua {
 
 namespace {
 
-void set_boolean(lua_State* L, const char* key, bool value) {
-  lua_pushboolean(L, value);
-  lua_setfield(L, -2, key);
-}
-
-void set_string(lua_State* L, const char* key, const char* value) {
-  lua_pushstring(L, value);
-  lua_setfield(L, -2, key);
-}
-
 // The list t[i] = values[i] (i 1-based) into the table on top of the stack.
 void set_list(lua_State* L, const std::vector<double>& values) {
   for (size_t i = 0; i < values.size(); ++i) {
