@@ -141,12 +141,16 @@ const char* failure(int status) {
   }
 }
 
-// The first cap on a largest multiple; raised a hundredfold while a finite
-// maximum lies beyond it.
-constexpr double kFirstCap = 1e4;
 // Simplex pivots allowed for a largest multiple before the barrier takes over.
 constexpr int kSimplexBudget = 50;
+// The first cap on a largest multiple under the barrier, raised a
+// hundredfold while a finite maximum lies beyond it, up to the last.
+constexpr double kFirstCap = 1e4;
 constexpr double kLastCap = 1e12;
+
+// Clp's status of a program that failed; "infeasible" once the least
+// multiple was found feasible can only be a numerical failure.
+int failure_status(int status) { return status == 1 ? 4 : status; }
 
 // The as-built optimum, where every multiple is 1: each block's least
 // multiple starts from it, as one block's extreme basis (a ray, when
@@ -239,7 +243,7 @@ private:
     if (capacity_.status() == 0) return capacity_.primalColumnSolution()[column];
     if (capacity_.status() == 2) return std::numeric_limits<double>::infinity();
     if (capacity_.status() != 3) {  // 3: the budget ran out
-      bounds.failure = capacity_.status() == 1 ? 4 : capacity_.status();
+      bounds.failure = failure_status(capacity_.status());
       return kNaN;
     }
     for (double cap = kFirstCap; cap <= kLastCap; cap *= 100) {
@@ -250,7 +254,7 @@ private:
       capacity_.initialSolve(barrier);
       count(bounds, capacity_);
       if (capacity_.status() != 0) {
-        bounds.failure = capacity_.status() == 1 ? 4 : capacity_.status();
+        bounds.failure = failure_status(capacity_.status());
         return kNaN;
       }
       const double multiple = capacity_.primalColumnSolution()[column];

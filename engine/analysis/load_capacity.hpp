@@ -8,12 +8,13 @@
 // equations, friction pyramids, no tension), solved by COIN-OR Clp. All
 // programs share one constraint matrix and differ in one column's bounds
 // and objective. The least multiple starts from the as-built optimal basis
-// (the primal simplex, a few dozen pivots); the largest is found by the
-// barrier method under a cap, and when the cap binds, a ray test decides
-// whether it is unbounded: block j's weight alone can be carried
-// compression-only (a program that changes only in its right-hand side
-// from block to block, so the dual simplex warm-starts it). Blocks are
-// shared among worker threads, each with its own copy of the programs.
+// (the primal simplex, a few dozen pivots). The largest continues from the
+// least's basis within a small pivot budget (enough on arches); past it,
+// the barrier method solves it under a cap, and when the cap binds a ray
+// test decides whether it is unbounded: whether block j's weight alone can
+// be carried compression-only (a program that changes only in one fixed
+// column from block to block, so the dual simplex warm-starts it). Blocks
+// are shared among worker threads, each with its own copy of the programs.
 #pragma once
 
 #include <string>
