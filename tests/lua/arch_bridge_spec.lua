@@ -6,14 +6,7 @@ local ashlar = require "ashlar"
 local arch_bridge = require "ashlar.models.arch_bridge"
 
 local support = require "spec_support"
-local near = support.near
-
--- As support.expect_error, and the error blames the generator's caller (the
--- wrapper in spec_support.lua), not a line inside the model library.
-local function expect_error(fragments, f, ...)
-  local message = support.expect_error(fragments, f, ...)
-  assert(message:match("^[^:]*spec_support%.lua:%d+: "), "blames the wrong line: " .. message)
-end
+local near, expect_error = support.near, support.expect_generator_error
 
 -- The expected contacts as a set of "name|name" pairs (sorted names), from
 -- the construction: spans S, voussoirs N, courses C.

@@ -8,14 +8,7 @@ local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
 local support = require "spec_support"
-local near = support.near
-
--- As support.expect_error, and the error blames the generator's caller (the
--- wrapper in spec_support.lua), not a line inside the model library.
-local function expect_error(fragments, f, ...)
-  local message = support.expect_error(fragments, f, ...)
-  assert(message:match("^[^:]*spec_support%.lua:%d+: "), "blames the wrong line: " .. message)
-end
+local near, expect_error = support.near, support.expect_generator_error
 
 local function sub(a, b) return { a[1] - b[1], a[2] - b[2], a[3] - b[3] } end
 local function cross(a, b)

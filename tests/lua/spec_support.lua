@@ -30,6 +30,14 @@ function support.expect_error(fragments, f, ...)
   return message
 end
 
+-- As expect_error, and the error blames the generator's caller (the
+-- wrapper in this file), not a line inside the model library.
+function support.expect_generator_error(fragments, f, ...)
+  local message = support.expect_error(fragments, f, ...)
+  assert(message:match("^[^:]*spec_support%.lua:%d+: "), "blames the wrong line: " .. message)
+  return message
+end
+
 -- The smallest value at which stands(value) holds, by bisection between a
 -- value that fails and one that stands, to an absolute tolerance.
 function support.threshold(stands, failing, standing, tolerance)
