@@ -1,9 +1,9 @@
 #include "analysis/equilibrium.hpp"
 
 #include <array>
-#include <chrono>
 #include <cmath>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 
 namespace ashlar {
@@ -50,13 +50,12 @@ double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start,
                                       EquilibriumProblem* problem_out) {
-  using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   check_settings(settings);
   EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   EquilibriumSolver solver(problem);
   EquilibriumResult result;
-  result.timings.setup = std::chrono::duration<double>(Clock::now() - start).count();
+  result.timings.setup = seconds_since(start);
   if (warm_start) result.solution = warm_start->solution;
   const InteriorPointInfo info =
       solver.solve(problem, settings.solver, result.solution, warm_start != nullptr);
@@ -126,7 +125,7 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   // Stability is a question of feasibility: forces that balance every block
   // without tension prove it, converged or not. Without such forces only a
   // converged optimum (whose tension is then needed) proves instability.
-  const bool floating = !result.floating_blocks.empty() || !problem.floating_junctions.empty();
+  const bool floating = problem.has_floating_bodies();
   result.stable = !floating && result.imbalance_without_tension <= settings.stable_tolerance;
   // Floating blocks cannot be balanced at all; a numerical failure (also what
   // a problem with no equilibrium even with tension, e.g. no friction under
@@ -139,7 +138,7 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
     result.infeasibility = result.stable ? 0.0 : penalised / bodies;
     result.penalty = info.objective / bodies;
   }
-  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.seconds = seconds_since(start);
   if (problem_out) *problem_out = std::move(problem);
   return result;
 }

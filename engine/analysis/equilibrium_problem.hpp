@@ -119,6 +119,8 @@ struct EquilibriumProblem {
     return rules[static_cast<int>(group.kind)];
   }
   int variable_count() const { return 4 * static_cast<int>(groups.size()); }
+  // Whether some body has no path to a support: then no forces balance it.
+  bool has_floating_bodies() const { return !floating_blocks.empty() || !floating_junctions.empty(); }
   // rows += A_k forces: the effect of group k's unknowns on the balance rows.
   void add_effect(const ForceGroup& v, const Eigen::Vector4d& forces,
                   Eigen::VectorXd& rows) const {

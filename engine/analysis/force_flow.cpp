@@ -1,7 +1,6 @@
 #include "analysis/force_flow.hpp"
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -9,13 +8,13 @@
 #include <random>
 #include <string>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 
 namespace ashlar {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -348,7 +347,7 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
   flow.support_interface.assign(options.traces, -1);
   flow.lost = options.traces;
   const auto stamp_time = [&] {
-    flow.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    flow.seconds = seconds_since(start);
   };
   EquilibriumSolver solver(problem);
   if (flow.analysis.status == SolverStatus::numerical_error ||

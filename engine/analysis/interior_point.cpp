@@ -2,12 +2,12 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "analysis/sparse_cholesky.hpp"
+#include "core/clock.hpp"
 
 namespace ashlar {
 
@@ -26,9 +26,6 @@ using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 constexpr int kStallIterations = 8;
 constexpr int kHopelessIterations = 20;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Largest step in (0, 1] keeping v + step * dv >= 0.
 double step_to_boundary(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
@@ -197,7 +194,6 @@ Eigen::Vector4d EquilibriumSolver::group_response(const EquilibriumProblem& prob
 InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
                                            const InteriorPointSettings& settings,
                                            InteriorPointSolution& solution, bool warm_start) {
-  using Clock = std::chrono::steady_clock;
   InteriorPointInfo info;
   const int nv = static_cast<int>(problem.groups.size());
   const Eigen::VectorXd& b = problem.rhs;

@@ -5,11 +5,12 @@
 #include <CoinPackedMatrix.hpp>
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <thread>
+
+#include "core/clock.hpp"
 
 namespace ashlar {
 
@@ -294,7 +295,6 @@ int worker_count(int requested, int blocks) {
 }  // namespace
 
 LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads) {
-  using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   const EquilibriumProgram program = equilibrium_program(structure, problem, settings.problem);
@@ -315,11 +315,10 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   const int as_built = capacity.status();
   result.programs = 1;
   result.simplex_iterations = capacity.numberIterations();
-  const bool floating = !problem.floating_blocks.empty() || !problem.floating_junctions.empty();
-  result.stable = as_built == 0 && !floating;
+  result.stable = as_built == 0 && !problem.has_floating_bodies();
   if (as_built > 2) {
     result.status = failure(as_built);
-    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.seconds = seconds_since(start);
     return result;
   }
   const Basis basis(capacity);
@@ -353,7 +352,7 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
     result.simplex_iterations += bounds[k].pivots;
     if (bounds[k].failure != 0 && result.status == "optimal") result.status = failure(bounds[k].failure);
   }
-  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.seconds = seconds_since(start);
   return result;
 }
 

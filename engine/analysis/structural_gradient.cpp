@@ -1,9 +1,9 @@
 #include "analysis/structural_gradient.hpp"
 
-#include <chrono>
 #include <cmath>
 
 #include "analysis/equilibrium_sensitivity.hpp"
+#include "core/clock.hpp"
 #include "geometry/block.hpp"
 #include "structure/interface_gradient.hpp"
 
@@ -33,7 +33,7 @@ StructuralGradient structural_gradient(const Structure& structure,
   StructuralGradient out;
   EquilibriumProblem problem;
   out.analysis = analyze_equilibrium(structure, settings, warm_start, &problem);
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   const int n = structure.size();
   const std::vector<Cable>& cables = structure.cables();
   out.block_vertices.resize(n);
@@ -100,7 +100,7 @@ StructuralGradient structural_gradient(const Structure& structure,
   }
   for (Vec3& g : out.cable_from) g /= bodies;
   for (Vec3& g : out.cable_to) g /= bodies;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.seconds = seconds_since(start);
   return out;
 }
 

@@ -1,19 +1,15 @@
 #include "analysis/weight_analysis.hpp"
 
-#include <chrono>
 #include <string>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 
 namespace ashlar {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 void check_free_block(const Structure& structure, int block) {
   if (block < 0 || block >= structure.size()) {
@@ -95,7 +91,7 @@ public:
       }
     }
     result.weights[block] = own_weight;
-    const bool floating = !problem_.floating_blocks.empty() || !problem_.floating_junctions.empty();
+    const bool floating = problem_.has_floating_bodies();
     result.stable = !floating && info.status != SolverStatus::numerical_error &&
                     compression_only_imbalance(problem_, solution_.x) <= settings_.stable_tolerance;
     if (floating || info.status == SolverStatus::numerical_error) {

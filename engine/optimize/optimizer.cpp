@@ -2,7 +2,6 @@
 
 #include <LBFGSB.h>
 
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <iomanip>
@@ -11,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 
 namespace ashlar {
@@ -194,7 +194,7 @@ public:
       : problem_(problem),
         settings_(settings),
         initial_step_(initial_step),
-        started_(std::chrono::steady_clock::now()) {}
+        started_(Clock::now()) {}
 
   Outcome run() {
     Outcome outcome;
@@ -247,8 +247,7 @@ private:
     step.iteration = static_cast<int>(history_.size());
     step.value = trial.value;
     step.step = first ? 0.0 : problem_.distance(current_.point, trial.point);
-    step.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    step.seconds = seconds_since(started_);
     step.stable = trial.stable;
     const double previous = current_.value;
     v_ = v;
@@ -422,7 +421,7 @@ private:
   Problem& problem_;
   const OptimizeSettings& settings_;
   double initial_step_;
-  std::chrono::steady_clock::time_point started_;
+  Clock::time_point started_;
   Eigen::VectorXd v_;
   Trial current_;
   std::vector<OptimizeStep> history_;
