@@ -26,6 +26,19 @@ void check_settings(const AnalysisSettings& settings) {
 
 }  // namespace
 
+void check_free_block(const Structure& structure, int block, const std::string& caller) {
+  const std::string prefix = caller.empty() ? "" : caller + ": ";
+  if (block < 0 || block >= structure.size()) {
+    throw InvalidArgument(prefix + "block " + std::to_string(block + 1) +
+                          " is out of range (the structure has " + std::to_string(structure.size()) +
+                          " blocks)");
+  }
+  if (structure.is_support(block)) {
+    throw InvalidArgument(prefix + "block " + std::to_string(block + 1) + " ('" + structure.name(block) +
+                          "') is a support: its weight goes straight to the ground");
+  }
+}
+
 double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
   Eigen::VectorXd imbalance = -problem.rhs;
   double worst = 0.0;

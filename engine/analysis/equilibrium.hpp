@@ -98,6 +98,11 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
 // the solver's status.
 double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x);
 
+// Throws InvalidArgument unless `block` (0-based) is a free block of the
+// structure: in range and not a support. `caller`, when not empty, begins
+// the message ("caller: block ...").
+void check_free_block(const Structure& structure, int block, const std::string& caller);
+
 // Centres of pressure along the structure: when the contact graph of the
 // free blocks is a chain from support to support (an arch, a column), in
 // chain order; otherwise in interface order. Interfaces without compression

@@ -192,8 +192,8 @@ Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions&
   const int m = options.friction_sides;
   rows.resize(m, 3);
   for (int j = 0; j < m; ++j) {
-    const double facing = (2 * j + 1) * M_PI / m;
-    rows.row(j) << mu * std::cos(M_PI / m), -std::cos(facing), -std::sin(facing);
+    const double facing = (2 * j + 1) * kPi / m;
+    rows.row(j) << mu * std::cos(kPi / m), -std::cos(facing), -std::sin(facing);
   }
   return rows;
 }

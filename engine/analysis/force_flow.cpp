@@ -16,8 +16,6 @@ namespace ashlar {
 namespace {
 
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Random draws built from the engine's raw bits only: the standard
 // library's distributions differ between implementations, and traces must
 // be the same everywhere for a given seed.
@@ -32,19 +30,6 @@ public:
 private:
   std::mt19937_64 engine_;
 };
-
-void check_traced_block(const Structure& structure, int block) {
-  if (block < 0 || block >= structure.size()) {
-    throw InvalidArgument("trace_loads: block " + std::to_string(block + 1) +
-                          " is out of range (the structure has " +
-                          std::to_string(structure.size()) + " blocks)");
-  }
-  if (structure.is_support(block)) {
-    throw InvalidArgument("trace_loads: block " + std::to_string(block + 1) + " ('" +
-                          structure.name(block) +
-                          "') is a support: its weight goes straight to the ground");
-  }
-}
 
 void check_options(const ForceFlowOptions& options) {
   if (options.traces < 1) {
@@ -334,7 +319,7 @@ bool contains_point(const Block& block, const Vec3& point) {
 ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOptions& options,
                       const AnalysisSettings& settings) {
   const auto start = Clock::now();
-  check_traced_block(structure, block);
+  check_free_block(structure, block, "trace_loads");
   check_options(options);
   ForceFlow flow;
   EquilibriumProblem problem;

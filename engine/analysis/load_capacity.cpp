@@ -63,7 +63,7 @@ std::vector<Eigen::Vector3d> friction_edges(const EquilibriumOptions& options) {
   }
   const int m = options.friction_sides;
   for (int j = 0; j < m; ++j) {
-    const double angle = 2 * M_PI * j / m;
+    const double angle = 2 * kPi * j / m;
     edges.emplace_back(1.0, mu * std::cos(angle), mu * std::sin(angle));
   }
   return edges;

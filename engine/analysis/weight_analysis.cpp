@@ -11,17 +11,6 @@ namespace {
 
 
 
-void check_free_block(const Structure& structure, int block) {
-  if (block < 0 || block >= structure.size()) {
-    throw InvalidArgument("block " + std::to_string(block + 1) + " is out of range (the structure has " +
-                          std::to_string(structure.size()) + " blocks)");
-  }
-  if (structure.is_support(block)) {
-    throw InvalidArgument("block " + std::to_string(block + 1) + " ('" + structure.name(block) +
-                          "') is a support: its weight goes straight to the ground");
-  }
-}
-
 void check_analysed(const EquilibriumProblem& problem, const Structure& structure, int block) {
   if (problem.row_of_block[block] < 0) {
     throw InvalidArgument("block " + std::to_string(block + 1) + " ('" + structure.name(block) +
@@ -119,7 +108,7 @@ private:
 
 WeightSensitivity weight_sensitivity(const Structure& structure, int block,
                                      const AnalysisSettings& settings) {
-  check_free_block(structure, block);
+  check_free_block(structure, block, "");
   WeightSensitivity result;
   EquilibriumProblem problem;
   result.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
@@ -158,7 +147,7 @@ WeightSensitivity weight_sensitivity(const Structure& structure, int block,
 
 NecessaryWeights necessary_weights(const Structure& structure, int block,
                                    const AnalysisSettings& settings) {
-  check_free_block(structure, block);
+  check_free_block(structure, block, "");
   NecessaryWeightsProblem problem(structure, settings);
   return problem.solve(block, false);
 }

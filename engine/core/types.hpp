@@ -22,6 +22,7 @@ using Loop2 = std::vector<Vec2>;
 
 constexpr double kDefaultDensity = 2400.0;  // kg/m^3, typical stone
 constexpr double kGravity = 9.81;           // m/s^2, along -z
+constexpr double kPi = 3.14159265358979323846;
 
 // Axis-aligned bounding box; empty() until a point is added.
 struct Box3 {

@@ -32,7 +32,6 @@
 namespace ashlar {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kMinImageSize = 100;
 constexpr int kMaxImageSize = 16384;

@@ -10,7 +10,6 @@
 namespace ashlar {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A unit vector perpendicular to the unit vector `axis`, built from the
 // coordinate axis least aligned with it so that it is well conditioned.
