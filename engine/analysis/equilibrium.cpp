@@ -24,10 +24,13 @@ void check_settings(const AnalysisSettings& settings) {
   }
 }
 
+// "caller: " before a message, or nothing for an unnamed caller.
+std::string message_prefix(const std::string& caller) { return caller.empty() ? "" : caller + ": "; }
+
 }  // namespace
 
 void check_free_block(const Structure& structure, int block, const std::string& caller) {
-  const std::string prefix = caller.empty() ? "" : caller + ": ";
+  const std::string prefix = message_prefix(caller);
   if (block < 0 || block >= structure.size()) {
     throw InvalidArgument(prefix + "block " + std::to_string(block + 1) +
                           " is out of range (the structure has " + std::to_string(structure.size()) +
@@ -36,6 +39,14 @@ void check_free_block(const Structure& structure, int block, const std::string& 
   if (structure.is_support(block)) {
     throw InvalidArgument(prefix + "block " + std::to_string(block + 1) + " ('" + structure.name(block) +
                           "') is a support: its weight goes straight to the ground");
+  }
+}
+
+void check_analysed_block(const EquilibriumProblem& problem, const Structure& structure, int block,
+                          const std::string& caller) {
+  if (problem.row_of_block[block] < 0) {
+    throw InvalidArgument(message_prefix(caller) + "block " + std::to_string(block + 1) + " ('" +
+                          structure.name(block) + "') touches nothing that leads to a support");
   }
 }
 

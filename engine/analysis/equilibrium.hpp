@@ -102,6 +102,10 @@ double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen
 // structure: in range and not a support. `caller`, when not empty, begins
 // the message ("caller: block ...").
 void check_free_block(const Structure& structure, int block, const std::string& caller);
+// Throws InvalidArgument (message as check_free_block's) unless `block`
+// has balance rows in `problem`: some path of contacts leads to a support.
+void check_analysed_block(const EquilibriumProblem& problem, const Structure& structure, int block,
+                          const std::string& caller);
 
 // Centres of pressure along the structure: when the contact graph of the
 // free blocks is a chain from support to support (an arch, a column), in

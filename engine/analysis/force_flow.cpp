@@ -324,10 +324,7 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
   ForceFlow flow;
   EquilibriumProblem problem;
   flow.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
-  if (problem.row_of_block[block] < 0) {
-    throw InvalidArgument("trace_loads: block " + std::to_string(block + 1) + " ('" +
-                          structure.name(block) + "') touches nothing that leads to a support");
-  }
+  check_analysed_block(problem, structure, block, "trace_loads");
   flow.stable = flow.analysis.stable;
   flow.support_interface.assign(options.traces, -1);
   flow.lost = options.traces;

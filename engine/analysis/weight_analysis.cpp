@@ -9,15 +9,6 @@ namespace ashlar {
 
 namespace {
 
-
-
-void check_analysed(const EquilibriumProblem& problem, const Structure& structure, int block) {
-  if (problem.row_of_block[block] < 0) {
-    throw InvalidArgument("block " + std::to_string(block + 1) + " ('" + structure.name(block) +
-                          "') touches nothing that leads to a support");
-  }
-}
-
 // The necessary-weights problem of eq. 8 for every choice of the block
 // that keeps its weight: the free blocks' weights leave the right-hand side
 // and become unknowns w_j >= 0 (one group each, acting on its block's
@@ -55,7 +46,7 @@ public:
 
   NecessaryWeights solve(int block, bool warm_start) {
     const auto start = Clock::now();
-    check_analysed(problem_, structure_, block);
+    check_analysed_block(problem_, structure_, block, "");
     const double wu = problem_.weight_unit;
     const double own_weight = structure_.block(block).mass() * kGravity;
     if (chosen_ >= 0) problem_.groups[group_of_block_[chosen_]].on_a(vertical_, 0) = -1.0;
@@ -112,7 +103,7 @@ WeightSensitivity weight_sensitivity(const Structure& structure, int block,
   WeightSensitivity result;
   EquilibriumProblem problem;
   result.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
-  check_analysed(problem, structure, block);
+  check_analysed_block(problem, structure, block, "");
   const auto start = Clock::now();
   if (result.analysis.status == SolverStatus::numerical_error) return result;
   EquilibriumSolver solver(problem);
