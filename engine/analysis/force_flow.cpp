@@ -328,13 +328,10 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
   flow.stable = flow.analysis.stable;
   flow.support_interface.assign(options.traces, -1);
   flow.lost = options.traces;
-  const auto stamp_time = [&] {
-    flow.seconds = seconds_since(start);
-  };
   EquilibriumSolver solver(problem);
   if (flow.analysis.status == SolverStatus::numerical_error ||
       !solver.prepare_response(problem, flow.analysis.solution)) {
-    stamp_time();
+    flow.seconds = seconds_since(start);
     return flow;
   }
   flow.valid = true;
@@ -374,7 +371,7 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
     flow.shares.push_back({interface, interfaces[interface].a, interfaces[interface].b, share});
     flow.lost -= count;
   }
-  stamp_time();
+  flow.seconds = seconds_since(start);
   return flow;
 }
 
