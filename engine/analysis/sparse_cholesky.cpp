@@ -48,6 +48,8 @@ int SparseCholesky::nonzeros() const {
   return static_cast<int*>(impl_->matrix->p)[impl_->matrix->ncol];
 }
 
+double SparseCholesky::factor_nonzeros() const { return impl_->common.lnz; }
+
 bool SparseCholesky::factorize() {
   ++factorizations_;
   const int ok = cholmod_factorize(impl_->matrix, impl_->factor, &impl_->common);

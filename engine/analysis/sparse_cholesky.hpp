@@ -28,6 +28,9 @@ public:
   // Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   int factorizations() const { return factorizations_; }
+  // Nonzeros of the Cholesky factor, from the symbolic analysis (memory is
+  // about 8 bytes each, plus the supernodes' row indices).
+  double factor_nonzeros() const;
 
 private:
   struct Impl;
