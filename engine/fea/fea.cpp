@@ -3,6 +3,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "analysis/sparse_cholesky.hpp"
 #include "core/clock.hpp"
@@ -274,6 +275,19 @@ TiedSolution solve_tied(TiedSystem& system, const std::vector<FeaContact>& ties,
   return out;
 }
 
+// The tensile ties of the interface whose ties carry the most tension, and
+// of any interface within 1e-6 of it.
+std::vector<int> most_tensile_interfaces(const std::vector<FeaContact>& ties, const std::vector<int>& tensile) {
+  std::map<int, double> tension;
+  for (int t : tensile) tension[ties[t].interface] -= ties[t].normal_force;
+  double most = 0;
+  for (const auto& [face, sum] : tension) most = std::max(most, sum);
+  std::vector<int> chosen;
+  for (int t : tensile)
+    if (tension[ties[t].interface] >= (1 - 1e-6) * most) chosen.push_back(t);
+  return chosen;
+}
+
 }  // namespace
 
 FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const FeaSettings& settings) {
@@ -318,7 +332,8 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
                                                                               : solution.multipliers[t])
                                  : Vec3::Zero();
       tie.normal_force = tie.force_on_b.dot(interfaces[tie.interface].normal);
-      if (active[t] && tie.normal_force < -tension_threshold) {
+      tie.tensile = active[t] && tie.normal_force < -tension_threshold;
+      if (tie.tensile) {
         tensile.push_back(static_cast<int>(t));
         iteration.tension -= tie.normal_force;
         iteration.max_tension = std::max(iteration.max_tension, -tie.normal_force);
@@ -335,6 +350,7 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
       result.status = FeaStatus::Tension;
       break;
     }
+    if (settings.release == FeaRelease::Largest) tensile = most_tensile_interfaces(ties, tensile);
     for (int t : tensile) {
       active[t] = false;
       ties[t].released = true;
@@ -353,18 +369,17 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
   std::vector<double> pressure(interfaces.size(), 0.0);
   for (size_t t = 0; t < ties.size(); ++t) {
-    const FeaContact& tie = ties[t];
+    FeaContact& tie = ties[t];
     FeaInterfaceForce& sum = result.interfaces[tie.interface];
     ++sum.contacts;
+    if (solution.factorized) {
+      const Vec3 gap = tie_gap(tie, solution.displacements);  // own node minus the touched point
+      const Vec3& n = interfaces[tie.interface].normal;
+      tie.opening = tie.block == interfaces[tie.interface].a ? -gap.dot(n) : gap.dot(n);
+    }
     if (tie.released) {
       ++sum.released;
-      if (solution.factorized) {
-        // A released node may sink into the block it had touched.
-        const Vec3 gap = tie_gap(tie, solution.displacements);
-        const Vec3& n = interfaces[tie.interface].normal;
-        const double overlap = tie.block == interfaces[tie.interface].a ? gap.dot(n) : -gap.dot(n);
-        result.max_penetration = std::max(result.max_penetration, overlap);
-      }
+      result.max_penetration = std::max(result.max_penetration, -tie.opening);
       continue;
     }
     sum.resultant += tie.force_on_b;

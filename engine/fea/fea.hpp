@@ -28,11 +28,22 @@
 
 namespace ashlar {
 
+// Which contact nodes in tension each relaxation step releases.
+enum class FeaRelease {
+  All,      // every one (the thesis's step 3)
+  Largest,  // those of the interface carrying the most tension, and of any
+            // within 1e-6 of it (symmetric structures stay symmetric)
+};
+
 struct FeaSettings {
   Elasticity material;           // Young's modulus 20 GPa, Poisson 0.2
-  int refine = 1;                // each block split into refine^3 elements
   bool relax = true;             // release nodes in tension and solve again
   int max_relax_iterations = 20;
+  // All follows the thesis. On coarse meshes of many voussoirs several
+  // neighbouring crown joints start in tension; releasing them together
+  // leaves nearly collinear hinges and the arch becomes a mechanism, where
+  // Largest opens one hinge at a time.
+  FeaRelease release = FeaRelease::All;
   // A contact node is in tension when its normal force is below
   // -tension_tolerance * (total weight of the free blocks) / (contact
   // nodes): solver round-off on a node that carries nothing is not tension.
@@ -61,6 +72,11 @@ struct FeaContact {
   NodeWeights target;    // the point it touches (empty on a support)
   Vec3 force_on_b = Vec3::Zero();  // N, the force that block a applies to block b here
   double normal_force = 0.0;       // N, force_on_b . normal: > 0 compression
+  // m, separation from the point it touches along the interface normal
+  // (negative: overlap); zero to round-off while tied. A released node that
+  // opens shows the hinge.
+  double opening = 0.0;
+  bool tensile = false;            // in tension after the last solve (active ties only)
   bool released = false;           // released by relaxation (force zero)
   int released_at = 0;             // the relaxation iteration that released it (1-based)
 };

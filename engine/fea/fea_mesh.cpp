@@ -62,14 +62,16 @@ HexNodes hexahedron_corners(const Block& block, const std::string& what) {
   return corners;
 }
 
-FeaMesh::FeaMesh(const Structure& structure, int refine) : refine_(refine) {
+FeaMesh::FeaMesh(const Structure& structure, int refine, double element_size) {
   if (refine < 1 || refine > 64)
     throw InvalidArgument("refine: expected a whole number from 1 to 64, got " + std::to_string(refine));
+  if (!(std::isfinite(element_size) && element_size >= 0))
+    throw InvalidArgument("element_size: expected a finite number >= 0 (m), got " + std::to_string(element_size));
   const int n = structure.size();
   first_node_.assign(n, -1);
   first_element_.assign(n, -1);
   corners_.resize(n);
-  const int r = refine;
+  divisions_.assign(n, {0, 0, 0});
   for (int b = 0; b < n; ++b) {
     if (structure.is_support(b)) continue;
     const std::string label = block_label(structure, b);
@@ -77,18 +79,34 @@ FeaMesh::FeaMesh(const Structure& structure, int refine) : refine_(refine) {
     if (!(hex_min_jacobian(corners_[b]) > 0))
       throw InvalidArgument(label + " is a hexahedron whose trilinear map folds (a corner's "
                             "Jacobian is not positive): its faces are twisted or it is not convex");
+    std::array<int, 3>& d = divisions_[b];
+    for (int axis = 0; axis < 3; ++axis) {
+      d[axis] = refine;
+      if (element_size > 0) {
+        // The four edges along this parametric direction, averaged.
+        double length = 0;
+        for (int a = 0; a < 8; ++a)
+          if (kHexCorners[a][axis] < 0) {
+            std::array<int, 3> far = kHexCorners[a];
+            far[axis] = 1;
+            const int other = static_cast<int>(std::find(kHexCorners.begin(), kHexCorners.end(), far) - kHexCorners.begin());
+            length += 0.25 * (corners_[b][other] - corners_[b][a]).norm();
+          }
+        d[axis] = std::clamp(static_cast<int>(std::ceil(length / element_size - 1e-9)), refine, 256);
+      }
+    }
     first_node_[b] = static_cast<int>(nodes_.size());
     first_element_[b] = static_cast<int>(elements_.size());
-    for (int k = 0; k <= r; ++k)
-      for (int j = 0; j <= r; ++j)
-        for (int i = 0; i <= r; ++i) {
-          const Vec3 xi(-1.0 + 2.0 * i / r, -1.0 + 2.0 * j / r, -1.0 + 2.0 * k / r);
+    for (int k = 0; k <= d[2]; ++k)
+      for (int j = 0; j <= d[1]; ++j)
+        for (int i = 0; i <= d[0]; ++i) {
+          const Vec3 xi(-1.0 + 2.0 * i / d[0], -1.0 + 2.0 * j / d[1], -1.0 + 2.0 * k / d[2]);
           nodes_.push_back(hex_point(corners_[b], xi));
           node_block_.push_back(b);
         }
-    for (int k = 0; k < r; ++k)
-      for (int j = 0; j < r; ++j)
-        for (int i = 0; i < r; ++i) {
+    for (int k = 0; k < d[2]; ++k)
+      for (int j = 0; j < d[1]; ++j)
+        for (int i = 0; i < d[0]; ++i) {
           std::array<int, 8> element;
           for (int a = 0; a < 8; ++a)
             element[a] = node_index(b, i + (kHexCorners[a][0] + 1) / 2, j + (kHexCorners[a][1] + 1) / 2,
@@ -100,8 +118,8 @@ FeaMesh::FeaMesh(const Structure& structure, int refine) : refine_(refine) {
 }
 
 int FeaMesh::node_index(int block, int i, int j, int k) const {
-  const int side = refine_ + 1;
-  return first_node_[block] + i + side * (j + side * k);
+  const std::array<int, 3>& d = divisions_[block];
+  return first_node_[block] + i + (d[0] + 1) * (j + (d[1] + 1) * k);
 }
 
 HexNodes FeaMesh::element_nodes(int element) const {
@@ -112,11 +130,11 @@ HexNodes FeaMesh::element_nodes(int element) const {
 
 std::vector<int> FeaMesh::surface_nodes(int block) const {
   std::vector<int> surface;
-  const int r = refine_;
-  for (int k = 0; k <= r; ++k)
-    for (int j = 0; j <= r; ++j)
-      for (int i = 0; i <= r; ++i)
-        if (i == 0 || i == r || j == 0 || j == r || k == 0 || k == r)
+  const std::array<int, 3>& d = divisions_[block];
+  for (int k = 0; k <= d[2]; ++k)
+    for (int j = 0; j <= d[1]; ++j)
+      for (int i = 0; i <= d[0]; ++i)
+        if (i == 0 || i == d[0] || j == 0 || j == d[1] || k == 0 || k == d[2])
           surface.push_back(node_index(block, i, j, k));
   return surface;
 }
@@ -127,10 +145,11 @@ NodeWeights FeaMesh::locate(int block, const Vec3& p) const {
   // sub-cube, so interpolating in its local coordinates is exact.
   int cell[3];
   Vec3 local;
-  for (int d = 0; d < 3; ++d) {
-    const double t = (std::clamp(xi[d], -1.0, 1.0) + 1.0) * 0.5 * refine_;
-    cell[d] = std::min(static_cast<int>(std::floor(t)), refine_ - 1);
-    local[d] = 2.0 * (t - cell[d]) - 1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int count = divisions_[block][axis];
+    const double t = (std::clamp(xi[axis], -1.0, 1.0) + 1.0) * 0.5 * count;
+    cell[axis] = std::min(static_cast<int>(std::floor(t)), count - 1);
+    local[axis] = 2.0 * (t - cell[axis]) - 1.0;
   }
   const std::array<double, 8> shape = hex_shape(local);
   NodeWeights weights;

@@ -1,7 +1,9 @@
 // The finite-element mesh of a structure's free blocks: every free block
 // must be a hexahedron (8 corners, 6 quadrilateral faces); it becomes one
-// trilinear element, or refine^3 of them by splitting its parametric cube
-// evenly. Blocks keep their own nodes: nodes of different blocks never merge,
+// trilinear element, or a grid of them by splitting its parametric cube
+// evenly: refine along each edge direction, or more where an element size
+// asks for it (a long lintel then gets many elements along its length and
+// few through its depth, instead of elements as long as refine allows). Blocks keep their own nodes: nodes of different blocks never merge,
 // contact ties them (fea.hpp). Support blocks are not meshed; they are the
 // fixed ground.
 #pragma once
@@ -26,10 +28,13 @@ class FeaMesh {
 public:
   // Throws InvalidArgument naming the block when a free block is not a
   // hexahedron or its trilinear map folds (a non-convex or twisted block),
-  // and for refine outside [1, 64].
-  FeaMesh(const Structure& structure, int refine);
+  // and for refine outside [1, 64]. element_size (m, 0 = none): each block
+  // edge direction gets at least ceil(mean edge length / element_size)
+  // divisions, at most 256.
+  FeaMesh(const Structure& structure, int refine, double element_size = 0.0);
 
-  int refine() const { return refine_; }
+  // Divisions of the block along its parametric directions xi, eta, zeta.
+  const std::array<int, 3>& divisions(int block) const { return divisions_[block]; }
   const std::vector<Vec3>& nodes() const { return nodes_; }             // m
   const std::vector<std::array<int, 8>>& elements() const { return elements_; }
   int node_block(int node) const { return node_block_[node]; }          // 0-based block
@@ -38,8 +43,6 @@ public:
   int first_node(int block) const { return first_node_[block]; }
   int first_element(int block) const { return first_element_[block]; }
   bool meshed(int block) const { return first_node_[block] >= 0; }
-  int nodes_per_block() const { return (refine_ + 1) * (refine_ + 1) * (refine_ + 1); }
-  int elements_per_block() const { return refine_ * refine_ * refine_; }
   // The block's corners in hexahedron order (hex_element.hpp).
   const HexNodes& corners(int block) const { return corners_[block]; }
   HexNodes element_nodes(int element) const;
@@ -51,7 +54,7 @@ public:
 private:
   int node_index(int block, int i, int j, int k) const;
 
-  int refine_;
+  std::vector<std::array<int, 3>> divisions_;  // per block; zero for supports
   std::vector<Vec3> nodes_;
   std::vector<std::array<int, 8>> elements_;
   std::vector<int> node_block_, element_block_;
