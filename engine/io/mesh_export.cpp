@@ -12,69 +12,23 @@
 // node with its own material; blocks turn translucent by default when they
 // are drawn, since they run inside the blocks.
 //
-// Axes: glTF is +Y up by specification, so positions and normals are
-// rotated (x, y, z) -> (x, z, -y) for .gltf/.glb; the import rotates back.
+// Formats, axes (glTF is +Y up) and all-or-nothing writing: assimp_scene.hpp.
 // Assimp stores single-precision floats, so mesh files carry about 7
 // significant digits; the JSON structure format is the exact one.
-//
-// Atomicity: assimp writes through an IOSystem whose streams collect each
-// file in memory. Only when the whole export has succeeded are the files
-// written, each under a temporary name in the target folder (StagedFile),
-// and only when all of them are written are they renamed into place:
-// companions (.bin, .mtl) first and the main file last, so the main file
-// never refers to a missing companion and no file is ever partial.
-#include <assimp/material.h>
-#include <assimp/scene.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <array>
-#include <assimp/Exporter.hpp>
-#include <assimp/IOStream.hpp>
-#include <assimp/IOSystem.hpp>
-#include <cctype>
 #include <cmath>
-#include <cstring>
 #include <map>
-#include <memory>
-#include <numeric>
+#include <string>
 
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
-#include "io/atomic_file.hpp"
-#include "io/option_checks.hpp"
+#include "io/assimp_scene.hpp"
 #include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"
+#include "io/option_checks.hpp"
 
 namespace ashlar {
 namespace {
-
-struct ExportFormat {
-  const char* extension;  // lower case, without the dot
-  const char* assimp_id;
-  bool y_up;
-};
-
-constexpr ExportFormat kFormats[] = {
-    {"glb", "glb2", true},   {"gltf", "gltf2", true}, {"obj", "obj", false},
-    {"ply", "plyb", false},  {"stl", "stlb", false},
-};
-
-std::string extensions_list() {
-  std::string list;
-  for (const auto& extension : export_extensions()) list += (list.empty() ? "" : ", ") + extension;
-  return list;
-}
-
-const ExportFormat& format_for(const std::string& path) {
-  const std::string extension = file_extension(path);
-  for (const ExportFormat& format : kFormats) {
-    if (extension == format.extension) return format;
-  }
-  throw InvalidArgument("export: cannot tell the format of '" + path +
-                        "' from its extension; use one of: " + extensions_list());
-}
 
 void check_options(const Structure& structure, const ExportOptions& options) {
   check_block_colors(structure, options.block_colors, "export");
@@ -96,215 +50,13 @@ void check_options(const Structure& structure, const ExportOptions& options) {
                             options.contact, "export");
 }
 
-// ---------------------------------------------------------------------------
-// Triangulation
-
-double turn(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-}
-
-bool inside_or_on(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-  return turn(a, b, p) >= 0 && turn(b, c, p) >= 0 && turn(c, a, p) >= 0;
-}
-
-// Ear clipping of a simple planar loop (convex or not; collinear runs
-// allowed) seen from the side `normal` points to. Returns index triples into
-// `loop`, counter-clockwise about `normal`.
-std::vector<std::array<int, 3>> triangulate(const std::vector<Vec3>& loop, const Vec3& normal) {
-  const PlaneFrame frame = PlaneFrame::from_normal(loop.front(), normal);
-  Loop2 points;
-  points.reserve(loop.size());
-  for (const Vec3& p : loop) points.push_back(frame.project(p));
-  std::vector<int> remaining(loop.size());
-  std::iota(remaining.begin(), remaining.end(), 0);
-  if (signed_area(points) < 0) std::reverse(remaining.begin(), remaining.end());
-
-  std::vector<std::array<int, 3>> triangles;
-  triangles.reserve(loop.size() - 2);
-  while (remaining.size() > 3) {
-    const size_t n = remaining.size();
-    auto corner = [&](size_t i) {
-      return std::array<int, 3>{remaining[(i + n - 1) % n], remaining[i], remaining[(i + 1) % n]};
-    };
-    auto corner_turn = [&](size_t i) {
-      const auto [a, b, c] = corner(i);
-      return turn(points[a], points[b], points[c]);
-    };
-    // Only reflex or straight corners can lie in an ear of a simple polygon.
-    auto is_ear = [&](size_t i) {
-      const auto [a, b, c] = corner(i);
-      if (corner_turn(i) <= 0) return false;
-      for (size_t j = 0; j < n; ++j) {
-        const int other = remaining[j];
-        if (other == a || other == b || other == c || corner_turn(j) > 0) continue;
-        if (inside_or_on(points[other], points[a], points[b], points[c])) return false;
-      }
-      return true;
-    };
-    size_t ear = n;
-    for (size_t i = 0; i < n && ear == n; ++i) {
-      if (is_ear(i)) ear = i;
-    }
-    // Round-off can leave no clean ear in a nearly degenerate loop; the
-    // sharpest convex corner is then the least harmful cut.
-    if (ear == n) {
-      ear = 0;
-      for (size_t i = 1; i < n; ++i) {
-        if (corner_turn(i) > corner_turn(ear)) ear = i;
-      }
-    }
-    triangles.push_back(corner(ear));
-    remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(ear));
-  }
-  triangles.push_back({remaining[0], remaining[1], remaining[2]});
-  return triangles;
-}
-
-// ---------------------------------------------------------------------------
-// Scene building
-
-// A flat-shaded triangle mesh on its way into an aiMesh.
-struct FlatMesh {
-  std::vector<Vec3> positions;
-  std::vector<Vec3> normals;
-  std::vector<std::array<unsigned, 3>> triangles;
-
-  // Adds one planar polygon with its own vertices; `flip` shows its back.
-  void add_polygon(const std::vector<Vec3>& loop, const Vec3& normal, bool flip) {
-    const auto base = static_cast<unsigned>(positions.size());
-    for (const Vec3& p : loop) {
-      positions.push_back(p);
-      normals.push_back(flip ? Vec3(-normal) : normal);
-    }
-    for (const auto& [a, b, c] : triangulate(loop, normal)) {
-      if (flip) {
-        triangles.push_back({base + a, base + c, base + b});
-      } else {
-        triangles.push_back({base + a, base + b, base + c});
-      }
-    }
-  }
-};
-
-aiVector3D to_ai(const Vec3& v, bool y_up) {
-  return y_up ? aiVector3D(static_cast<ai_real>(v.x()), static_cast<ai_real>(v.z()),
-                           static_cast<ai_real>(-v.y()))
-              : aiVector3D(static_cast<ai_real>(v.x()), static_cast<ai_real>(v.y()),
-                           static_cast<ai_real>(v.z()));
-}
-
-aiMesh* to_ai_mesh(const FlatMesh& flat, const std::string& name, unsigned material, bool y_up) {
-  auto mesh = std::make_unique<aiMesh>();
-  mesh->mName = aiString(name);
-  mesh->mMaterialIndex = material;
-  mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-  mesh->mNumVertices = static_cast<unsigned>(flat.positions.size());
-  mesh->mVertices = new aiVector3D[mesh->mNumVertices];
-  mesh->mNormals = new aiVector3D[mesh->mNumVertices];
-  for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-    mesh->mVertices[v] = to_ai(flat.positions[v], y_up);
-    mesh->mNormals[v] = to_ai(flat.normals[v], y_up);
-  }
-  mesh->mNumFaces = static_cast<unsigned>(flat.triangles.size());
-  mesh->mFaces = new aiFace[mesh->mNumFaces];
-  for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-    aiFace& face = mesh->mFaces[f];
-    face.mNumIndices = 3;
-    face.mIndices = new unsigned[3];
-    std::copy(flat.triangles[f].begin(), flat.triangles[f].end(), face.mIndices);
-  }
-  return mesh.release();
-}
-
-aiMaterial* make_material(const std::string& name, const Rgb& rgb, double opacity,
-                          bool two_sided) {
-  auto material = std::make_unique<aiMaterial>();
-  const aiString material_name(name);
-  material->AddProperty(&material_name, AI_MATKEY_NAME);
-  const aiColor4D color(static_cast<ai_real>(rgb.r), static_cast<ai_real>(rgb.g),
-                        static_cast<ai_real>(rgb.b), 1);
-  material->AddProperty(&color, 1, AI_MATKEY_COLOR_DIFFUSE);
-  material->AddProperty(&color, 1, AI_MATKEY_BASE_COLOR);
-  // Stone: not metallic, rough.
-  const ai_real metallic = 0, roughness = 0.9f;
-  material->AddProperty(&metallic, 1, AI_MATKEY_METALLIC_FACTOR);
-  material->AddProperty(&roughness, 1, AI_MATKEY_ROUGHNESS_FACTOR);
-  const int two_sided_flag = two_sided ? 1 : 0;
-  material->AddProperty(&two_sided_flag, 1, AI_MATKEY_TWOSIDED);
-  // The glTF writer turns opacity below 1 into alpha blending.
-  const ai_real alpha = static_cast<ai_real>(opacity);
-  material->AddProperty(&alpha, 1, AI_MATKEY_OPACITY);
-  return material.release();
-}
-
-// Collects meshes, materials and nodes, then hands them to an aiScene,
-// which owns and frees them.
-class SceneBuilder {
-public:
-  explicit SceneBuilder(bool y_up) : y_up_(y_up) {}
-
-  void add_object(const std::string& name, const FlatMesh& mesh, const Rgb& color,
-                  bool two_sided, double opacity = 1.0) {
-    const auto index = static_cast<unsigned>(meshes_.size());
-    materials_.push_back(make_material(name, color, opacity, two_sided));
-    meshes_.push_back(to_ai_mesh(mesh, name, index, y_up_));
-    auto node = std::make_unique<aiNode>(name);
-    node->mNumMeshes = 1;
-    node->mMeshes = new unsigned[1]{index};
-    nodes_.push_back(node.release());
-  }
-
-  std::unique_ptr<aiScene> finish() {
-    auto scene = std::make_unique<aiScene>();
-    scene->mRootNode = new aiNode("ashlar structure");
-    scene->mRootNode->addChildren(static_cast<unsigned>(nodes_.size()), nodes_.data());
-    nodes_.clear();
-    scene->mNumMeshes = static_cast<unsigned>(meshes_.size());
-    scene->mMeshes = new aiMesh*[meshes_.size()];
-    std::copy(meshes_.begin(), meshes_.end(), scene->mMeshes);
-    meshes_.clear();
-    scene->mNumMaterials = static_cast<unsigned>(materials_.size());
-    scene->mMaterials = new aiMaterial*[materials_.size()];
-    std::copy(materials_.begin(), materials_.end(), scene->mMaterials);
-    materials_.clear();
-    return scene;
-  }
-
-  ~SceneBuilder() {
-    for (aiMesh* mesh : meshes_) delete mesh;
-    for (aiMaterial* material : materials_) delete material;
-    for (aiNode* node : nodes_) delete node;
-  }
-  SceneBuilder(const SceneBuilder&) = delete;
-  SceneBuilder& operator=(const SceneBuilder&) = delete;
-
-private:
-  bool y_up_;
-  std::vector<aiMesh*> meshes_;
-  std::vector<aiMaterial*> materials_;
-  std::vector<aiNode*> nodes_;
-};
-
-FlatMesh block_mesh(const Block& block) {
-  FlatMesh mesh;
-  std::vector<Vec3> loop;
-  for (size_t f = 0; f < block.faces().size(); ++f) {
-    loop.clear();
-    for (int index : block.faces()[f]) loop.push_back(block.vertices()[index]);
-    mesh.add_polygon(loop, block.face_planes()[f].normal, false);
-  }
-  return mesh;
-}
-
-std::unique_ptr<aiScene> build_scene(const Structure& structure, const ExportOptions& options,
-                                     bool y_up) {
-  SceneBuilder builder(y_up);
+void add_objects(const Structure& structure, const ExportOptions& options, SceneWriter& writer) {
   const bool glyphs_inside =
       (options.result && (options.forces || options.thrust)) || !options.traces.empty();
   const double opacity = options.block_opacity.value_or(glyphs_inside ? 0.35 : 1.0);
   for (int i = 0; i < structure.size(); ++i) {
     const Rgb color = options.block_colors.empty() ? Rgb{} : options.block_colors[i];
-    builder.add_object(structure.name(i), block_mesh(structure.block(i)), color, false, opacity);
+    writer.add_object(structure.name(i), block_mesh(structure.block(i)), color, false, opacity);
   }
   if (options.interfaces) {
     std::map<std::string, int> uses;
@@ -317,7 +69,7 @@ std::unique_ptr<aiScene> build_scene(const Structure& structure, const ExportOpt
       FlatMesh mesh;
       mesh.add_polygon(contact.vertices, contact.normal, false);
       mesh.add_polygon(contact.vertices, contact.normal, true);
-      builder.add_object(name, mesh, options.interface_color, true);
+      writer.add_object(name, mesh, options.interface_color, true);
     }
   }
   for (const NamedGlyph& glyph : equilibrium_glyphs(structure, options)) {
@@ -325,136 +77,18 @@ std::unique_ptr<aiScene> build_scene(const Structure& structure, const ExportOpt
     for (const std::vector<Vec3>& face : glyph.faces) {
       mesh.add_polygon(face, newell_normal(face).normalized(), false);
     }
-    builder.add_object(glyph.name, mesh, glyph.color, false);
+    writer.add_object(glyph.name, mesh, glyph.color, false);
   }
-  return builder.finish();
-}
-
-// ---------------------------------------------------------------------------
-// Buffered, all-or-nothing file output for assimp
-
-// Files assimp finished writing, in the order it closed them.
-struct PendingFiles {
-  std::vector<std::pair<std::string, std::string>> files;
-};
-
-class MemoryStream : public Assimp::IOStream {
-public:
-  MemoryStream(std::string path, std::shared_ptr<PendingFiles> pending)
-      : path_(std::move(path)), pending_(std::move(pending)) {}
-  // Assimp sometimes deletes streams without IOSystem::Close, so the
-  // destructor is where a file counts as finished.
-  ~MemoryStream() override { pending_->files.emplace_back(path_, std::move(data_)); }
-
-  size_t Read(void*, size_t, size_t) override { return 0; }
-  size_t Write(const void* buffer, size_t size, size_t count) override {
-    const size_t bytes = size * count;
-    if (position_ + bytes > data_.size()) data_.resize(position_ + bytes);
-    std::memcpy(&data_[position_], buffer, bytes);
-    position_ += bytes;
-    return count;
-  }
-  aiReturn Seek(size_t offset, aiOrigin origin) override {
-    const size_t base = origin == aiOrigin_SET ? 0
-                        : origin == aiOrigin_CUR ? position_
-                                                 : data_.size();
-    // Like a file, seeking past the end is allowed (the GLB writer skips its
-    // header first); the gap reads as zeros once something is written.
-    position_ = base + offset;
-    return aiReturn_SUCCESS;
-  }
-  size_t Tell() const override { return position_; }
-  size_t FileSize() const override { return data_.size(); }
-  void Flush() override {}
-
-private:
-  std::string path_;
-  std::shared_ptr<PendingFiles> pending_;
-  std::string data_;
-  size_t position_ = 0;
-};
-
-// Owned (and deleted) by the Exporter; PendingFiles outlives it.
-class MemoryIOSystem : public Assimp::IOSystem {
-public:
-  explicit MemoryIOSystem(std::shared_ptr<PendingFiles> pending) : pending_(std::move(pending)) {}
-
-  bool Exists(const char* path) const override {
-    for (const auto& file : pending_->files) {
-      if (file.first == path) return true;
-    }
-    return ::access(path, F_OK) == 0;
-  }
-  char getOsSeparator() const override { return '/'; }
-  Assimp::IOStream* Open(const char* path, const char* mode) override {
-    // Exporters only write; reading back is not offered.
-    if (std::strchr(mode, 'w') == nullptr) return nullptr;
-    return new MemoryStream(path, pending_);
-  }
-  void Close(Assimp::IOStream* stream) override { delete stream; }
-
-private:
-  std::shared_ptr<PendingFiles> pending_;
-};
-
-void commit(const PendingFiles& pending, const std::string& main_path) {
-  const auto main_file = std::find_if(pending.files.begin(), pending.files.end(),
-                                      [&](const auto& file) { return file.first == main_path; });
-  if (main_file == pending.files.end()) {
-    throw IoError("cannot export '" + main_path + "': the exporter wrote nothing");
-  }
-  std::vector<StagedFile> staged;
-  for (const auto& [path, data] : pending.files) {
-    if (path != main_path) staged.emplace_back(path, data);
-  }
-  staged.emplace_back(main_path, main_file->second);
-  for (StagedFile& file : staged) file.commit();
 }
 
 }  // namespace
 
 void export_structure(const Structure& structure, const std::string& path,
                       const ExportOptions& options) {
-  const ExportFormat& format = format_for(path);
+  SceneWriter writer(path, "export");
   check_options(structure, options);
-  const std::unique_ptr<aiScene> scene = build_scene(structure, options, format.y_up);
-
-  auto pending = std::make_shared<PendingFiles>();
-  Assimp::Exporter exporter;
-  exporter.SetIOHandler(new MemoryIOSystem(pending));
-  if (exporter.Export(scene.get(), format.assimp_id, path) != AI_SUCCESS) {
-    throw IoError("cannot export '" + path + "': " + exporter.GetErrorString());
-  }
-  commit(*pending, path);
-}
-
-std::string file_extension(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  std::string extension;
-  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) {
-    extension = path.substr(dot + 1);
-  }
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
-bool is_y_up_file(const std::string& path) {
-  const std::string extension = file_extension(path);
-  for (const ExportFormat& format : kFormats) {
-    if (extension == format.extension) return format.y_up;
-  }
-  return false;
-}
-
-const std::vector<std::string>& export_extensions() {
-  static const std::vector<std::string> extensions = [] {
-    std::vector<std::string> result;
-    for (const ExportFormat& format : kFormats) result.push_back(std::string(".") + format.extension);
-    return result;
-  }();
-  return extensions;
+  add_objects(structure, options, writer);
+  writer.write("ashlar structure");
 }
 
 }  // namespace ashlar
