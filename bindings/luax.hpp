@@ -157,6 +157,28 @@ int release_boxed(lua_State* L, const char* metatable) {
   return 0;
 }
 
+// For a userdata at stack index 1 with one user value: pushes the table
+// cached under `key` in that user value, building it with build(L, record)
+// on first access, so that large result tables are made once and only when
+// read.
+template <class Record>
+int push_cached_table(lua_State* L, const char* key, const Record& record,
+                      void (*build)(lua_State*, const Record&)) {
+  if (lua_getiuservalue(L, 1, 1) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_setiuservalue(L, 1, 1);
+  }
+  if (lua_getfield(L, -1, key) == LUA_TNIL) {
+    lua_pop(L, 1);
+    build(L, record);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, key);
+  }
+  return 1;
+}
+
 // Registers a metatable with methods (as the __index table; nullptr when the
 // metamethods give their own __index) and metamethods.
 void register_type(lua_State* L, const char* metatable, const luaL_Reg* methods,

@@ -164,23 +164,6 @@ void push_cables(lua_State* L, const EquilibriumResult& result) {
 }
 
 // Tables built on first access and kept in the userdata's user value.
-int push_cached_table(lua_State* L, const char* key, const EquilibriumResult& result,
-                      void (*build)(lua_State*, const EquilibriumResult&)) {
-  if (lua_getiuservalue(L, 1, 1) != LUA_TTABLE) {
-    lua_pop(L, 1);
-    lua_newtable(L);
-    lua_pushvalue(L, -1);
-    lua_setiuservalue(L, 1, 1);
-  }
-  if (lua_getfield(L, -1, key) == LUA_TNIL) {
-    lua_pop(L, 1);
-    build(L, result);
-    lua_pushvalue(L, -1);
-    lua_setfield(L, -3, key);
-  }
-  return 1;
-}
-
 int w_Result_thrust_line(lua_State* L) {
   return guard(L, [&] {
     push_points(L, check_record(L, 1).thrust);

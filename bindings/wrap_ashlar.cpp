@@ -14,6 +14,7 @@
 #include "wrap_Structure.hpp"
 #include "wrap_colors.hpp"
 #include "wrap_draw.hpp"
+#include "wrap_fea.hpp"
 #include "wrap_force_flow.hpp"
 #include "wrap_gradient.hpp"
 #include "wrap_optimize.hpp"
@@ -172,6 +173,7 @@ int ashlar_open_library(lua_State* L) {
   register_Block(L);
   register_Structure(L);
   register_Result(L);
+  register_FeaResult(L);
   lua_newtable(L);
   lua_pushstring(L, ashlar::version());
   lua_setfield(L, -2, "version");
@@ -183,6 +185,7 @@ int ashlar_open_library(lua_State* L) {
   set_weights_functions(L);
   set_force_flow_functions(L);
   set_draw_functions(L);
+  set_fea_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

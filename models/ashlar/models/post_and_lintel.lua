@@ -2,7 +2,7 @@
 -- of different widths standing on a ground slab, in the x-z plane: the
 -- thesis's figure 14 (there three posts, the leftmost thin, the middle one
 -- thicker). Posts are placed from left to right with `span` clear between
--- neighbours; the posts and the lintel are centred on x = 0 and y = 0, the
+-- neighbours, or `spans[i]` between posts i and i + 1; the posts and the lintel are centred on x = 0 and y = 0, the
 -- ground's top is z = 0. The lintel is at least as long as the posts and
 -- openings together, and posts are as deep as the lintel, so every post's
 -- top is a whole face of contact with the lintel.
@@ -12,7 +12,8 @@ local options = require "ashlar.models.options"
 local G = "models.post_and_lintel"
 
 local spec = {
-  span = { type = "number", default = 1.5, above = 0 },      -- m, clear opening between neighbouring posts
+  span = { type = "number", above = 0 },                     -- m, clear opening between neighbouring posts; 1.5
+  spans = { type = "table" },                                -- m, one opening per pair of neighbours, instead of span
   -- {length, depth, height}, m; the length defaults to the posts' extent.
   lintel = { type = "vec3", above = 0 },
   -- Figure 14's three posts: thin on the left, thickest in the middle.
@@ -50,7 +51,24 @@ return function(opts)
         :format(G, i, posts[i].height, height), 2)
     end
   end
-  local extent = (n - 1) * o.span
+  if o.span and o.spans then error(("%s: give span or spans, not both"):format(G), 2) end
+  local spans = {}
+  if o.spans then
+    if #o.spans ~= n - 1 then
+      error(("%s: spans: expected %d openings (one per pair of neighbouring posts), got %d"):format(G, n - 1, #o.spans), 2)
+    end
+    for i = 1, n - 1 do
+      local v = o.spans[i]
+      if type(v) ~= "number" or not (v > 0) or v == math.huge then
+        error(("%s: spans[%d]: expected a finite number > 0, got %s"):format(G, i, tostring(v)), 2)
+      end
+      spans[i] = v
+    end
+  else
+    for i = 1, n - 1 do spans[i] = o.span or 1.5 end
+  end
+  local extent = 0
+  for i = 1, n - 1 do extent = extent + spans[i] end
   for i = 1, n do extent = extent + posts[i].width end
   local lintel = o.lintel or { extent, 0.5, 0.5 }
   if lintel[1] < extent then
@@ -66,7 +84,7 @@ return function(opts)
     local w = posts[i].width
     s:add(ashlar.box{ size = { w, depth, height }, center = { x + w / 2, 0, height / 2 }, density = o.density },
           { name = post_name(i, n) })
-    x = x + w + o.span
+    x = x + w + (spans[i] or 0)
   end
   -- Reaches past the outer posts by the lintel's height; touches only the posts.
   local t = lintel[3]

@@ -1,0 +1,267 @@
+#include "wrap_fea.hpp"
+
+#include <cstring>
+
+#include "fea/fea.hpp"
+#include "io/fea_export.hpp"
+#include "io/mesh_io.hpp"
+#include "luax.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+constexpr const char* kFeaMeta = "ashlar.FeaResult";
+
+// What a Lua FeaResult holds: the structure as analysed (a copy: the
+// script may change its own afterwards), its mesh and interfaces, the result.
+struct FeaRecord {
+  Structure structure;
+  std::vector<Interface> interfaces;
+  std::unique_ptr<FeaMesh> mesh;
+  FeaResult result;
+};
+
+FeaRecord& check_record(lua_State* L, int idx) { return *check_boxed<FeaRecord>(L, idx, kFeaMeta, "FeaResult"); }
+
+FeaSettings fea_settings(const OptionTable& options) {
+  FeaSettings settings;
+  settings.material.young = options.positive("young", settings.material.young);
+  settings.material.poisson = options.number("poisson", settings.material.poisson);
+  if (!(settings.material.poisson > -1 && settings.material.poisson < 0.5))
+    throw ArgError(options.arg(), "poisson: expected a number in (-1, 0.5), got " +
+                                      std::to_string(settings.material.poisson));
+  settings.relax = options.boolean("relax").value_or(settings.relax);
+  settings.max_relax_iterations = static_cast<int>(
+      options.whole("max_relax_iterations", 0, 100000, "a whole number from 0 to 100000")
+          .value_or(settings.max_relax_iterations));
+  if (std::optional<std::string> release = options.string("release")) {
+    if (*release == "all") settings.release = FeaRelease::All;
+    else if (*release == "largest") settings.release = FeaRelease::Largest;
+    else throw ArgError(options.arg(), "release: '" + *release + "' is not one of all, largest");
+  }
+  settings.tension_tolerance = options.positive("tension_tolerance", settings.tension_tolerance, true);
+  settings.max_displacement = options.positive("max_displacement", settings.max_displacement);
+  settings.stresses = options.boolean("stresses").value_or(settings.stresses);
+  settings.contact.tolerance = options.positive("contact_tolerance", 0.0, true);
+  return settings;
+}
+
+int w_fea(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"young", "poisson", "refine", "element_size", "relax",
+                                     "max_relax_iterations", "release", "tension_tolerance",
+                                     "max_displacement", "stresses", "contact_tolerance"});
+    const FeaSettings settings = fea_settings(options);
+    const int refine = static_cast<int>(options.whole("refine", 1, 64, "a whole number from 1 to 64").value_or(1));
+    const double element_size = options.positive("element_size", 0.0, true);
+    auto record = std::make_shared<FeaRecord>();
+    record->structure = s;
+    record->mesh = std::make_unique<FeaMesh>(record->structure, refine, element_size);
+    record->result = analyze_fea(record->structure, *record->mesh, settings);
+    record->interfaces = record->structure.interfaces(settings.contact);
+    void* memory = lua_newuserdatauv(L, sizeof(Box<FeaRecord>), 1);
+    new (memory) Box<FeaRecord>{std::move(record)};
+    luaL_setmetatable(L, kFeaMeta);
+    return 1;
+  });
+}
+
+void push_index_list(lua_State* L, const std::vector<int>& zero_based) {
+  lua_createtable(L, static_cast<int>(zero_based.size()), 0);
+  for (size_t i = 0; i < zero_based.size(); ++i) {
+    lua_pushinteger(L, zero_based[i] + 1);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+void push_displacements(lua_State* L, const FeaRecord& r) { push_points(L, r.result.displacements); }
+void push_nodes(lua_State* L, const FeaRecord& r) { push_points(L, r.mesh->nodes()); }
+
+void push_elements(lua_State* L, const FeaRecord& r) {
+  const auto& elements = r.mesh->elements();
+  lua_createtable(L, static_cast<int>(elements.size()), 0);
+  for (size_t e = 0; e < elements.size(); ++e) {
+    push_index_list(L, std::vector<int>(elements[e].begin(), elements[e].end()));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(e + 1));
+  }
+}
+
+void push_element_blocks(lua_State* L, const FeaRecord& r) {
+  std::vector<int> blocks(r.mesh->elements().size());
+  for (size_t e = 0; e < blocks.size(); ++e) blocks[e] = r.mesh->element_block(static_cast<int>(e));
+  push_index_list(L, blocks);
+}
+
+void push_node_blocks(lua_State* L, const FeaRecord& r) {
+  std::vector<int> blocks(r.mesh->nodes().size());
+  for (size_t n = 0; n < blocks.size(); ++n) blocks[n] = r.mesh->node_block(static_cast<int>(n));
+  push_index_list(L, blocks);
+}
+
+void push_contacts(lua_State* L, const FeaRecord& r) {
+  const std::vector<FeaContact>& contacts = r.result.contacts;
+  lua_createtable(L, static_cast<int>(contacts.size()), 0);
+  for (size_t t = 0; t < contacts.size(); ++t) {
+    const FeaContact& c = contacts[t];
+    lua_createtable(L, 0, 9);
+    set_index_field(L, "interface", c.interface);
+    set_index_field(L, "node", c.node);
+    set_index_field(L, "block", c.block);
+    set_field(L, "position", r.mesh->nodes()[c.node]);
+    set_field(L, "force", c.force_on_b);
+    set_field(L, "normal_force", c.normal_force);
+    set_field(L, "opening", c.opening);
+    set_boolean(L, "tensile", c.tensile);
+    set_boolean(L, "released", c.released);
+    if (c.released) set_field(L, "released_at", c.released_at);
+    set_boolean(L, "ground", c.target.nodes.empty());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(t + 1));
+  }
+}
+
+void push_released(lua_State* L, const FeaRecord& r) {
+  std::vector<int> released;
+  for (size_t t = 0; t < r.result.contacts.size(); ++t)
+    if (r.result.contacts[t].released) released.push_back(static_cast<int>(t));
+  push_index_list(L, released);
+}
+
+void push_interfaces(lua_State* L, const FeaRecord& r) {
+  lua_createtable(L, static_cast<int>(r.interfaces.size()), 0);
+  for (size_t k = 0; k < r.interfaces.size(); ++k) {
+    const FeaInterfaceForce& f = r.result.interfaces[k];
+    lua_createtable(L, 0, 10);
+    set_index_field(L, "a", r.interfaces[k].a);
+    set_index_field(L, "b", r.interfaces[k].b);
+    set_field(L, "normal_force", f.compression - f.tension);
+    set_field(L, "compression", f.compression);
+    set_field(L, "tension", f.tension);
+    set_field(L, "resultant", f.resultant);
+    set_field(L, "center_of_pressure", f.center_of_pressure);
+    set_field(L, "normal", r.interfaces[k].normal);
+    set_field(L, "contacts", f.contacts);
+    set_field(L, "released", f.released);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
+void push_history(lua_State* L, const FeaRecord& r) {
+  const std::vector<FeaIteration>& history = r.result.history;
+  lua_createtable(L, static_cast<int>(history.size()), 0);
+  for (size_t i = 0; i < history.size(); ++i) {
+    const FeaIteration& it = history[i];
+    lua_createtable(L, 0, 8);
+    set_field(L, "active", it.active);
+    set_field(L, "released", i == 0 ? 0 : history[i - 1].tensile);
+    set_field(L, "tensile", it.tensile);
+    set_field(L, "tension", it.tension);
+    set_field(L, "max_tension", it.max_tension);
+    set_field(L, "multiplier_steps", it.multiplier_steps);
+    set_field(L, "constraint_error", it.constraint_error);
+    set_field(L, "seconds", it.seconds);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+void push_stresses(lua_State* L, const FeaRecord& r) {
+  const std::vector<Stress>& stresses = r.result.stresses;
+  lua_createtable(L, static_cast<int>(stresses.size()), 0);
+  static const char* const kComponents[] = {"xx", "yy", "zz", "yz", "xz", "xy"};
+  for (size_t e = 0; e < stresses.size(); ++e) {
+    lua_createtable(L, 0, 7);
+    for (int c = 0; c < 6; ++c) set_field(L, kComponents[c], stresses[e](c));
+    set_field(L, "von_mises", von_mises(stresses[e]));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(e + 1));
+  }
+}
+
+int w_FeaResult_export(lua_State* L) {
+  return guard(L, [&] {
+    const FeaRecord& r = check_record(L, 1);
+    const std::string path = check_string(L, 2, "path");
+    const OptionTable options(L, 3, {"scale", "color", "map", "undeformed", "contacts"});
+    if (file_extension(path) == "vtu") {
+      for (const char* key : {"scale", "color", "map", "undeformed", "contacts"})
+        if (options.has(key))
+          throw ArgError(3, std::string(key) + ": applies to 3D files, not to .vtu, which holds every result");
+      export_fea_vtu(r.structure, *r.mesh, r.result, r.interfaces, path);
+      return 0;
+    }
+    FeaMeshExportOptions settings;
+    settings.scale = options.positive("scale", settings.scale, true);
+    if (std::optional<std::string> color = options.string("color")) settings.color = *color;
+    if (std::optional<std::string> map = options.string("map")) settings.map = *map;
+    settings.undeformed = options.boolean("undeformed").value_or(settings.undeformed);
+    settings.contacts = options.boolean("contacts").value_or(settings.contacts);
+    export_fea_mesh(r.structure, *r.mesh, r.result, path, settings);
+    return 0;
+  });
+}
+
+int w_FeaResult_index(lua_State* L) {
+  return guard(L, [&] {
+    const FeaRecord& record = check_record(L, 1);
+    const FeaResult& r = record.result;
+    const char* key = lua_tostring(L, 2);
+    if (!key) return 0;
+    auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
+    if (is("export")) lua_pushcfunction(L, w_FeaResult_export);
+    else if (is("status")) lua_pushstring(L, fea_status_name(r.status));
+    else if (is("compression_only")) lua_pushboolean(L, r.compression_only);
+    else if (is("iterations")) lua_pushinteger(L, r.iterations);
+    else if (is("max_displacement")) lua_pushnumber(L, r.max_displacement);
+    else if (is("max_penetration")) lua_pushnumber(L, r.max_penetration);
+    else if (is("total_weight")) lua_pushnumber(L, r.total_weight);
+    else if (is("dofs")) lua_pushinteger(L, r.dofs);
+    else if (is("element_count")) lua_pushinteger(L, static_cast<lua_Integer>(record.mesh->elements().size()));
+    else if (is("factor_nonzeros")) lua_pushnumber(L, static_cast<double>(r.factor_nonzeros));
+    else if (is("seconds")) lua_pushnumber(L, r.seconds);
+    else if (is("nodes")) return push_cached_table(L, "nodes", record, push_nodes);
+    else if (is("displacements")) return push_cached_table(L, "displacements", record, push_displacements);
+    else if (is("elements")) return push_cached_table(L, "elements", record, push_elements);
+    else if (is("element_blocks")) return push_cached_table(L, "element_blocks", record, push_element_blocks);
+    else if (is("node_blocks")) return push_cached_table(L, "node_blocks", record, push_node_blocks);
+    else if (is("contacts")) return push_cached_table(L, "contacts", record, push_contacts);
+    else if (is("released")) return push_cached_table(L, "released", record, push_released);
+    else if (is("interfaces")) return push_cached_table(L, "interfaces", record, push_interfaces);
+    else if (is("history")) return push_cached_table(L, "history", record, push_history);
+    else if (is("stresses")) {
+      if (r.stresses.empty() && !record.mesh->elements().empty()) return 0;  // not asked for
+      return push_cached_table(L, "stresses", record, push_stresses);
+    } else return 0;
+    return 1;
+  });
+}
+
+int w_FeaResult_tostring(lua_State* L) {
+  return guard(L, [&] {
+    const FeaResult& r = check_record(L, 1).result;
+    lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
+                    fea_status_name(r.status), r.iterations, r.max_displacement);
+    return 1;
+  });
+}
+
+int w_FeaResult_gc(lua_State* L) { return release_boxed<FeaRecord>(L, kFeaMeta); }
+
+}  // namespace
+
+void register_FeaResult(lua_State* L) {
+  // Fields are computed on access, so __index is a function, not a table.
+  static const luaL_Reg metamethods[] = {{"__index", w_FeaResult_index},
+                                         {"__tostring", w_FeaResult_tostring},
+                                         {"__gc", w_FeaResult_gc},
+                                         {"__close", w_FeaResult_gc},
+                                         {nullptr, nullptr}};
+  register_type(L, kFeaMeta, nullptr, metamethods);
+}
+
+void set_fea_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"fea", w_fea}, {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua
