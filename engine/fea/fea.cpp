@@ -188,15 +188,25 @@ Assembly assemble(const Structure& structure, const FeaMesh& mesh, const Elastic
 }
 
 // K + rho A^T A over one fixed pattern (every tie, released ones as zeros),
-// so CHOLMOD analyses the ordering once and each release only refactorises.
+// so CHOLMOD analyses the ordering once and each release only refactorises
+// from K's values plus the active ties' terms, placed once.
 class TiedSystem {
 public:
-  TiedSystem(const Assembly& assembly, const std::vector<FeaContact>& ties, int dofs)
-      : base_(assembly.stiffness), ties_(ties), dofs_(dofs) {
+  TiedSystem(const Assembly& assembly, const std::vector<FeaContact>& ties, int dofs) : ties_(ties) {
     // A stiff penalty makes each multiplier update contract the constraint
     // error ~1/ratio; 1e4 keeps K + rho A^T A well inside double precision.
     rho_ = 1e4 * std::max(assembly.mean_diagonal, 1e-300);
-    const SparseMatrix m = matrix(std::vector<bool>(ties.size(), true));
+    std::vector<Triplet> entries = assembly.stiffness;
+    for_each_tie_term([&](size_t, int row, int col, double) { entries.emplace_back(row, col, 0.0); });
+    SparseMatrix m(dofs, dofs);
+    m.setFromTriplets(entries.begin(), entries.end());
+    m.makeCompressed();
+    stiffness_values_.assign(m.valuePtr(), m.valuePtr() + m.nonZeros());
+    for_each_tie_term([&](size_t t, int row, int col, double value) {
+      const int* first = m.innerIndexPtr() + m.outerIndexPtr()[col];
+      const int* last = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
+      tie_terms_.push_back({t, static_cast<int>(std::lower_bound(first, last, row) - m.innerIndexPtr()), value});
+    });
     std::vector<int> starts(m.outerIndexPtr(), m.outerIndexPtr() + dofs + 1);
     std::vector<int> rows(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
     cholesky_ = std::make_unique<SparseCholesky>(dofs, std::move(starts), std::move(rows));
@@ -206,35 +216,37 @@ public:
   double factor_nonzeros() const { return cholesky_->factor_nonzeros(); }
 
   bool factorize(const std::vector<bool>& active) {
-    const SparseMatrix m = matrix(active);
-    if (m.nonZeros() != cholesky_->nonzeros()) throw Error("FEA: the tied system's pattern changed");
-    std::copy(m.valuePtr(), m.valuePtr() + m.nonZeros(), cholesky_->values());
+    double* values = cholesky_->values();
+    std::copy(stiffness_values_.begin(), stiffness_values_.end(), values);
+    for (const TieTerm& term : tie_terms_)
+      if (active[term.tie]) values[term.position] += rho_ * term.value;
     return cholesky_->factorize();
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return cholesky_->solve(rhs); }
 
 private:
-  SparseMatrix matrix(const std::vector<bool>& active) const {
-    std::vector<Triplet> entries = base_;
-    for (size_t t = 0; t < ties_.size(); ++t) {
-      const double scale = active[t] ? rho_ : 0.0;  // zeros keep the pattern
+  struct TieTerm {
+    size_t tie;
+    int position;  // into the pattern's values
+    double value;  // of A^T A, without rho
+  };
+
+  // Upper-triangle entries (row <= col) of each tie's A_t^T A_t.
+  template <class Visit>
+  void for_each_tie_term(Visit&& visit) const {
+    for (size_t t = 0; t < ties_.size(); ++t)
       for_each_tie_entry(ties_[t], [&](int p, double wp) {
         for_each_tie_entry(ties_[t], [&](int q, double wq) {
           if (p <= q)
-            for (int d = 0; d < 3; ++d) entries.emplace_back(3 * p + d, 3 * q + d, scale * wp * wq);
+            for (int d = 0; d < 3; ++d) visit(t, 3 * p + d, 3 * q + d, wp * wq);
         });
       });
-    }
-    SparseMatrix m(dofs_, dofs_);
-    m.setFromTriplets(entries.begin(), entries.end());
-    m.makeCompressed();
-    return m;
   }
 
-  const std::vector<Triplet>& base_;
   const std::vector<FeaContact>& ties_;
-  int dofs_;
   double rho_ = 0;
+  std::vector<double> stiffness_values_;
+  std::vector<TieTerm> tie_terms_;
   std::unique_ptr<SparseCholesky> cholesky_;
 };
 
