@@ -41,4 +41,26 @@ function support.chart(base, commands)
   assert(os.rename(base .. ".svg.tmp", base .. ".svg"))
 end
 
+-- Whether PNG renderings of 3D files can be made (Debian: f3d xvfb).
+function support.can_render()
+  local function exists(command) return os.execute("command -v " .. command .. " > /dev/null 2>&1") end
+  return exists("f3d") and exists("xvfb-run")
+end
+
+-- Renders glb into the PNG of the same name with f3d, the camera turned
+-- from the front (the x-z plane seen from -y) by view.azimuth and
+-- view.elevation (degrees); written under a temporary name, then renamed.
+function support.render(glb, view)
+  local png = glb:gsub("%.glb$", ".png")
+  local temporary = png .. ".tmp.png"
+  local command = table.concat({
+    "xvfb-run -a -s '-screen 0 1024x768x24' f3d", support.shell_quoted(glb),
+    "--output", support.shell_quoted(temporary), "--resolution 1000,700 --bg-color 1,1,1 --fxaa",
+    "--camera-azimuth-angle", tostring(view.azimuth), "--camera-elevation-angle", tostring(view.elevation),
+    "> /dev/null 2>&1",
+  }, " ")
+  assert(os.execute(command), "f3d failed: " .. command)
+  assert(os.rename(temporary, png))
+end
+
 return support

@@ -14,10 +14,7 @@ local folder = arg[1] or "docs/figures/chapter4"
 assert(os.execute("mkdir -p " .. support.shell_quoted(folder)), "cannot create " .. folder)
 local NO_SLIDING = { friction = math.huge }
 
-local function exists(command)
-  return os.execute("command -v " .. command .. " > /dev/null 2>&1")
-end
-local pictures = exists("f3d") and exists("xvfb-run")
+local pictures = support.can_render()
 if not pictures then print("f3d or xvfb-run not found: only .glb files and legends are written") end
 
 -- f3d's camera, turned from the front (the x-z plane seen from -y).
@@ -25,17 +22,7 @@ local FRONT = { azimuth = 0, elevation = 0 }
 local ABOVE = { azimuth = 0, elevation = 25 }
 
 local function render(glb, view)
-  if not pictures then return end
-  local png = glb:gsub("%.glb$", ".png")
-  local temporary = png .. ".tmp.png"
-  local command = table.concat({
-    "xvfb-run -a -s '-screen 0 1024x768x24' f3d", support.shell_quoted(glb),
-    "--output", support.shell_quoted(temporary), "--resolution 1000,700 --bg-color 1,1,1 --fxaa",
-    "--camera-azimuth-angle", tostring(view.azimuth), "--camera-elevation-angle", tostring(view.elevation),
-    "> /dev/null 2>&1",
-  }, " ")
-  assert(os.execute(command), "f3d failed: " .. command)
-  assert(os.rename(temporary, png))
+  if pictures then support.render(glb, view) end
 end
 
 -- Exports s coloured by values[i] (supports grey: their value is the
