@@ -8,6 +8,7 @@
 -- sweep's chart, CSV and table (Markdown, printed).
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
+local courses = require "ashlar.models.courses"
 package.path = (arg[0]:match("^(.*)/[^/]+/[^/]+$") or "..") .. "/?.lua;" .. package.path
 local support = require "script_support"
 
@@ -97,31 +98,13 @@ end
 -- Figure 15 -----------------------------------------------------------------
 print("Figure 15: hemispherical dome, R = 5 m, t = 0.5 m, 16 meridians, 8 courses, oculus 0.25 rad")
 local dome = models.dome{ radius = 5, thickness = 0.5, meridians = 16, parallels = 8, oculus = 0.25 }
-local course = {}
-for i = 1, #dome do course[i] = tonumber(dome:name(i):match("^course (%d+)")) end
--- Per course (1 = bottom): mean hoop-joint force / mean force of the bed joint under it.
-local function hoop_ratios(interfaces)
-  local hoop, hoops, bed, beds = {}, {}, {}, {}
-  for _, f in ipairs(interfaces) do
-    local ca, cb = course[f.a], course[f.b]
-    if ca and ca == cb then
-      hoop[ca], hoops[ca] = (hoop[ca] or 0) + f.normal_force, (hoops[ca] or 0) + 1
-    elseif ca or cb then
-      local upper = dome:block(f.a):centroid()[3] > dome:block(f.b):centroid()[3] and f.a or f.b
-      bed[course[upper]] = (bed[course[upper]] or 0) + f.normal_force
-      beds[course[upper]] = (beds[course[upper]] or 0) + 1
-    end
-  end
-  local ratios = {}
-  for c = 1, #hoop do ratios[c] = (hoop[c] / hoops[c]) / (bed[c] / beds[c]) end
-  return ratios
-end
 local dome_r, eq_seconds = timed(ashlar.analyze, dome)
 local dome_fe, fe_seconds = timed(ashlar.fea, dome)
 local dome_tied = ashlar.fea(dome, { relax = false })
 print(("  equilibrium: stable = %s (%.3f s); FEA: %s after %d iterations (%.3f s)"):format(
   tostring(dome_r.stable), eq_seconds, dome_fe.status, dome_fe.iterations, fe_seconds))
-local eq, elastic, before = hoop_ratios(dome_r.interfaces), hoop_ratios(dome_fe.interfaces), hoop_ratios(dome_tied.interfaces)
+local eq, elastic, before = courses.hoop_ratios(dome, dome_r.interfaces), courses.hoop_ratios(dome, dome_fe.interfaces),
+  courses.hoop_ratios(dome, dome_tied.interfaces)
 local rows = { "course,equilibrium,fea_relaxed,fea_tied" }
 print("  | course | equilibrium | FEA, relaxed | FEA, every contact tied |")
 print("  |---|---|---|---|")

@@ -3,6 +3,7 @@
 -- and the comparison with equilibrium analysis.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
+local courses = require "ashlar.models.courses"
 local support = require "spec_support"
 local expect_error = support.expect_error
 
@@ -21,27 +22,6 @@ end
 -- Figure 15: a hemispherical dome with an oculus (the FEA needs hexahedra).
 local function figure15_dome()
   return models.dome{ radius = 5, thickness = 0.5, meridians = 16, parallels = 8, oculus = 0.25 }
-end
-
--- Per course (1 = bottom): mean hoop-joint normal force over mean normal
--- force of the bed joint under the course's blocks.
-local function hoop_ratios(s, interfaces)
-  local course = {}
-  for i = 1, #s do course[i] = tonumber(s:name(i):match("^course (%d+)")) end
-  local hoop, hoops, bed, beds = {}, {}, {}, {}
-  for _, f in ipairs(interfaces) do
-    local ca, cb = course[f.a], course[f.b]
-    if ca and ca == cb then
-      hoop[ca], hoops[ca] = (hoop[ca] or 0) + f.normal_force, (hoops[ca] or 0) + 1
-    elseif ca or cb then
-      local upper = s:block(f.a):centroid()[3] > s:block(f.b):centroid()[3] and f.a or f.b
-      local c = course[upper]
-      bed[c], beds[c] = (bed[c] or 0) + f.normal_force, (beds[c] or 0) + 1
-    end
-  end
-  local ratios = {}
-  for c = 1, #hoop do ratios[c] = (hoop[c] / hoops[c]) / (bed[c] / beds[c]) end
-  return ratios
 end
 
 describe("ashlar.fea", function()
@@ -147,7 +127,7 @@ describe("ashlar.fea", function()
     assert.is_true(r.stable)
     local fe = ashlar.fea(s)
     assert.are.equal("compression_only", fe.status)
-    local eq, elastic = hoop_ratios(s, r.interfaces), hoop_ratios(s, fe.interfaces)
+    local eq, elastic = courses.hoop_ratios(s, r.interfaces), courses.hoop_ratios(s, fe.interfaces)
     assert.are.equal(8, #eq)
     -- Equilibrium: vertical at the bottom, hoops at the top.
     assert.is_true(eq[1] < 0.01)
@@ -157,7 +137,7 @@ describe("ashlar.fea", function()
     assert.is_true(elastic[8] > eq[8])
     -- Before relaxation the lower courses pull in hoop tension, as a
     -- hemispherical shell's membrane solution does below about 52 degrees.
-    local tied = hoop_ratios(s, ashlar.fea(s, { relax = false }).interfaces)
+    local tied = courses.hoop_ratios(s, ashlar.fea(s, { relax = false }).interfaces)
     assert.is_true(tied[3] < 0)
   end)
 

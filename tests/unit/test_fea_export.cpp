@@ -19,6 +19,7 @@
 #include "io/atomic_file.hpp"
 #include "io/fea_export.hpp"
 #include "io/mesh_io.hpp"
+#include "gltf_file.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -141,50 +142,6 @@ Vec3 tuple3(const std::vector<double>& values, int i) {
 // ---------------------------------------------------------------------------
 // Mesh file reading
 
-// An exported .gltf with its .bin, read back node by node.
-struct GltfFile {
-  nlohmann::json json;
-  std::string bin;
-
-  GltfFile(const TempDir& dir, const std::string& name)
-      : json(nlohmann::json::parse(read_file(dir.file(name)))),
-        bin(read_file(dir.file(json["buffers"][0]["uri"].get<std::string>()))) {}
-
-  bool has_node(const std::string& node_name) const {
-    for (const auto& node : json["nodes"]) {
-      if (node.value("name", "") == node_name) return true;
-    }
-    return false;
-  }
-  const nlohmann::json& primitive(const std::string& node_name) const {
-    for (const auto& node : json["nodes"]) {
-      if (node.value("name", "") == node_name) {
-        return json["meshes"][node["mesh"].get<int>()]["primitives"][0];
-      }
-    }
-    throw std::runtime_error("no node " + node_name);
-  }
-  int count(const std::string& node_name, const char* attribute) const {
-    return json["accessors"][primitive(node_name)["attributes"][attribute].get<int>()]["count"];
-  }
-  int triangles(const std::string& node_name) const {
-    return json["accessors"][primitive(node_name)["indices"].get<int>()]["count"].get<int>() / 3;
-  }
-  // Vertex positions in ashlar's axes (glTF's y is ashlar's z).
-  std::vector<Vec3> positions(const std::string& node_name) const {
-    const auto& positions =
-        json["accessors"][primitive(node_name)["attributes"]["POSITION"].get<int>()];
-    const auto& view = json["bufferViews"][positions["bufferView"].get<int>()];
-    const char* data = bin.data() + view.value("byteOffset", 0) + positions.value("byteOffset", 0);
-    std::vector<Vec3> points;
-    for (int k = 0; k < positions["count"].get<int>(); ++k) {
-      float xyz[3];
-      std::memcpy(xyz, data + sizeof xyz * k, sizeof xyz);
-      points.emplace_back(xyz[0], -xyz[2], xyz[1]);
-    }
-    return points;
-  }
-};
 
 // The vertex positions ("v x y z [r g b]") of an OBJ file.
 std::vector<Vec3> obj_vertices(const std::string& path) {

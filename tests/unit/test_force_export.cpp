@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"
+#include "gltf_file.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -36,47 +37,6 @@ ExportOptions forces_and_thrust(const EquilibriumResult& result) {
   return options;
 }
 
-// An exported .gltf with its .bin, read back node by node.
-struct GltfFile {
-  nlohmann::json json;
-  std::string bin;
-
-  GltfFile(const TempDir& dir, const std::string& name)
-      : json(nlohmann::json::parse(read_file(dir.file(name)))),
-        bin(read_file(dir.file(json["buffers"][0]["uri"].get<std::string>()))) {}
-
-  const nlohmann::json& primitive(const std::string& node_name) const {
-    for (const auto& node : json["nodes"]) {
-      if (node.value("name", "") == node_name) {
-        return json["meshes"][node["mesh"].get<int>()]["primitives"][0];
-      }
-    }
-    throw std::runtime_error("no node " + node_name);
-  }
-  const nlohmann::json& accessor(const nlohmann::json& index) const {
-    return json["accessors"][index.get<int>()];
-  }
-  int triangles(const std::string& node_name) const {
-    return accessor(primitive(node_name)["indices"])["count"].get<int>() / 3;
-  }
-  const nlohmann::json& base_color(const std::string& node_name) const {
-    return json["materials"][primitive(node_name)["material"].get<int>()]["pbrMetallicRoughness"]
-               ["baseColorFactor"];
-  }
-  // Vertex positions in ashlar's axes (glTF's y is ashlar's z).
-  std::vector<Vec3> positions(const std::string& node_name) const {
-    const auto& positions = accessor(primitive(node_name)["attributes"]["POSITION"]);
-    const auto& view = json["bufferViews"][positions["bufferView"].get<int>()];
-    const char* data = bin.data() + view.value("byteOffset", 0) + positions.value("byteOffset", 0);
-    std::vector<Vec3> points;
-    for (int k = 0; k < positions["count"].get<int>(); ++k) {
-      float xyz[3];
-      std::memcpy(xyz, data + sizeof xyz * k, sizeof xyz);
-      points.emplace_back(xyz[0], -xyz[2], xyz[1]);
-    }
-    return points;
-  }
-};
 
 // Checks that every directed edge has its reverse exactly once (a closed,
 // consistently oriented surface) and returns the enclosed volume.
