@@ -308,9 +308,10 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   FeaResult result;
   const std::vector<Interface>& interfaces = structure.interfaces(settings.contact);
   const double size = structure.bounds().diagonal();
-  const double tol = settings.contact.tolerance > 0 ? settings.contact.tolerance
-                                                    : settings.contact.relative_tolerance * size;
-  std::vector<FeaContact> ties = contact_ties(structure, mesh, interfaces, tol);
+  std::vector<const Block*> blocks;
+  for (const StructureBlock& entry : structure.entries()) blocks.push_back(entry.block.get());
+  std::vector<FeaContact> ties =
+      contact_ties(structure, mesh, interfaces, effective_tolerance(blocks, settings.contact));
   const Assembly assembly = assemble(structure, mesh, settings.material);
   const int dofs = 3 * static_cast<int>(mesh.nodes().size());
   result.dofs = dofs;

@@ -7,15 +7,6 @@
 
 namespace ashlar {
 
-namespace {
-
-std::string block_label(const Structure& structure, int block) {
-  const std::string& name = structure.name(block);
-  return "block " + std::to_string(block + 1) + (name.empty() ? "" : " ('" + name + "')");
-}
-
-}  // namespace
-
 HexNodes hexahedron_corners(const Block& block, const std::string& what) {
   const std::vector<FaceLoop>& faces = block.faces();
   const auto not_hexahedron = [&](const std::string& why) {
@@ -74,7 +65,7 @@ FeaMesh::FeaMesh(const Structure& structure, int refine, double element_size) {
   divisions_.assign(n, {0, 0, 0});
   for (int b = 0; b < n; ++b) {
     if (structure.is_support(b)) continue;
-    const std::string label = block_label(structure, b);
+    const std::string label = structure.label(b);
     corners_[b] = hexahedron_corners(structure.block(b), label);
     if (!(hex_min_jacobian(corners_[b]) > 0))
       throw InvalidArgument(label + " is a hexahedron whose trilinear map folds (a corner's "

@@ -34,9 +34,7 @@ void Structure::add_load(const PointLoad& load) {
                           " blocks)");
   }
   if (blocks_[load.block].support) {
-    throw InvalidArgument("load: block " + std::to_string(load.block + 1) + " ('" +
-                          blocks_[load.block].name +
-                          "') is a support; a load on fixed ground has no effect");
+    throw InvalidArgument("load: " + label(load.block) + " is a support; a load on fixed ground has no effect");
   }
   if (!load.force.allFinite()) throw InvalidArgument("load: force must be finite");
   if (!load.at.allFinite()) throw InvalidArgument("load: point of application must be finite");
