@@ -145,6 +145,8 @@ std::vector<Rgb> map_colors(const std::vector<double>& values, double lo, double
   return colors;
 }
 
+void check_color_map(const std::string& name) { find_map(name); }
+
 const std::vector<std::string>& color_map_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> result;

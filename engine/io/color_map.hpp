@@ -13,6 +13,9 @@ namespace ashlar {
 std::vector<Rgb> map_colors(const std::vector<double>& values, double lo, double hi,
                             const std::string& map_name);
 
+// Throws InvalidArgument, naming the available maps, unless `name` is one.
+void check_color_map(const std::string& name);
+
 // Names of the available maps, e.g. "viridis", for error messages.
 const std::vector<std::string>& color_map_names();
 

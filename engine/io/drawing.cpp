@@ -456,7 +456,7 @@ void check_legend(const LegendOptions& options) {
             << options.hi << "]";
     throw InvalidArgument(message.str());
   }
-  map_colors({}, options.lo, options.hi, options.map);  // throws for an unknown map
+  check_color_map(options.map);
 }
 
 // The colour bar as a gradient over the rectangle, lo at `from`, hi at `to`.

@@ -35,15 +35,6 @@ const Rgb kWhite{1.0, 1.0, 1.0};
 const Rgb kTensionRed{0.9, 0.1, 0.1};
 const Rgb kReleasedOrange{1.0, 0.55, 0.0};
 
-const std::vector<std::string>& colorings() {
-  static const std::vector<std::string> names = {"displacement", "block"};
-  return names;
-}
-
-std::string block_label(const Structure& structure, int block) {
-  return "block " + std::to_string(block + 1) + " ('" + structure.name(block) + "')";
-}
-
 // The checks both exports need: mesh and result belong to this structure,
 // so every index used below is in range.
 void check_mesh_and_result(const Structure& structure, const FeaMesh& mesh, const FeaResult& result,
@@ -81,7 +72,7 @@ void check_mesh_and_result(const Structure& structure, const FeaMesh& mesh, cons
               element_count[b] == d[0] * d[1] * d[2];
     }
     if (!whole) {
-      throw InvalidArgument(caller + ": the mesh does not mesh " + block_label(structure, b) +
+      throw InvalidArgument(caller + ": the mesh does not mesh " + structure.label(b) +
                             advice);
     }
   }
@@ -232,25 +223,14 @@ std::string vtu_text(const FeaMesh& mesh, const FeaResult& result, const NodeCon
 // ---------------------------------------------------------------------------
 // Deformed meshes
 
-std::string quoted_list(const std::vector<std::string>& names) {
-  std::string list;
-  for (const auto& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
-  return list;
-}
-
 void check_mesh_options(const FeaMeshExportOptions& options, const std::string& caller) {
   if (!(options.scale >= 0.0) || !std::isfinite(options.scale)) {
     throw InvalidArgument(caller + ": scale must be a finite number >= 0 (0: automatic)");
   }
-  if (std::find(colorings().begin(), colorings().end(), options.color) == colorings().end()) {
-    throw InvalidArgument(caller + ": unknown color '" + options.color +
-                          "' (allowed: " + quoted_list(colorings()) + ")");
+  if (options.color != "displacement" && options.color != "block") {
+    throw InvalidArgument(caller + ": unknown color '" + options.color + "' (allowed: 'displacement', 'block')");
   }
-  const auto& maps = color_map_names();
-  if (std::find(maps.begin(), maps.end(), options.map) == maps.end()) {
-    throw InvalidArgument(caller + ": unknown colour map '" + options.map +
-                          "' (allowed: " + quoted_list(maps) + ")");
-  }
+  check_color_map(options.map);
 }
 
 // The faces of a hexahedron as corner indices (hex_element.hpp order),
