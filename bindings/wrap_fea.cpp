@@ -15,10 +15,11 @@ namespace {
 constexpr const char* kFeaMeta = "ashlar.FeaResult";
 
 // What a Lua FeaResult holds: the structure as analysed (a copy: the
-// script may change its own afterwards), its mesh and interfaces, the result.
+// script may change its own afterwards), the contact options it was analysed
+// with, its mesh and the result.
 struct FeaRecord {
   Structure structure;
-  std::vector<Interface> interfaces;
+  ContactOptions contact;
   std::unique_ptr<FeaMesh> mesh;
   FeaResult result;
 };
@@ -61,7 +62,7 @@ int w_fea(lua_State* L) {
     record->structure = s;
     record->mesh = std::make_unique<FeaMesh>(record->structure, refine, element_size);
     record->result = analyze_fea(record->structure, *record->mesh, settings);
-    record->interfaces = record->structure.interfaces(settings.contact);
+    record->contact = settings.contact;
     void* memory = lua_newuserdatauv(L, sizeof(Box<FeaRecord>), 1);
     new (memory) Box<FeaRecord>{std::move(record)};
     luaL_setmetatable(L, kFeaMeta);
@@ -130,18 +131,20 @@ void push_released(lua_State* L, const FeaRecord& r) {
 }
 
 void push_interfaces(lua_State* L, const FeaRecord& r) {
-  lua_createtable(L, static_cast<int>(r.interfaces.size()), 0);
-  for (size_t k = 0; k < r.interfaces.size(); ++k) {
+  // Cached in the structure since the analysis found them.
+  const std::vector<Interface>& interfaces = r.structure.interfaces(r.contact);
+  lua_createtable(L, static_cast<int>(interfaces.size()), 0);
+  for (size_t k = 0; k < interfaces.size(); ++k) {
     const FeaInterfaceForce& f = r.result.interfaces[k];
     lua_createtable(L, 0, 10);
-    set_index_field(L, "a", r.interfaces[k].a);
-    set_index_field(L, "b", r.interfaces[k].b);
+    set_index_field(L, "a", interfaces[k].a);
+    set_index_field(L, "b", interfaces[k].b);
     set_field(L, "normal_force", f.compression - f.tension);
     set_field(L, "compression", f.compression);
     set_field(L, "tension", f.tension);
     set_field(L, "resultant", f.resultant);
     set_field(L, "center_of_pressure", f.center_of_pressure);
-    set_field(L, "normal", r.interfaces[k].normal);
+    set_field(L, "normal", interfaces[k].normal);
     set_field(L, "contacts", f.contacts);
     set_field(L, "released", f.released);
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
@@ -187,7 +190,7 @@ int w_FeaResult_export(lua_State* L) {
       for (const char* key : {"scale", "color", "map", "undeformed", "contacts"})
         if (options.has(key))
           throw ArgError(3, std::string(key) + ": applies to 3D files, not to .vtu, which holds every result");
-      export_fea_vtu(r.structure, *r.mesh, r.result, r.interfaces, path);
+      export_fea_vtu(r.structure, *r.mesh, r.result, r.structure.interfaces(r.contact), path);
       return 0;
     }
     FeaMeshExportOptions settings;
