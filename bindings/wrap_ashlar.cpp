@@ -17,6 +17,7 @@
 #include "wrap_fea.hpp"
 #include "wrap_force_flow.hpp"
 #include "wrap_gradient.hpp"
+#include "wrap_margins.hpp"
 #include "wrap_optimize.hpp"
 #include "wrap_weights.hpp"
 
@@ -186,6 +187,7 @@ int ashlar_open_library(lua_State* L) {
   set_force_flow_functions(L);
   set_draw_functions(L);
   set_fea_functions(L);
+  set_margin_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

@@ -1,0 +1,122 @@
+#include "wrap_margins.hpp"
+
+#include "analysis/load_factor.hpp"
+#include "luax.hpp"
+#include "wrap_Result.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+// The options that shape the program (friction and contacts); the interior
+// point solver's do not apply.
+#define ASHLAR_PROGRAM_OPTIONS "friction_sides", "friction_model", "contact_tolerance"
+
+const char* mode_name(LimitMode mode) {
+  switch (mode) {
+    case LimitMode::hinge:
+      return "hinge";
+    case LimitMode::sliding:
+      return "sliding";
+    case LimitMode::hinge_sliding:
+      return "hinge_sliding";
+    case LimitMode::separation:
+      return "separation";
+  }
+  return "?";
+}
+
+int w_load_factor(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load"});
+    LoadFactorSettings settings;
+    settings.problem = analysis_settings(options).problem;
+    if (const std::optional<std::string> load = options.string("load")) {
+      if (*load == "body_force") settings.pattern = LoadPattern::body_force;
+      else if (*load == "point_loads") settings.pattern = LoadPattern::point_loads;
+      else throw ArgError(2, "load: '" + *load + "' is not one of body_force, point_loads");
+    }
+    if (const std::optional<Vec3> direction = options.vec3("direction")) {
+      if (settings.pattern == LoadPattern::point_loads) {
+        throw ArgError(2, "direction: not with load = 'point_loads' (the loads have their own)");
+      }
+      settings.direction = *direction;
+    }
+    const LoadFactor factor = load_factor(s, settings);
+    const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
+    lua_createtable(L, 0, 8);
+    set_field(L, "factor", factor.factor);
+    set_string(L, "status", factor.status.c_str());
+    set_boolean(L, "stable", factor.stable);
+    set_field(L, "iterations", factor.iterations);
+    set_field(L, "seconds", factor.seconds);
+    lua_createtable(L, static_cast<int>(factor.limit.size()), 0);
+    for (size_t k = 0; k < factor.limit.size(); ++k) {
+      const LimitInterface& limit = factor.limit[k];
+      lua_createtable(L, 0, 7);
+      set_field(L, "interface", limit.interface + 1);
+      set_index_field(L, "a", interfaces[limit.interface].a);
+      set_index_field(L, "b", interfaces[limit.interface].b);
+      set_string(L, "mode", mode_name(limit.mode));
+      set_field(L, "pivot", limit.pivot);
+      set_field(L, "opening", limit.opening);
+      set_field(L, "slip", limit.slip);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "limit");
+    if (!factor.mechanism.empty()) {
+      lua_createtable(L, s.size(), 0);
+      for (int i = 0; i < s.size(); ++i) {
+        lua_createtable(L, 0, 2);
+        set_field(L, "velocity", factor.mechanism[i].velocity);
+        set_field(L, "rotation", factor.mechanism[i].rotation);
+        lua_rawseti(L, -2, i + 1);
+      }
+      lua_setfield(L, -2, "mechanism");
+    }
+    return 1;
+  });
+}
+
+int w_friction_demand(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance"});
+    const EquilibriumOptions problem = analysis_settings(options).problem;
+    const double tolerance = options.positive("tolerance", 1e-6);
+    if (tolerance >= 1.0) throw ArgError(2, "tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+    const FrictionDemand demand = friction_demand(s, problem, tolerance);
+    const std::vector<Interface>& interfaces = s.interfaces(problem.contact);
+    lua_createtable(L, 0, 7);
+    set_field(L, "friction", demand.friction);
+    set_field(L, "lower", demand.lower);
+    set_string(L, "status", demand.status.c_str());
+    set_field(L, "programs", demand.programs);
+    set_field(L, "iterations", demand.iterations);
+    set_field(L, "seconds", demand.seconds);
+    lua_createtable(L, static_cast<int>(demand.critical.size()), 0);
+    for (size_t k = 0; k < demand.critical.size(); ++k) {
+      const Interface& contact = interfaces[demand.critical[k]];
+      lua_createtable(L, 0, 3);
+      set_field(L, "interface", demand.critical[k] + 1);
+      set_index_field(L, "a", contact.a);
+      set_index_field(L, "b", contact.b);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "critical");
+    return 1;
+  });
+}
+
+}  // namespace
+
+void set_margin_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"load_factor", w_load_factor},
+                                       {"friction_demand", w_friction_demand},
+                                       {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua

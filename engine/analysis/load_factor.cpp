@@ -1,0 +1,371 @@
+#include "analysis/load_factor.hpp"
+
+#include <ClpSimplex.hpp>
+#include <CoinPackedMatrix.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "analysis/equilibrium_program.hpp"
+#include "core/clock.hpp"
+#include "core/error.hpp"
+
+namespace ashlar {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+void load(ClpSimplex& simplex, const EquilibriumProgram& program) {
+  // Explicit sizes: a trailing row or column without entries still counts.
+  CoinPackedMatrix matrix(true, program.row_index.data(), program.column_index.data(),
+                          program.value.data(), static_cast<CoinBigIndex>(program.value.size()));
+  matrix.setDimensions(program.rows, program.columns);
+  const std::vector<double> no_objective(program.columns, 0.0);
+  simplex.setLogLevel(0);
+  simplex.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
+                      no_objective.data(), program.row_lower.data(), program.row_upper.data());
+}
+
+// Clp's status of a feasibility program (no objective). The dual simplex
+// called feasible programs infeasible on fine arches (128 and 200
+// voussoirs), and so may the primal: "infeasible" stands only when the
+// other one, from a slack basis, agrees.
+int solve_checked(ClpSimplex& simplex, int& iterations) {
+  simplex.primal();
+  iterations += simplex.numberIterations();
+  if (simplex.status() != 1) return simplex.status();
+  simplex.allSlackBasis(true);
+  simplex.dual();
+  iterations += simplex.numberIterations();
+  return simplex.status();
+}
+
+const char* failure(int status) {
+  return status == 3 ? "stopped" : "numerical difficulties";
+}
+
+// The scaled right-hand side (6 rows, as applied_force_rhs) of the load that
+// lambda multiplies, per block.
+std::vector<Eigen::Matrix<double, 6, 1>> pattern_rhs(const Structure& structure,
+                                                     const EquilibriumProblem& problem,
+                                                     const LoadFactorSettings& settings) {
+  std::vector<Eigen::Matrix<double, 6, 1>> rhs(structure.size(), Eigen::Matrix<double, 6, 1>::Zero());
+  if (settings.pattern == LoadPattern::body_force) {
+    const Vec3 direction = settings.direction.normalized();
+    for (int j = 0; j < structure.size(); ++j) {
+      const Block& block = structure.block(j);
+      rhs[j] = applied_force_rhs(block.mass() * kGravity * direction, block.centroid(), &block.centroid(),
+                                 problem.weight_unit, problem.length_unit);
+    }
+  } else {
+    for (const PointLoad& load : structure.loads()) {
+      const Vec3& centroid = structure.block(load.block).centroid();
+      rhs[load.block] += applied_force_rhs(load.force, load.at, &centroid, problem.weight_unit,
+                                           problem.length_unit);
+    }
+  }
+  return rhs;
+}
+
+void check_settings(const Structure& structure, const LoadFactorSettings& settings) {
+  if (settings.pattern == LoadPattern::body_force) {
+    const Vec3& d = settings.direction;
+    if (!d.allFinite() || d.norm() == 0.0) {
+      throw InvalidArgument("direction: expected a non-zero finite vector");
+    }
+    if (structure.planar() && std::abs(d.y()) > 1e-12 * d.norm()) {
+      throw InvalidArgument(
+          "direction: has a y component, but the structure is planar (x-z plane); "
+          "call s:set_planar(false) to analyse it in 3D");
+    }
+  } else if (structure.loads().empty()) {
+    throw InvalidArgument("load = 'point_loads': the structure has no point loads (s:add_load)");
+  }
+}
+
+// Velocity at `p` (m) of block j moving as motion[j]; supports stand still.
+Vec3 velocity_at(const Structure& structure, const std::vector<BlockMotion>& motion, int j, const Vec3& p) {
+  if (structure.is_support(j)) return Vec3::Zero();
+  return motion[j].velocity + motion[j].rotation.cross(p - structure.block(j).centroid());
+}
+
+// The collapse mechanism from the balance rows' multipliers: they are the
+// blocks' virtual velocities (a force row's over the unit of force, a
+// moment row's over force times length), up to sign and scale.
+std::vector<BlockMotion> mechanism_of(const Structure& structure, const EquilibriumProblem& problem,
+                                      const double* duals) {
+  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
+  std::vector<BlockMotion> motion(structure.size());
+  double fastest = 0.0;
+  for (int j = 0; j < structure.size(); ++j) {
+    const int first = problem.row_of_block[j];
+    if (first < 0) continue;
+    for (int r = 0; r < problem.block_rows; ++r) {
+      // With this sign the multiplied load does positive work.
+      const double y = -duals[first + r] / problem.weight_unit;
+      if (rows[r] < 3) motion[j].velocity(rows[r]) = y;
+      else motion[j].rotation(rows[r] - 3) = y / problem.length_unit;
+    }
+    fastest = std::max(fastest, motion[j].velocity.norm());
+  }
+  if (fastest <= 0.0) {
+    for (int j = 0; j < structure.size(); ++j) {
+      for (const Vec3& p : structure.block(j).vertices()) {
+        fastest = std::max(fastest, velocity_at(structure, motion, j, p).norm());
+      }
+    }
+  }
+  if (fastest > 0.0) {
+    for (BlockMotion& m : motion) {
+      m.velocity /= fastest;
+      m.rotation /= fastest;
+    }
+  }
+  return motion;
+}
+
+// Interfaces whose vertices move apart in the mechanism, relative to the
+// fastest relative motion anywhere (smaller is numerical noise).
+std::vector<LimitInterface> limit_interfaces(const Structure& structure, const std::vector<Interface>& interfaces,
+                                             const std::vector<BlockMotion>& motion) {
+  constexpr double kMoving = 1e-6, kShare = 1e-3;
+  struct Relative {
+    std::vector<double> opening, slip;
+    double largest = 0.0;
+  };
+  std::vector<Relative> relative(interfaces.size());
+  double fastest = 0.0;
+  for (size_t k = 0; k < interfaces.size(); ++k) {
+    const Interface& contact = interfaces[k];
+    for (const Vec3& p : contact.vertices) {
+      const Vec3 rate = velocity_at(structure, motion, contact.b, p) - velocity_at(structure, motion, contact.a, p);
+      const double opening = rate.dot(contact.normal);
+      relative[k].opening.push_back(opening);
+      relative[k].slip.push_back((rate - opening * contact.normal).norm());
+      relative[k].largest = std::max(relative[k].largest, rate.norm());
+    }
+    fastest = std::max(fastest, relative[k].largest);
+  }
+  std::vector<LimitInterface> limit;
+  for (size_t k = 0; k < interfaces.size(); ++k) {
+    const Relative& r = relative[k];
+    if (!(r.largest > kMoving * fastest)) continue;
+    LimitInterface entry;
+    entry.interface = static_cast<int>(k);
+    const auto [least, most] = std::minmax_element(r.opening.begin(), r.opening.end());
+    entry.opening = *most;
+    entry.slip = *std::max_element(r.slip.begin(), r.slip.end());
+    const bool rotating = *most - *least > kShare * r.largest;
+    const bool slipping = entry.slip > kShare * r.largest;
+    entry.mode = rotating ? (slipping ? LimitMode::hinge_sliding : LimitMode::hinge)
+                          : (slipping ? LimitMode::sliding : LimitMode::separation);
+    Vec3 sum = Vec3::Zero();
+    int count = 0;
+    for (size_t v = 0; v < r.opening.size(); ++v) {
+      if (r.opening[v] - *least <= kShare * r.largest) {
+        sum += interfaces[k].vertices[v];
+        ++count;
+      }
+    }
+    entry.pivot = rotating && count > 0 ? Vec3(sum / count) : interfaces[k].center;
+    limit.push_back(entry);
+  }
+  return limit;
+}
+
+}  // namespace
+
+LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings) {
+  const auto start = Clock::now();
+  check_settings(structure, settings);
+  const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
+  LoadFactor result;
+  if (problem.has_floating_bodies()) {
+    result.status = "floating";
+    result.factor = kNaN;
+    result.seconds = seconds_since(start);
+    return result;
+  }
+  EquilibriumProgram program = equilibrium_program(problem, settings.problem);
+  // The factor's column: A x - lambda e = rhs, e the multiplied load's
+  // right-hand side. Point loads leave the constant side when multiplied.
+  const std::vector<Eigen::Matrix<double, 6, 1>> multiplied = pattern_rhs(structure, problem, settings);
+  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
+  const int factor_column = program.add_column(0.0, 0.0);
+  for (int j = 0; j < structure.size(); ++j) {
+    const int first = problem.row_of_block[j];
+    if (first < 0) continue;
+    for (int r = 0; r < problem.block_rows; ++r) {
+      const double entry = multiplied[j](rows[r]);
+      if (entry == 0.0) continue;
+      program.add_entry(first + r, factor_column, -entry);
+      if (settings.pattern == LoadPattern::point_loads) {
+        program.row_lower[first + r] -= entry;
+        program.row_upper[first + r] -= entry;
+      }
+    }
+  }
+  ClpSimplex simplex;
+  load(simplex, program);
+  // First with no load, which says whether it stands as it is and gives
+  // the maximisation a feasible basis to start from.
+  result.stable = solve_checked(simplex, result.iterations) == 0;
+  simplex.setColumnBounds(factor_column, -COIN_DBL_MAX, COIN_DBL_MAX);
+  simplex.setObjectiveCoefficient(factor_column, -1.0);
+  simplex.primal();
+  result.iterations += simplex.numberIterations();
+  if (simplex.status() == 1) {  // as in solve_checked: only when the dual simplex agrees
+    simplex.allSlackBasis(true);
+    simplex.dual();
+    result.iterations += simplex.numberIterations();
+  }
+  switch (simplex.status()) {
+    case 0:
+      result.factor = simplex.primalColumnSolution()[factor_column];
+      result.mechanism = mechanism_of(structure, problem, simplex.dualRowSolution());
+      result.limit = limit_interfaces(structure, structure.interfaces(settings.problem.contact), result.mechanism);
+      break;
+    case 1:
+      result.status = "infeasible";
+      result.factor = kNaN;
+      break;
+    case 2:
+      result.status = "unbounded";
+      result.factor = kInfinity;
+      break;
+    default:
+      result.status = failure(simplex.status());
+      result.factor = kNaN;
+  }
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+namespace {
+
+// Feasibility programs of one problem at several friction coefficients;
+// each starts from the previous basis of the same shape.
+class FrictionPrograms {
+public:
+  FrictionPrograms(const EquilibriumProblem& problem, EquilibriumOptions options, FrictionDemand& tally)
+      : problem_(problem), options_(std::move(options)), tally_(tally) {}
+
+  // 0: stands, 1: does not, other: Clp's failure status. The scaled
+  // unknowns of the equilibrium found go to `unknowns`.
+  int stands(double friction, std::vector<Eigen::Vector4d>* unknowns = nullptr) {
+    options_.friction = friction;
+    const EquilibriumProgram program = equilibrium_program(problem_, options_);
+    ClpSimplex simplex;
+    load(simplex, program);
+    if (basis_.size() == static_cast<size_t>(program.columns + program.rows)) {
+      simplex.copyinStatus(basis_.data());
+    }
+    const int status = solve_checked(simplex, tally_.iterations);
+    ++tally_.programs;
+    if (status == 0) {
+      basis_.assign(simplex.statusArray(), simplex.statusArray() + program.columns + program.rows);
+      if (unknowns) *unknowns = program.group_unknowns(problem_, simplex.primalColumnSolution());
+    }
+    return status;
+  }
+
+  // The coefficient an equilibrium needs, and the interfaces that need it.
+  double needed(const std::vector<Eigen::Vector4d>& unknowns, std::vector<int>* critical = nullptr) const {
+    std::vector<double> per_interface;
+    double most = 0.0;
+    for (size_t k = 0; k < problem_.groups.size(); ++k) {
+      const ForceGroup& group = problem_.groups[k];
+      if (group.kind != GroupKind::contact_vertex) continue;
+      const Eigen::Vector4d& x = unknowns[k];
+      const double need = friction_needed(options_, x(0), x(2), x(3));
+      most = std::max(most, need);
+      if (per_interface.size() <= static_cast<size_t>(group.source)) per_interface.resize(group.source + 1, 0.0);
+      per_interface[group.source] = std::max(per_interface[group.source], need);
+    }
+    if (critical) {
+      for (size_t k = 0; k < per_interface.size(); ++k) {
+        if (most > 0.0 && per_interface[k] >= (1 - 1e-3) * most) critical->push_back(static_cast<int>(k));
+      }
+    }
+    return most;
+  }
+
+private:
+  const EquilibriumProblem& problem_;
+  EquilibriumOptions options_;
+  FrictionDemand& tally_;
+  std::vector<unsigned char> basis_;
+};
+
+// Past this coefficient a structure that stands only without sliding is
+// called unstable: it leans on contacts with (nearly) no compression.
+constexpr double kLargestDemand = 1e6;
+
+}  // namespace
+
+FrictionDemand friction_demand(const Structure& structure, const EquilibriumOptions& options, double tolerance) {
+  if (!(tolerance > 0.0 && tolerance < 1.0)) {
+    throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+  }
+  const auto start = Clock::now();
+  EquilibriumOptions unbounded = options;
+  unbounded.friction = kInfinity;
+  const EquilibriumProblem problem = build_equilibrium_problem(structure, unbounded);
+  FrictionDemand result;
+  auto finish = [&](const std::string& status, double friction) {
+    result.status = status;
+    result.friction = friction;
+    result.seconds = seconds_since(start);
+    return result;
+  };
+  if (problem.has_floating_bodies()) return finish("floating", kInfinity);
+  FrictionPrograms programs(problem, options, result);
+  std::vector<Eigen::Vector4d> unknowns;
+  int status = programs.stands(kInfinity, &unknowns);
+  if (status == 1) return finish("unstable", kInfinity);
+  if (status != 0) return finish(failure(status), kNaN);
+  double high = programs.needed(unknowns);
+  status = programs.stands(0.0);
+  if (status == 0) return finish("optimal", 0.0);
+  if (status != 1) return finish(failure(status), kNaN);
+  double low = 0.0;
+  if (!std::isfinite(high)) {
+    // The frictionless-in-the-limit equilibrium leaned on a vertex with no
+    // compression: grow a finite coefficient until one stands.
+    high = 1.0;
+    while ((status = programs.stands(high, &unknowns)) == 1 && high < kLargestDemand) {
+      low = high;
+      high *= 4;
+    }
+    if (status == 1) {
+      result.lower = low;
+      return finish("unstable", kInfinity);
+    }
+    if (status != 0) return finish(failure(status), kNaN);
+    high = std::min(high, programs.needed(unknowns));
+  } else {
+    status = programs.stands(high, &unknowns);
+    if (status != 0) return finish(status == 1 ? "numerical difficulties" : failure(status), kNaN);
+  }
+  std::vector<Eigen::Vector4d> at_high = unknowns;
+  while (high - low > tolerance * high) {
+    const double middle = 0.5 * (low + high);
+    status = programs.stands(middle, &unknowns);
+    if (status == 0) {
+      // The equilibrium found may need less than the coefficient tried.
+      high = std::max(low, std::min(middle, programs.needed(unknowns)));
+      at_high = unknowns;
+    } else if (status == 1) {
+      low = middle;
+    } else {
+      return finish(failure(status), kNaN);
+    }
+  }
+  result.lower = low;
+  programs.needed(at_high, &result.critical);
+  return finish("optimal", high);
+}
+
+}  // namespace ashlar

@@ -1,0 +1,98 @@
+// How far a structure is from collapse: the load factor (the largest
+// multiple of a load that it carries, with the collapse mechanism) and the
+// friction demand (the smallest friction coefficient with which it stands).
+//
+// Both work on the program of compression-only equilibria that respect
+// friction (equilibrium_program.hpp), which COIN-OR Clp solves exactly: the
+// load factor is one linear program in the contact forces and the factor;
+// the friction demand, where the coefficient multiplies the unknowns, is a
+// bracketing search over feasibility programs, each warm-started from the
+// last basis. Both are lower-bound (static) answers of limit analysis with
+// the options' friction cone approximation; with sliding they assume
+// associative friction, like the equilibrium analysis.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/equilibrium_problem.hpp"
+
+namespace ashlar {
+
+// What the factor multiplies.
+enum class LoadPattern {
+  body_force,   // a force lambda * weight * direction at every free block's centroid
+                // (a uniform acceleration lambda * g; a tilt by atan(lambda))
+  point_loads,  // the structure's point loads (live); the weights stay (dead)
+};
+
+struct LoadFactorSettings {
+  EquilibriumOptions problem;            // friction, cone approximation, contact detection
+  LoadPattern pattern = LoadPattern::body_force;
+  Vec3 direction = Vec3(1.0, 0.0, 0.0);  // body_force only; normalised; in the x-z plane
+                                         // for a planar structure
+};
+
+// How an interface moves in the collapse mechanism.
+enum class LimitMode {
+  hinge,          // rotates open about an edge or a corner, no slip
+  sliding,        // slips (opening only as much as associative friction dilates)
+  hinge_sliding,  // both
+  separation,     // lifts off as a whole
+};
+
+struct LimitInterface {
+  int interface = -1;          // index into Structure::interfaces(options.contact)
+  LimitMode mode = LimitMode::hinge;
+  // m: mean of the contact vertices that do not open (the hinge's edge or
+  // corner); the interface centre when every vertex moves.
+  Vec3 pivot = Vec3::Zero();
+  double opening = 0.0;        // largest normal separation rate of a vertex (mechanism units)
+  double slip = 0.0;           // largest tangential slip rate of a vertex
+};
+
+// A block's rigid motion in the collapse mechanism, about its centroid.
+// Scaled so that the fastest centroid moves at 1 (a rotation-only
+// mechanism: the fastest vertex); only the shape is meaningful.
+struct BlockMotion {
+  Vec3 velocity = Vec3::Zero();  // of the centroid
+  Vec3 rotation = Vec3::Zero();  // rad per unit
+};
+
+struct LoadFactor {
+  // "optimal", "unbounded" (no load is too much: factor = +inf),
+  // "infeasible" (no multiple of the load lets it stand: factor NaN),
+  // "floating" (a free block with no contact path to a support: NaN),
+  // "stopped" or "numerical difficulties" (Clp failed: NaN).
+  std::string status = "optimal";
+  double factor = 0.0;  // the largest multiple lambda; negative when it needs a push
+  bool stable = false;  // it stands with no load (lambda = 0)
+  std::vector<BlockMotion> mechanism;  // per block, zero for supports; empty unless optimal
+  std::vector<LimitInterface> limit;   // interfaces that move in the mechanism
+  int iterations = 0;                  // simplex pivots
+  double seconds = 0.0;
+};
+
+// Throws InvalidArgument for bad options (a zero direction, a direction out
+// of a planar structure's plane, point_loads with no point loads).
+LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings);
+
+struct FrictionDemand {
+  // "optimal"; "unstable" when it does not stand even without sliding
+  // (friction +inf); "floating" (+inf); "stopped" or "numerical
+  // difficulties" (NaN).
+  std::string status = "optimal";
+  double friction = 0.0;       // the smallest coefficient, to the tolerance (upper end of the bracket)
+  double lower = 0.0;          // the largest coefficient found too small
+  std::vector<int> critical;   // interfaces at the friction limit in the final equilibrium
+  int programs = 0;            // feasibility programs solved
+  int iterations = 0;          // simplex pivots
+  double seconds = 0.0;
+};
+
+// `options.friction` is ignored; the cone approximation (model, sides) is
+// the options'. tolerance: relative width of the final bracket (> 0).
+FrictionDemand friction_demand(const Structure& structure, const EquilibriumOptions& options,
+                               double tolerance = 1e-6);
+
+}  // namespace ashlar

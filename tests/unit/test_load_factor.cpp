@@ -1,0 +1,171 @@
+// Load factor and friction demand against closed-form statics (a block
+// tipping or sliding, a stack, a block on an incline) and against the
+// interior-point analysis's own verdict just inside and outside the limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/equilibrium.hpp"
+#include "analysis/load_factor.hpp"
+#include "test_support.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+constexpr double kNoSliding = std::numeric_limits<double>::infinity();
+
+// Blocks of width b (x) and height h, stacked on a support; planar.
+Structure stack(int count, double b, double h) {
+  Structure s;
+  s.add(box({2.0, 1.0, 0.2}, {0, 0, -0.1}), true);
+  for (int k = 0; k < count; ++k) s.add(box({b, 0.6, h}, {0, 0, (k + 0.5) * h}));
+  s.set_planar(true);
+  return s;
+}
+
+LoadFactorSettings lateral(double friction, const Vec3& direction = Vec3(1, 0, 0)) {
+  LoadFactorSettings settings;
+  settings.problem.friction = friction;
+  settings.direction = direction;
+  return settings;
+}
+
+// Whether it stands with `factor` times each block's weight along `direction`
+// as point loads at the centroids.
+bool stands_with(Structure s, double factor, const Vec3& direction, double friction) {
+  for (int j = 0; j < s.size(); ++j) {
+    if (s.is_support(j)) continue;
+    s.add_load({j, factor * s.block(j).mass() * kGravity * direction, s.block(j).centroid()});
+  }
+  AnalysisSettings settings;
+  settings.problem.friction = friction;
+  return analyze_equilibrium(s, settings).stable;
+}
+
+}  // namespace
+
+TEST(LoadFactor, BlockTipsAtWidthOverHeight) {
+  const Structure s = stack(1, 0.4, 1.2);
+  for (const double sign : {1.0, -1.0}) {
+    const LoadFactor f = load_factor(s, lateral(kNoSliding, Vec3(sign, 0, 0)));
+    ASSERT_EQ(f.status, "optimal");
+    EXPECT_TRUE(f.stable);
+    EXPECT_NEAR(f.factor, 0.4 / 1.2, 1e-9);
+    ASSERT_EQ(f.limit.size(), 1u);
+    EXPECT_EQ(f.limit[0].mode, LimitMode::hinge);
+    EXPECT_NEAR(f.limit[0].pivot.x(), sign * 0.2, 1e-9) << "it tips about the leeward edge";
+    EXPECT_NEAR(f.limit[0].pivot.z(), 0.0, 1e-9);
+    EXPECT_GT(sign * f.mechanism[1].rotation.y(), 0.0) << "the top moves with the load";
+    EXPECT_EQ(f.mechanism[0].velocity.norm(), 0.0);
+  }
+}
+
+TEST(LoadFactor, BlockSlidesAtTheFrictionCoefficient) {
+  const LoadFactor f = load_factor(stack(1, 0.4, 1.2), lateral(0.2));
+  ASSERT_EQ(f.status, "optimal");
+  EXPECT_NEAR(f.factor, 0.2, 1e-9);
+  ASSERT_EQ(f.limit.size(), 1u);
+  EXPECT_EQ(f.limit[0].mode, LimitMode::sliding);
+  EXPECT_GT(f.mechanism[1].velocity.x(), 0.0);
+}
+
+TEST(LoadFactor, StackTipsAsAWhole) {
+  // The top k blocks tip about their lowest joint at b / (k h): the whole
+  // stack, about the support, goes first.
+  const LoadFactor f = load_factor(stack(3, 0.5, 0.4), lateral(kNoSliding));
+  ASSERT_EQ(f.status, "optimal");
+  EXPECT_NEAR(f.factor, 0.5 / 1.2, 1e-9);
+  ASSERT_EQ(f.limit.size(), 1u);
+  EXPECT_EQ(f.limit[0].mode, LimitMode::hinge);
+  EXPECT_NEAR(f.limit[0].pivot.z(), 0.0, 1e-9);
+}
+
+TEST(LoadFactor, GravityNeverTopplesItAndLiftingOffTakesOneG) {
+  const Structure s = stack(2, 0.4, 1.2);
+  EXPECT_EQ(load_factor(s, lateral(0.7, Vec3(0, 0, -1))).status, "unbounded");
+  const LoadFactor lift = load_factor(s, lateral(0.7, Vec3(0, 0, 2)));
+  ASSERT_EQ(lift.status, "optimal");
+  EXPECT_NEAR(lift.factor, 1.0, 1e-9);
+  // Weightless at one g, any motion that lifts it is a mechanism: the
+  // simplex picks one of them.
+  EXPECT_GT(lift.mechanism[1].velocity.z(), 0.0);
+}
+
+TEST(LoadFactor, PointLoadTipsTheBlock) {
+  Structure s = stack(1, 0.4, 1.2);
+  const double weight = s.block(1).mass() * kGravity;
+  s.add_load({1, Vec3(1000, 0, 0), Vec3(0, 0, 1.2)});
+  LoadFactorSettings settings = lateral(kNoSliding);
+  settings.pattern = LoadPattern::point_loads;
+  const LoadFactor f = load_factor(s, settings);
+  ASSERT_EQ(f.status, "optimal");
+  EXPECT_NEAR(f.factor, weight * 0.2 / (1000 * 1.2), 1e-9);
+}
+
+TEST(LoadFactor, ArchAgreesWithTheAnalysisOnEitherSide) {
+  const Structure s = semicircular_arch(16, 0.9);
+  for (const double friction : {kNoSliding, 0.4}) {
+    const LoadFactor f = load_factor(s, lateral(friction));
+    ASSERT_EQ(f.status, "optimal");
+    ASSERT_GT(f.factor, 0.05);
+    EXPECT_TRUE(stands_with(s, f.factor * (1 - 1e-4), Vec3(1, 0, 0), friction)) << friction;
+    EXPECT_FALSE(stands_with(s, f.factor * (1 + 1e-4), Vec3(1, 0, 0), friction)) << friction;
+    if (std::isinf(friction)) {
+      // No sliding: a four-hinge mechanism, hinges alternating between the
+      // intrados and the extrados.
+      ASSERT_EQ(f.limit.size(), 4u);
+      for (const LimitInterface& limit : f.limit) EXPECT_EQ(limit.mode, LimitMode::hinge);
+    }
+  }
+}
+
+TEST(LoadFactor, ReportsWhatItCannotAnswer) {
+  Structure floating = stack(1, 0.4, 1.2);
+  floating.add(box({0.2, 0.2, 0.2}, {5, 0, 5}));
+  EXPECT_EQ(load_factor(floating, lateral(0.7)).status, "floating");
+  EXPECT_TRUE(contains(error_of([] { load_factor(stack(1, 1, 1), lateral(0.7, Vec3(0, 0, 0))); }),
+                       "direction"));
+  EXPECT_TRUE(contains(error_of([] { load_factor(stack(1, 1, 1), lateral(0.7, Vec3(1, 1, 0))); }),
+                       "planar"));
+  LoadFactorSettings settings;
+  settings.pattern = LoadPattern::point_loads;
+  EXPECT_TRUE(contains(error_of([&] { load_factor(stack(1, 1, 1), settings); }), "no point loads"));
+}
+
+TEST(FrictionDemand, BlockOnAnInclineNeedsTheTangentOfItsSlope) {
+  for (const double slope : {0.1, 0.35, 0.6}) {
+    Structure s;
+    const Vec3 axis(0, 1, 0), origin(0, 0, 0);
+    s.add(std::make_shared<const Block>(make_box({3.0, 1.0, 0.2}, {0, 0, -0.1}).rotated(axis, slope, origin)), true);
+    s.add(std::make_shared<const Block>(make_box({1.0, 0.6, 0.4}, {0, 0, 0.2}).rotated(axis, slope, origin)));
+    const FrictionDemand demand = friction_demand(s, EquilibriumOptions{}, 1e-9);
+    ASSERT_EQ(demand.status, "optimal");
+    EXPECT_NEAR(demand.friction, std::tan(slope), 1e-7 * std::tan(slope)) << slope;
+    EXPECT_LE(demand.lower, demand.friction);
+    ASSERT_EQ(demand.critical.size(), 1u);
+  }
+}
+
+TEST(FrictionDemand, ArchAgreesWithTheAnalysis) {
+  const Structure s = semicircular_arch(16, 0.65);
+  const FrictionDemand demand = friction_demand(s, EquilibriumOptions{});
+  ASSERT_EQ(demand.status, "optimal");
+  ASSERT_GT(demand.friction, 0.05);
+  AnalysisSettings settings;
+  settings.problem.friction = demand.friction * (1 + 1e-4);
+  EXPECT_TRUE(analyze_equilibrium(s, settings).stable);
+  settings.problem.friction = demand.friction * (1 - 1e-4);
+  EXPECT_FALSE(analyze_equilibrium(s, settings).stable);
+}
+
+TEST(FrictionDemand, NoneOnFlatGroundAndNoneEnoughWhenItFalls) {
+  const FrictionDemand flat = friction_demand(stack(2, 0.4, 0.4), EquilibriumOptions{});
+  EXPECT_EQ(flat.status, "optimal");
+  EXPECT_EQ(flat.friction, 0.0);
+  const FrictionDemand thin = friction_demand(semicircular_arch(16, 0.3), EquilibriumOptions{});
+  EXPECT_EQ(thin.status, "unstable");
+  EXPECT_TRUE(std::isinf(thin.friction));
+  EXPECT_TRUE(contains(error_of([] { friction_demand(stack(1, 1, 1), EquilibriumOptions{}, 0.0); }),
+                       "tolerance"));
+}
