@@ -19,6 +19,7 @@
 #include "wrap_gradient.hpp"
 #include "wrap_margins.hpp"
 #include "wrap_optimize.hpp"
+#include "wrap_search.hpp"
 #include "wrap_weights.hpp"
 
 namespace ashlar::lua {
@@ -188,6 +189,7 @@ int ashlar_open_library(lua_State* L) {
   set_draw_functions(L);
   set_fea_functions(L);
   set_margin_functions(L);
+  set_search_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

@@ -1,0 +1,483 @@
+// ashlar.tilt, ashlar.geometric_factor and ashlar.refine: a structure turned
+// on a tilt table, the smallest value of a model's parameter at which the
+// model stands (Heyman's geometric factor of safety), and the coarsest
+// discretisation of a model whose answer has settled.
+//
+// The two searches ask Lua functions (the model, the criterion, the metric)
+// about one value at a time, so they are written here as small Lua-free
+// functions over callbacks (find_threshold, refine_count), followed by the
+// bindings that feed them.
+#include "wrap_search.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/equilibrium.hpp"
+#include "core/clock.hpp"
+#include "core/error.hpp"
+#include "luax.hpp"
+#include "structure/structure_transform.hpp"
+#include "wrap_Result.hpp"
+#include "wrap_Structure.hpp"
+
+namespace ashlar::lua {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// ----------------------------------------------------------------------------
+// The smallest value at which a model stands.
+
+enum class ThresholdStatus { converged, stable_at_lower, unstable_at_upper, max_analyses };
+
+const char* threshold_status_name(ThresholdStatus status) {
+  switch (status) {
+    case ThresholdStatus::converged: return "converged";
+    case ThresholdStatus::stable_at_lower: return "stable_at_lower";
+    case ThresholdStatus::unstable_at_upper: return "unstable_at_upper";
+    case ThresholdStatus::max_analyses: return "max_analyses";
+  }
+  return "converged";
+}
+
+struct ThresholdSettings {
+  double tolerance = 1e-6;  // relative width of the final bracket
+  double floor = 0.0;       // smallest value tried, > 0
+  double ceiling = 0.0;     // largest value tried
+  int max_evaluations = 200;
+};
+
+// The last bracket: `unstable` falls and `stable` stands; NaN where no such
+// value was met.
+struct Threshold {
+  ThresholdStatus status = ThresholdStatus::converged;
+  double unstable = kNaN, stable = kNaN;
+  int evaluations = 0;
+};
+
+// The smallest value in [floor, ceiling] at which stands(value) holds, for
+// a criterion that is monotone in the value (what stands at v stands above
+// v; otherwise this finds one change from falling to standing). From
+// `start` it halves while the model stands, or doubles while it falls, to
+// bracket the change, never past floor or ceiling; then it bisects the
+// bracket until its width is `tolerance` of its upper end.
+Threshold find_threshold(double start, const ThresholdSettings& settings,
+                         const std::function<bool(double)>& stands) {
+  Threshold t;
+  auto probe = [&](double value) {
+    ++t.evaluations;
+    (stands(value) ? t.stable : t.unstable) = value;
+  };
+  auto exhausted = [&] { return t.evaluations >= settings.max_evaluations; };
+  auto finish = [&](ThresholdStatus status) {
+    t.status = status;
+    return t;
+  };
+  probe(start);
+  while (std::isnan(t.unstable)) {
+    if (t.stable <= settings.floor) return finish(ThresholdStatus::stable_at_lower);
+    if (exhausted()) return finish(ThresholdStatus::max_analyses);
+    probe(std::max(0.5 * t.stable, settings.floor));
+  }
+  while (std::isnan(t.stable)) {
+    if (t.unstable >= settings.ceiling) return finish(ThresholdStatus::unstable_at_upper);
+    if (exhausted()) return finish(ThresholdStatus::max_analyses);
+    probe(std::min(2.0 * t.unstable, settings.ceiling));
+  }
+  while (t.stable - t.unstable > settings.tolerance * t.stable) {
+    if (exhausted()) return finish(ThresholdStatus::max_analyses);
+    probe(0.5 * (t.unstable + t.stable));
+  }
+  return finish(ThresholdStatus::converged);
+}
+
+// ----------------------------------------------------------------------------
+// The coarsest count whose answer has settled.
+
+struct RefineSettings {
+  double tolerance = 0.01;  // relative
+  int start = 4;
+  double growth = 2.0;  // >= 1
+  int max = 1024;
+  int confirm = 1;  // consecutive settled changes needed to stop
+};
+
+struct RefineStep {
+  int count = 0;
+  double value = 0.0;
+  double change = kNaN;  // relative to the previous step's value; NaN for the first
+  double seconds = 0.0;
+};
+
+struct Refinement {
+  std::vector<RefineStep> history;
+  size_t adequate = 0;  // index in history
+  bool converged = false;
+};
+
+// |value - reference| / |reference|; a zero reference is only matched exactly.
+double relative_difference(double value, double reference) {
+  if (reference == 0.0) return value == 0.0 ? 0.0 : kInfinity;
+  return std::abs(value - reference) / std::abs(reference);
+}
+
+// Evaluates metric(count) for count = start, then max(n + 1, ceil(n *
+// growth)) capped at max, until `confirm` consecutive changes are within
+// the tolerance (converged) or max was evaluated. The adequate count is the
+// coarsest from which every value, its own included, is within the
+// tolerance of the finest: counts are not monotone (hinges form only at
+// joints), so a lucky coarse count followed by a poor one does not qualify.
+// Unconverged, the finest count is the only one known to be adequate.
+Refinement refine_count(const RefineSettings& settings, const std::function<double(int)>& metric) {
+  Refinement out;
+  int settled = 0;
+  for (int count = settings.start;;) {
+    const auto start = Clock::now();
+    RefineStep step;
+    step.count = count;
+    step.value = metric(count);
+    step.seconds = seconds_since(start);
+    if (!out.history.empty()) {
+      step.change = relative_difference(out.history.back().value, step.value);
+      settled = step.change <= settings.tolerance ? settled + 1 : 0;
+    }
+    out.history.push_back(step);
+    if (settled >= settings.confirm) {
+      out.converged = true;
+      break;
+    }
+    if (count >= settings.max) break;
+    const double next = std::max(count + 1.0, std::ceil(count * settings.growth));
+    count = static_cast<int>(std::min(next, static_cast<double>(settings.max)));
+  }
+  out.adequate = out.history.size() - 1;
+  if (out.converged) {
+    const double reference = out.history.back().value;
+    while (out.adequate > 0 &&
+           relative_difference(out.history[out.adequate - 1].value, reference) <=
+               settings.tolerance) {
+      --out.adequate;
+    }
+  }
+  return out;
+}
+
+// ----------------------------------------------------------------------------
+// Lua helpers.
+
+// A number as Lua prints it ("0.3", not "0.29999999999999999").
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.14g", value);
+  return text;
+}
+
+// "nil", or the value's type with an article: "a number", "a Block".
+std::string a_value(lua_State* L, int idx) {
+  if (lua_isnil(L, idx)) return "nil";
+  const std::string name = type_name(L, idx);
+  return (std::string("aeiouAEIOU").find(name[0]) != std::string::npos ? "an " : "a ") + name;
+}
+
+// An integer field of the table on top of the stack (set_field's would be a float).
+void set_integer(lua_State* L, const char* key, lua_Integer value) {
+  lua_pushinteger(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void check_function(lua_State* L, int arg, const char* what, const char* expected) {
+  if (lua_type(L, arg) != LUA_TFUNCTION) {
+    throw ArgError(arg, std::string(what) + ": expected " + expected + ", got " + type_name(L, arg));
+  }
+}
+
+// Calls the function pushed below its `nargs` arguments, leaving one result;
+// its error becomes an Error that starts with `call` (e.g. "refine:
+// metric_fn(s, 16)") and keeps the error's own file:line.
+void call_lua(lua_State* L, int nargs, const std::string& call) {
+  try {
+    protected_call(L, nargs, 1);
+  } catch (const std::runtime_error& e) {
+    throw Error(call + " failed: " + e.what());
+  }
+}
+
+// The Structure on top of the stack, which `call` returned.
+std::shared_ptr<Structure> returned_structure(lua_State* L, const std::string& call) {
+  if (type_name(L, -1) != "Structure") {
+    throw Error(call + " returned " + a_value(L, -1) + ", expected a Structure");
+  }
+  try {
+    return luax_checkStructure(L, -1);
+  } catch (const ArgError& e) {
+    throw Error(call + " returned a Structure that cannot be used: " + e.what());
+  }
+}
+
+// ----------------------------------------------------------------------------
+// ashlar.tilt
+
+int w_tilt(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const double angle = check_number(L, 2, "angle");
+    const OptionTable options(L, 3, {"axis", "origin"});
+    const Vec3 axis = options.vec3("axis").value_or(Vec3::UnitY());
+    if (axis.norm() == 0.0) throw ArgError(3, "axis: expected a non-zero vector, got {0, 0, 0}");
+    const Vec3 origin = options.vec3("origin").value_or(base_center(s));
+    luax_pushStructure(L, std::make_shared<Structure>(rotated(s, axis, angle, origin)));
+    return 1;
+  });
+}
+
+// ----------------------------------------------------------------------------
+// ashlar.geometric_factor
+
+// Without a positive `lower` the search goes no lower than this fraction of
+// the current value: a model that still stands there has a geometric factor
+// of a million or more, as good as unbounded, and no generator is asked for
+// a zero or negative value.
+constexpr double kFloorFraction = 1e-6;
+
+// The history entry of one value, set into the table on top of the stack.
+struct Probe {
+  double value = 0.0;
+  bool stable = false;
+  bool analysed = false;  // by the default criterion; then the next three hold
+  double infeasibility = 0.0;
+  int iterations = 0;
+  SolverStatus status = SolverStatus::converged;
+  double seconds = 0.0;
+};
+
+void push_probe(lua_State* L, const Probe& probe) {
+  lua_createtable(L, 0, 6);
+  set_field(L, "value", probe.value);
+  set_boolean(L, "stable", probe.stable);
+  if (probe.analysed) {
+    set_field(L, "infeasibility", probe.infeasibility);
+    set_integer(L, "iterations", probe.iterations);
+    set_string(L, "status", status_name(probe.status));
+  }
+  set_field(L, "seconds", probe.seconds);
+}
+
+int w_geometric_factor(lua_State* L) {
+  return guard(L, [&] {
+    const auto start = Clock::now();
+    check_function(L, 1, "model_fn", "a function(value) returning a Structure");
+    const double value = check_number(L, 2, "value");
+    if (value <= 0.0) {
+      throw ArgError(2, "value: expected a number > 0 (the parameter's current value), got " +
+                            number_text(value));
+    }
+    const OptionTable options(
+        L, 3, {ASHLAR_ANALYSIS_OPTIONS, "lower", "upper", "max_analyses", "stands"});
+    AnalysisSettings settings = analysis_settings(options);
+    // `tolerance` is the bracket's here; the analyses keep the solver's own.
+    settings.solver.tolerance = InteriorPointSettings{}.tolerance;
+    ThresholdSettings search;
+    search.tolerance = options.positive("tolerance", search.tolerance);
+    if (search.tolerance >= 1.0) {
+      throw ArgError(3, "tolerance: expected a number in (0, 1) (relative width of the final "
+                        "bracket), got " + number_text(search.tolerance));
+    }
+    const double lower = options.positive("lower", 0.0, true);
+    if (lower >= value) {
+      throw ArgError(3, "lower: expected a number >= 0 and < value (" + number_text(value) +
+                            "), got " + number_text(lower));
+    }
+    search.floor = lower > 0.0 ? lower : kFloorFraction * value;
+    search.ceiling = options.number("upper", 1e3 * value);
+    if (search.ceiling <= value) {
+      throw ArgError(3, "upper: expected a number > value (" + number_text(value) + "), got " +
+                            number_text(search.ceiling));
+    }
+    search.max_evaluations = static_cast<int>(
+        options.whole("max_analyses", 1, INT_MAX, "a whole number >= 1").value_or(200));
+    int criterion = 0;  // stack index of `stands`, 0 for the default
+    if (options.push("stands") != LUA_TNIL) {
+      if (lua_type(L, -1) != LUA_TFUNCTION) {
+        throw ArgError(3, "stands: expected a function(s, value) returning true when s stands, "
+                          "got " + type_name(L, -1));
+      }
+      criterion = lua_gettop(L);
+      for (const char* key : {ASHLAR_ANALYSIS_OPTIONS}) {
+        if (std::string(key) != "tolerance" && options.has(key)) {
+          throw ArgError(3, std::string(key) + ": analysis options apply to the default "
+                                               "criterion; with stands, analyse in that function");
+        }
+      }
+    } else {
+      lua_pop(L, 1);
+    }
+
+    lua_newtable(L);
+    const int history = lua_gettop(L);
+    // Successive models differ only in their dimensions, so the last
+    // optimum is a good start: 3-28 % fewer interior-point iterations per
+    // search on arches, vaults, a dome and a flying buttress. The solver
+    // itself starts cold when the unknowns' sizes differ (another number of
+    // contact vertices, cables or analysed blocks); a result of a structure
+    // with another number of blocks is not offered at all, as
+    // ashlar.analyze would refuse it.
+    std::optional<EquilibriumResult> previous;
+    int previous_blocks = -1;
+    const auto stands = [&](double v) {
+      const auto probe_start = Clock::now();
+      const std::string call = "geometric_factor: model_fn(" + number_text(v) + ")";
+      lua_pushvalue(L, 1);
+      lua_pushnumber(L, v);
+      call_lua(L, 1, call);
+      const std::shared_ptr<Structure> s = returned_structure(L, call);
+      Probe probe;
+      probe.value = v;
+      if (criterion) {
+        lua_pushvalue(L, criterion);
+        lua_pushvalue(L, -2);
+        lua_pushnumber(L, v);
+        const std::string asked = "geometric_factor: stands(s, " + number_text(v) + ")";
+        call_lua(L, 2, asked);
+        if (!lua_isboolean(L, -1)) {
+          throw Error(asked + " returned " + a_value(L, -1) + ", expected a boolean");
+        }
+        probe.stable = lua_toboolean(L, -1);
+        lua_pop(L, 1);
+      } else {
+        const bool warm = previous && previous_blocks == s->size();
+        EquilibriumResult result = analyze_equilibrium(*s, settings, warm ? &*previous : nullptr);
+        probe.analysed = true;
+        probe.stable = result.stable;
+        probe.infeasibility = result.infeasibility;
+        probe.iterations = result.iterations;
+        probe.status = result.status;
+        // A failed solve is no starting point.
+        if (result.status == SolverStatus::converged || result.status == SolverStatus::inaccurate) {
+          previous = std::move(result);
+          previous_blocks = s->size();
+        }
+      }
+      lua_pop(L, 1);  // the structure
+      probe.seconds = seconds_since(probe_start);
+      push_probe(L, probe);
+      lua_rawseti(L, history, static_cast<lua_Integer>(lua_rawlen(L, history) + 1));
+      return probe.stable;
+    };
+    const Threshold found = find_threshold(value, search, stands);
+
+    lua_createtable(L, 0, 8);
+    const bool has_minimum = !std::isnan(found.stable);
+    if (has_minimum) set_field(L, "minimum", found.stable);
+    set_field(L, "factor", has_minimum ? value / found.stable : 0.0);
+    set_string(L, "status", threshold_status_name(found.status));
+    if (!std::isnan(found.unstable)) set_field(L, "lower", found.unstable);
+    if (!std::isnan(found.stable)) set_field(L, "upper", found.stable);
+    set_integer(L, "analyses", found.evaluations);
+    lua_pushvalue(L, history);
+    lua_setfield(L, -2, "history");
+    set_field(L, "seconds", seconds_since(start));
+    return 1;
+  });
+}
+
+// ----------------------------------------------------------------------------
+// ashlar.refine
+
+int w_refine(lua_State* L) {
+  return guard(L, [&] {
+    const auto start = Clock::now();
+    check_function(L, 1, "model_fn", "a function(n) returning a Structure of n parts");
+    check_function(L, 2, "metric_fn", "a function(s, n) returning a number");
+    const OptionTable options(L, 3, {"tolerance", "start", "growth", "max", "confirm"});
+    RefineSettings settings;
+    settings.tolerance = options.positive("tolerance", settings.tolerance);
+    settings.start = static_cast<int>(
+        options.whole("start", 1, INT_MAX, "a whole number >= 1").value_or(settings.start));
+    settings.max = static_cast<int>(
+        options.whole("max", 1, INT_MAX, "a whole number >= 1").value_or(settings.max));
+    if (settings.start > settings.max) {
+      throw ArgError(3, "start: expected a whole number <= max (" + std::to_string(settings.max) +
+                            "), got " + std::to_string(settings.start));
+    }
+    settings.growth = options.number("growth", settings.growth);
+    if (settings.growth < 1.0) {
+      throw ArgError(3, "growth: expected a number >= 1 (the factor from one count to the "
+                        "next), got " + number_text(settings.growth));
+    }
+    settings.confirm = static_cast<int>(
+        options.whole("confirm", 1, INT_MAX, "a whole number >= 1").value_or(settings.confirm));
+
+    // Each count's model, in history order, kept for the result.
+    lua_newtable(L);
+    const int models = lua_gettop(L);
+    const auto metric = [&](int n) {
+      const std::string count = std::to_string(n);
+      const std::string call = "refine: model_fn(" + count + ")";
+      lua_pushvalue(L, 1);
+      lua_pushinteger(L, n);
+      call_lua(L, 1, call);
+      returned_structure(L, call);
+      lua_pushvalue(L, -1);
+      lua_rawseti(L, models, static_cast<lua_Integer>(lua_rawlen(L, models) + 1));
+      const std::string measured = "refine: metric_fn(s, " + count + ")";
+      lua_pushvalue(L, 2);
+      lua_insert(L, -2);
+      lua_pushinteger(L, n);
+      call_lua(L, 2, measured);
+      const bool number = lua_type(L, -1) == LUA_TNUMBER;
+      const double value = number ? lua_tonumber(L, -1) : kNaN;
+      if (!std::isfinite(value)) {
+        throw Error(measured + " returned " +
+                    (number ? number_text(value) + ", expected a finite number"
+                            : a_value(L, -1) + ", expected a number"));
+      }
+      lua_pop(L, 1);
+      return value;
+    };
+    const Refinement refinement = refine_count(settings, metric);
+
+    const RefineStep& adequate = refinement.history[refinement.adequate];
+    lua_createtable(L, 0, 7);
+    set_integer(L, "count", adequate.count);
+    lua_rawgeti(L, models, static_cast<lua_Integer>(refinement.adequate + 1));
+    lua_setfield(L, -2, "structure");
+    set_field(L, "value", adequate.value);
+    set_boolean(L, "converged", refinement.converged);
+    set_field(L, "reference", refinement.history.back().value);
+    lua_createtable(L, static_cast<int>(refinement.history.size()), 0);
+    for (size_t k = 0; k < refinement.history.size(); ++k) {
+      const RefineStep& step = refinement.history[k];
+      lua_createtable(L, 0, 4);
+      set_integer(L, "count", step.count);
+      set_field(L, "value", step.value);
+      if (!std::isnan(step.change)) set_field(L, "change", step.change);
+      set_field(L, "seconds", step.seconds);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "history");
+    set_field(L, "seconds", seconds_since(start));
+    return 1;
+  });
+}
+
+}  // namespace
+
+void set_search_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"tilt", w_tilt},
+                                       {"geometric_factor", w_geometric_factor},
+                                       {"refine", w_refine},
+                                       {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua
