@@ -3,24 +3,21 @@
 // model stands (Heyman's geometric factor of safety), and the coarsest
 // discretisation of a model whose answer has settled.
 //
-// The two searches ask Lua functions (the model, the criterion, the metric)
-// about one value at a time, so they are written here as small Lua-free
-// functions over callbacks (find_threshold, refine_count), followed by the
-// bindings that feed them.
+// The searches themselves are the engine's (analysis/parameter_search.hpp);
+// their callbacks here call the Lua functions (the model, the criterion, the
+// metric) and warm-start the default criterion's analyses.
 #include "wrap_search.hpp"
 
-#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/parameter_search.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "luax.hpp"
@@ -33,144 +30,6 @@ namespace ashlar::lua {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// ----------------------------------------------------------------------------
-// The smallest value at which a model stands.
-
-enum class ThresholdStatus { converged, stable_at_lower, unstable_at_upper, max_analyses };
-
-const char* threshold_status_name(ThresholdStatus status) {
-  switch (status) {
-    case ThresholdStatus::converged: return "converged";
-    case ThresholdStatus::stable_at_lower: return "stable_at_lower";
-    case ThresholdStatus::unstable_at_upper: return "unstable_at_upper";
-    case ThresholdStatus::max_analyses: return "max_analyses";
-  }
-  return "converged";
-}
-
-struct ThresholdSettings {
-  double tolerance = 1e-6;  // relative width of the final bracket
-  double floor = 0.0;       // smallest value tried, > 0
-  double ceiling = 0.0;     // largest value tried
-  int max_evaluations = 200;
-};
-
-// The last bracket: `unstable` falls and `stable` stands; NaN where no such
-// value was met.
-struct Threshold {
-  ThresholdStatus status = ThresholdStatus::converged;
-  double unstable = kNaN, stable = kNaN;
-  int evaluations = 0;
-};
-
-// The smallest value in [floor, ceiling] at which stands(value) holds, for
-// a criterion that is monotone in the value (what stands at v stands above
-// v; otherwise this finds one change from falling to standing). From
-// `start` it halves while the model stands, or doubles while it falls, to
-// bracket the change, never past floor or ceiling; then it bisects the
-// bracket until its width is `tolerance` of its upper end.
-Threshold find_threshold(double start, const ThresholdSettings& settings,
-                         const std::function<bool(double)>& stands) {
-  Threshold t;
-  auto probe = [&](double value) {
-    ++t.evaluations;
-    (stands(value) ? t.stable : t.unstable) = value;
-  };
-  auto exhausted = [&] { return t.evaluations >= settings.max_evaluations; };
-  auto finish = [&](ThresholdStatus status) {
-    t.status = status;
-    return t;
-  };
-  probe(start);
-  while (std::isnan(t.unstable)) {
-    if (t.stable <= settings.floor) return finish(ThresholdStatus::stable_at_lower);
-    if (exhausted()) return finish(ThresholdStatus::max_analyses);
-    probe(std::max(0.5 * t.stable, settings.floor));
-  }
-  while (std::isnan(t.stable)) {
-    if (t.unstable >= settings.ceiling) return finish(ThresholdStatus::unstable_at_upper);
-    if (exhausted()) return finish(ThresholdStatus::max_analyses);
-    probe(std::min(2.0 * t.unstable, settings.ceiling));
-  }
-  while (t.stable - t.unstable > settings.tolerance * t.stable) {
-    if (exhausted()) return finish(ThresholdStatus::max_analyses);
-    probe(0.5 * (t.unstable + t.stable));
-  }
-  return finish(ThresholdStatus::converged);
-}
-
-// ----------------------------------------------------------------------------
-// The coarsest count whose answer has settled.
-
-struct RefineSettings {
-  double tolerance = 0.01;  // relative
-  int start = 4;
-  double growth = 2.0;  // >= 1
-  int max = 1024;
-  int confirm = 1;  // consecutive settled changes needed to stop
-};
-
-struct RefineStep {
-  int count = 0;
-  double value = 0.0;
-  double change = kNaN;  // relative to the previous step's value; NaN for the first
-  double seconds = 0.0;
-};
-
-struct Refinement {
-  std::vector<RefineStep> history;
-  size_t adequate = 0;  // index in history
-  bool converged = false;
-};
-
-// |value - reference| / |reference|; a zero reference is only matched exactly.
-double relative_difference(double value, double reference) {
-  if (reference == 0.0) return value == 0.0 ? 0.0 : kInfinity;
-  return std::abs(value - reference) / std::abs(reference);
-}
-
-// Evaluates metric(count) for count = start, then max(n + 1, ceil(n *
-// growth)) capped at max, until `confirm` consecutive changes are within
-// the tolerance (converged) or max was evaluated. The adequate count is the
-// coarsest from which every value, its own included, is within the
-// tolerance of the finest: counts are not monotone (hinges form only at
-// joints), so a lucky coarse count followed by a poor one does not qualify.
-// Unconverged, the finest count is the only one known to be adequate.
-Refinement refine_count(const RefineSettings& settings, const std::function<double(int)>& metric) {
-  Refinement out;
-  int settled = 0;
-  for (int count = settings.start;;) {
-    const auto start = Clock::now();
-    RefineStep step;
-    step.count = count;
-    step.value = metric(count);
-    step.seconds = seconds_since(start);
-    if (!out.history.empty()) {
-      step.change = relative_difference(out.history.back().value, step.value);
-      settled = step.change <= settings.tolerance ? settled + 1 : 0;
-    }
-    out.history.push_back(step);
-    if (settled >= settings.confirm) {
-      out.converged = true;
-      break;
-    }
-    if (count >= settings.max) break;
-    const double next = std::max(count + 1.0, std::ceil(count * settings.growth));
-    count = static_cast<int>(std::min(next, static_cast<double>(settings.max)));
-  }
-  out.adequate = out.history.size() - 1;
-  if (out.converged) {
-    const double reference = out.history.back().value;
-    while (out.adequate > 0 &&
-           relative_difference(out.history[out.adequate - 1].value, reference) <=
-               settings.tolerance) {
-      --out.adequate;
-    }
-  }
-  return out;
-}
 
 // ----------------------------------------------------------------------------
 // Lua helpers.
@@ -249,25 +108,15 @@ int w_tilt(lua_State* L) {
 // a zero or negative value.
 constexpr double kFloorFraction = 1e-6;
 
-// The history entry of one value, set into the table on top of the stack.
-struct Probe {
-  double value = 0.0;
-  bool stable = false;
-  bool analysed = false;  // by the default criterion; then the next three hold
-  double infeasibility = 0.0;
-  int iterations = 0;
-  SolverStatus status = SolverStatus::converged;
-  double seconds = 0.0;
-};
-
-void push_probe(lua_State* L, const Probe& probe) {
+// The history entry of one value, pushed as a table.
+void push_probe(lua_State* L, const ThresholdProbe& probe) {
   lua_createtable(L, 0, 6);
   set_field(L, "value", probe.value);
-  set_boolean(L, "stable", probe.stable);
-  if (probe.analysed) {
-    set_field(L, "infeasibility", probe.infeasibility);
-    set_integer(L, "iterations", probe.iterations);
-    set_string(L, "status", status_name(probe.status));
+  set_boolean(L, "stable", probe.verdict.stands);
+  if (const auto& analysis = probe.verdict.analysis) {
+    set_field(L, "infeasibility", analysis->infeasibility);
+    set_integer(L, "iterations", analysis->iterations);
+    set_string(L, "status", status_name(analysis->status));
   }
   set_field(L, "seconds", probe.seconds);
 }
@@ -322,8 +171,6 @@ int w_geometric_factor(lua_State* L) {
       lua_pop(L, 1);
     }
 
-    lua_newtable(L);
-    const int history = lua_gettop(L);
     // Successive models differ only in their dimensions, so the last
     // optimum is a good start: 3-28 % fewer interior-point iterations per
     // search on arches, vaults, a dome and a flying buttress. The solver
@@ -334,14 +181,12 @@ int w_geometric_factor(lua_State* L) {
     std::optional<EquilibriumResult> previous;
     int previous_blocks = -1;
     const auto stands = [&](double v) {
-      const auto probe_start = Clock::now();
       const std::string call = "geometric_factor: model_fn(" + number_text(v) + ")";
       lua_pushvalue(L, 1);
       lua_pushnumber(L, v);
       call_lua(L, 1, call);
       const std::shared_ptr<Structure> s = returned_structure(L, call);
-      Probe probe;
-      probe.value = v;
+      ThresholdVerdict verdict;
       if (criterion) {
         lua_pushvalue(L, criterion);
         lua_pushvalue(L, -2);
@@ -351,16 +196,13 @@ int w_geometric_factor(lua_State* L) {
         if (!lua_isboolean(L, -1)) {
           throw Error(asked + " returned " + a_value(L, -1) + ", expected a boolean");
         }
-        probe.stable = lua_toboolean(L, -1);
+        verdict.stands = lua_toboolean(L, -1);
         lua_pop(L, 1);
       } else {
         const bool warm = previous && previous_blocks == s->size();
         EquilibriumResult result = analyze_equilibrium(*s, settings, warm ? &*previous : nullptr);
-        probe.analysed = true;
-        probe.stable = result.stable;
-        probe.infeasibility = result.infeasibility;
-        probe.iterations = result.iterations;
-        probe.status = result.status;
+        verdict.stands = result.stable;
+        verdict.analysis = VerdictAnalysis{result.infeasibility, result.iterations, result.status};
         // A failed solve is no starting point.
         if (result.status == SolverStatus::converged || result.status == SolverStatus::inaccurate) {
           previous = std::move(result);
@@ -368,10 +210,7 @@ int w_geometric_factor(lua_State* L) {
         }
       }
       lua_pop(L, 1);  // the structure
-      probe.seconds = seconds_since(probe_start);
-      push_probe(L, probe);
-      lua_rawseti(L, history, static_cast<lua_Integer>(lua_rawlen(L, history) + 1));
-      return probe.stable;
+      return verdict;
     };
     const Threshold found = find_threshold(value, search, stands);
 
@@ -383,7 +222,11 @@ int w_geometric_factor(lua_State* L) {
     if (!std::isnan(found.unstable)) set_field(L, "lower", found.unstable);
     if (!std::isnan(found.stable)) set_field(L, "upper", found.stable);
     set_integer(L, "analyses", found.evaluations);
-    lua_pushvalue(L, history);
+    lua_createtable(L, static_cast<int>(found.history.size()), 0);
+    for (size_t k = 0; k < found.history.size(); ++k) {
+      push_probe(L, found.history[k]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
     lua_setfield(L, -2, "history");
     set_field(L, "seconds", seconds_since(start));
     return 1;
