@@ -13,14 +13,7 @@ local NO_SLIDING = { friction = math.huge }
 -- Whether the arch stands with `factor` times each voussoir's weight along +x, as
 -- point loads at the centroids (ashlar.analyze: the interior-point solver).
 local function stands_with(arch_options, factor, options)
-  local loaded = models.arch(arch_options)
-  for i = 1, #loaded do
-    if not loaded:is_support(i) then
-      local b = loaded:block(i)
-      loaded:add_load{ block = i, force = { factor * b:mass() * 9.81, 0, 0 }, at = b:centroid() }
-    end
-  end
-  return ashlar.analyze(loaded, options).stable
+  return ashlar.analyze(support.push_laterally(models.arch(arch_options), factor), options).stable
 end
 
 describe("ashlar.load_factor", function()

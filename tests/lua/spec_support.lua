@@ -111,4 +111,17 @@ function support.write_file(path, text)
   assert(file:close())
 end
 
+-- Adds to every free block of s a point load of `factor` times its weight
+-- along +x at its centroid: a lateral body force, for checking load factors
+-- and tilts with ashlar.analyze. Returns s.
+function support.push_laterally(s, factor)
+  for i = 1, #s do
+    if not s:is_support(i) then
+      local b = s:block(i)
+      s:add_load{ block = i, force = { factor * b:mass() * 9.81, 0, 0 }, at = b:centroid() }
+    end
+  end
+  return s
+end
+
 return support

@@ -54,13 +54,7 @@ describe("tilt", function()
     -- The same verdicts from horizontal loads of tan(angle) times each
     -- block's weight at its centroid, untilted.
     local function stands_pushed(factor)
-      local pushed = models.stack{ blocks = 2, offset = 0.45 }
-      for i = 1, #pushed do
-        if not pushed:is_support(i) then
-          local block = pushed:block(i)
-          pushed:add_load{ block = i, force = { factor * block:mass() * 9.81, 0, 0 }, at = block:centroid() }
-        end
-      end
+      local pushed = support.push_laterally(models.stack{ blocks = 2, offset = 0.45 }, factor)
       return ashlar.analyze(pushed, NO_SLIDING).stable
     end
     assert.is_true(stands_pushed(math.tan(tipping - 1e-3)))
