@@ -187,6 +187,7 @@ int w_Result_index(lua_State* L) {
     else if (is("factorizations")) lua_pushinteger(L, r.factorizations);
     else if (is("seconds")) lua_pushnumber(L, r.seconds);
     else if (is("imbalance_without_tension")) lua_pushnumber(L, r.imbalance_without_tension);
+    else if (is("borderline")) lua_pushboolean(L, r.borderline);
     else if (is("timings")) {
       lua_createtable(L, 0, 4);
       set_field(L, "setup", r.timings.setup);

@@ -151,6 +151,9 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   // converged optimum (whose tension is then needed) proves instability.
   const bool floating = problem.has_floating_bodies();
   result.stable = !floating && result.imbalance_without_tension <= settings.stable_tolerance;
+  result.borderline = !floating &&
+                      result.imbalance_without_tension > settings.stable_tolerance * kBorderlineBelow &&
+                      result.imbalance_without_tension <= settings.stable_tolerance * kBorderlineAbove;
   // Floating blocks cannot be balanced at all; a numerical failure (also what
   // a problem with no equilibrium even with tension, e.g. no friction under
   // a sideways load, ends in) leaves no usable equilibrium either.

@@ -21,6 +21,14 @@ struct AnalysisSettings {
   double stable_tolerance = 1e-6;
 };
 
+// A verdict is borderline when imbalance_without_tension lies between these
+// multiples of stable_tolerance (1e-9 to 1e-5 by default): a stable verdict
+// whose forces still needed tension far above the solver's noise (about
+// 1e-11 for a structure that stands with room to spare), or an unstable one
+// within the accuracy of an inaccurate solve (about 1e-5).
+constexpr double kBorderlineBelow = 1e-3;
+constexpr double kBorderlineAbove = 10.0;
+
 // Forces through one interface, acting on block b from block a (N, m).
 struct InterfaceForces {
   int a = -1, b = -1;
@@ -70,6 +78,14 @@ struct EquilibriumResult {
   // equilibrium (see AnalysisSettings::stable_tolerance), which it is
   // compared with.
   double imbalance_without_tension = 0.0;
+  // The verdict is at the resolution of the analysis: the imbalance lies in
+  // (kBorderlineBelow, kBorderlineAbove] x stable_tolerance. A stable
+  // verdict then rests on forces that still needed some tension (the
+  // structure may be unstable by less than the tolerance, e.g. a block past
+  // its support's edge by 1e-7 of its width); an unstable one on so little
+  // tension that a less accurate solve could reverse it. Never for floating
+  // blocks.
+  bool borderline = false;
   std::vector<int> floating_blocks;        // 0-based; they make the structure unstable
   std::vector<Eigen::Vector4d> vertex_forces;  // (c, s, f_u, f_v) in N per contact vertex
   std::vector<Vec3> vertex_positions;          // m

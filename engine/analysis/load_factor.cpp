@@ -28,6 +28,19 @@ void load(ClpSimplex& simplex, const EquilibriumProgram& program) {
                       no_objective.data(), program.row_lower.data(), program.row_upper.data());
 }
 
+// Clp solves a scaled copy; "optimal" with secondary status 2-4 means the
+// unscaled solution breaks bounds or rows beyond the tolerance (by up to
+// 4e-4 of the mean weight near a tipping point: a confident wrong factor).
+// Solve again without scaling, from the basis found.
+int unscaled_status(ClpSimplex& simplex, int& iterations) {
+  if (simplex.status() == 0 && simplex.secondaryStatus() >= 2 && simplex.secondaryStatus() <= 4) {
+    simplex.scaling(0);
+    simplex.primal();
+    iterations += simplex.numberIterations();
+  }
+  return simplex.status();
+}
+
 // Clp's status of a feasibility program (no objective). The dual simplex
 // called feasible programs infeasible on fine arches (128 and 200
 // voussoirs), and so may the primal: "infeasible" stands only when the
@@ -35,11 +48,11 @@ void load(ClpSimplex& simplex, const EquilibriumProgram& program) {
 int solve_checked(ClpSimplex& simplex, int& iterations) {
   simplex.primal();
   iterations += simplex.numberIterations();
-  if (simplex.status() != 1) return simplex.status();
+  if (unscaled_status(simplex, iterations) != 1) return simplex.status();
   simplex.allSlackBasis(true);
   simplex.dual();
   iterations += simplex.numberIterations();
-  return simplex.status();
+  return unscaled_status(simplex, iterations);
 }
 
 const char* failure(int status) {
@@ -216,10 +229,11 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   simplex.setObjectiveCoefficient(factor_column, -1.0);
   simplex.primal();
   result.iterations += simplex.numberIterations();
-  if (simplex.status() == 1) {  // as in solve_checked: only when the dual simplex agrees
+  if (unscaled_status(simplex, result.iterations) == 1) {  // as in solve_checked
     simplex.allSlackBasis(true);
     simplex.dual();
     result.iterations += simplex.numberIterations();
+    unscaled_status(simplex, result.iterations);
   }
   switch (simplex.status()) {
     case 0:
