@@ -1,5 +1,7 @@
 #include "analysis/equilibrium_program.hpp"
 
+#include <ClpSimplex.hpp>
+#include <CoinPackedMatrix.hpp>
 #include <cmath>
 #include <limits>
 
@@ -97,6 +99,28 @@ EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const 
     }
   }
   return program;
+}
+
+void load_program(ClpSimplex& simplex, const EquilibriumProgram& program) {
+  // Explicit sizes: a trailing row or column without entries still counts.
+  CoinPackedMatrix matrix(true, program.row_index.data(), program.column_index.data(),
+                          program.value.data(), static_cast<CoinBigIndex>(program.value.size()));
+  matrix.setDimensions(program.rows, program.columns);
+  const std::vector<double> no_objective(program.columns, 0.0);
+  simplex.setLogLevel(0);
+  simplex.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
+                      no_objective.data(), program.row_lower.data(), program.row_upper.data());
+}
+
+const char* clp_failure(int status) {
+  switch (status) {
+    case 3:
+      return "stopped";
+    case 4:
+      return "numerical difficulties";
+    default:
+      return "unexpected simplex status";
+  }
 }
 
 }  // namespace ashlar

@@ -10,6 +10,8 @@
 
 #include "analysis/equilibrium_problem.hpp"
 
+class ClpSimplex;
+
 namespace ashlar {
 
 // Triplets and bounds in the layout Clp's loadProblem takes. Rows are the
@@ -56,5 +58,12 @@ std::vector<Eigen::Vector3d> friction_edges(const EquilibriumOptions& options);
 double friction_needed(const EquilibriumOptions& options, double c, double f_u, double f_v);
 
 EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const EquilibriumOptions& options);
+
+// Loads the program into `simplex` with no objective and Clp's log off.
+void load_program(ClpSimplex& simplex, const EquilibriumProgram& program);
+
+// The status name of a Clp status that is no answer: "stopped" (3),
+// "numerical difficulties" (4), else "unexpected simplex status".
+const char* clp_failure(int status);
 
 }  // namespace ashlar

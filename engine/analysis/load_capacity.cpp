@@ -40,17 +40,6 @@ EquilibriumProgram capacity_program(const Structure& structure, const Equilibriu
   return program;
 }
 
-const char* failure(int status) {
-  switch (status) {
-    case 3:
-      return "stopped";
-    case 4:
-      return "numerical difficulties";
-    default:
-      return "unexpected simplex status";
-  }
-}
-
 // Simplex pivots allowed for a largest multiple before the barrier takes over.
 constexpr int kSimplexBudget = 50;
 // The first cap on a largest multiple under the barrier, raised a
@@ -212,13 +201,9 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   LoadCapacity result;
   result.min.assign(structure.size(), kNaN);
   result.max.assign(structure.size(), kNaN);
-  const CoinPackedMatrix matrix(true, program.row_index.data(), program.column_index.data(),
-                                program.value.data(), static_cast<CoinBigIndex>(program.value.size()));
   ClpSimplex capacity;
-  capacity.setLogLevel(0);
-  const std::vector<double> no_objective(program.columns, 0.0);
-  capacity.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
-                       no_objective.data(), program.row_lower.data(), program.row_upper.data());
+  load_program(capacity, program);
+  const CoinPackedMatrix matrix = *capacity.matrix();
   // The as-built program from scratch by the dual simplex (about half the
   // primal's pivots on domes).
   capacity.dual();
@@ -227,7 +212,7 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   result.simplex_iterations = capacity.numberIterations();
   result.stable = as_built == 0 && !problem.has_floating_bodies();
   if (as_built > 2) {
-    result.status = failure(as_built);
+    result.status = clp_failure(as_built);
     result.seconds = seconds_since(start);
     return result;
   }
@@ -260,7 +245,7 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
     result.max[blocks[k]] = bounds[k].max;
     result.programs += bounds[k].programs;
     result.simplex_iterations += bounds[k].pivots;
-    if (bounds[k].failure != 0 && result.status == "optimal") result.status = failure(bounds[k].failure);
+    if (bounds[k].failure != 0 && result.status == "optimal") result.status = clp_failure(bounds[k].failure);
   }
   result.seconds = seconds_since(start);
   return result;

@@ -1,7 +1,6 @@
 #include "analysis/load_factor.hpp"
 
 #include <ClpSimplex.hpp>
-#include <CoinPackedMatrix.hpp>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,17 +15,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-void load(ClpSimplex& simplex, const EquilibriumProgram& program) {
-  // Explicit sizes: a trailing row or column without entries still counts.
-  CoinPackedMatrix matrix(true, program.row_index.data(), program.column_index.data(),
-                          program.value.data(), static_cast<CoinBigIndex>(program.value.size()));
-  matrix.setDimensions(program.rows, program.columns);
-  const std::vector<double> no_objective(program.columns, 0.0);
-  simplex.setLogLevel(0);
-  simplex.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
-                      no_objective.data(), program.row_lower.data(), program.row_upper.data());
-}
 
 // Clp solves a scaled copy; "optimal" with secondary status 2-4 means the
 // unscaled solution breaks bounds or rows beyond the tolerance (by up to
@@ -53,10 +41,6 @@ int solve_checked(ClpSimplex& simplex, int& iterations) {
   simplex.dual();
   iterations += simplex.numberIterations();
   return unscaled_status(simplex, iterations);
-}
-
-const char* failure(int status) {
-  return status == 3 ? "stopped" : "numerical difficulties";
 }
 
 // The scaled right-hand side (6 rows, as applied_force_rhs) of the load that
@@ -221,7 +205,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
     }
   }
   ClpSimplex simplex;
-  load(simplex, program);
+  load_program(simplex, program);
   // First with no load, which says whether it stands as it is and gives
   // the maximisation a feasible basis to start from.
   result.stable = solve_checked(simplex, result.iterations) == 0;
@@ -250,7 +234,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
       result.factor = kInfinity;
       break;
     default:
-      result.status = failure(simplex.status());
+      result.status = clp_failure(simplex.status());
       result.factor = kNaN;
   }
   result.seconds = seconds_since(start);
@@ -272,7 +256,7 @@ public:
     options_.friction = friction;
     const EquilibriumProgram program = equilibrium_program(problem_, options_);
     ClpSimplex simplex;
-    load(simplex, program);
+    load_program(simplex, program);
     if (basis_.size() == static_cast<size_t>(program.columns + program.rows)) {
       simplex.copyinStatus(basis_.data());
     }
@@ -339,11 +323,11 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   std::vector<Eigen::Vector4d> unknowns;
   int status = programs.stands(kInfinity, &unknowns);
   if (status == 1) return finish("unstable", kInfinity);
-  if (status != 0) return finish(failure(status), kNaN);
+  if (status != 0) return finish(clp_failure(status), kNaN);
   double high = programs.needed(unknowns);
   status = programs.stands(0.0);
   if (status == 0) return finish("optimal", 0.0);
-  if (status != 1) return finish(failure(status), kNaN);
+  if (status != 1) return finish(clp_failure(status), kNaN);
   double low = 0.0;
   if (!std::isfinite(high)) {
     // The frictionless-in-the-limit equilibrium leaned on a vertex with no
@@ -357,11 +341,11 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
       result.lower = low;
       return finish("unstable", kInfinity);
     }
-    if (status != 0) return finish(failure(status), kNaN);
+    if (status != 0) return finish(clp_failure(status), kNaN);
     high = std::min(high, programs.needed(unknowns));
   } else {
     status = programs.stands(high, &unknowns);
-    if (status != 0) return finish(status == 1 ? "numerical difficulties" : failure(status), kNaN);
+    if (status != 0) return finish(status == 1 ? "numerical difficulties" : clp_failure(status), kNaN);
   }
   std::vector<Eigen::Vector4d> at_high = unknowns;
   while (high - low > tolerance * high) {
@@ -374,7 +358,7 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     } else if (status == 1) {
       low = middle;
     } else {
-      return finish(failure(status), kNaN);
+      return finish(clp_failure(status), kNaN);
     }
   }
   result.lower = low;
