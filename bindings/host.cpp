@@ -8,16 +8,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
-#include <system_error>
 
 #include <unistd.h>
 
 #include <lua.hpp>
 
-#include "ashlar_lua.hpp"
+#include "core/interrupt.hpp"
 #include "core/version.hpp"
+#include "script_state.hpp"
+#include "study/cluster.hpp"
 
 namespace {
 
@@ -115,6 +115,7 @@ void stop_at_hook(lua_State* L, lua_Debug*) {
 // error is raised from the hook at the next instruction Lua runs.
 void on_interrupt(int signal_number) {
   std::signal(signal_number, SIG_DFL);  // a second Ctrl-C kills a script stuck in C code
+  ashlar::interrupt_requested() = true;  // for C++ loops that run no Lua, e.g. a study's coordinator
   lua_sethook(g_running_state, stop_at_hook,
               LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
 }
@@ -202,39 +203,6 @@ bool script_is_stdin(const CommandLine& command_line) {
   // `ashlar -- -` names a file called "-".
   return std::strcmp(command_line.argv[script], "-") == 0 &&
          std::strcmp(command_line.argv[script - 1], "--") != 0;
-}
-
-// Lets a script `require` the modules beside it wherever it is run from.
-void prepend_script_folder_to_path(lua_State* L, const char* script) {
-  namespace fs = std::filesystem;
-  fs::path folder = fs::path(script).parent_path();
-  if (folder.empty()) folder = ".";
-  std::error_code ignored;  // a relative folder still works while the cwd stays
-  const fs::path absolute = fs::absolute(folder, ignored);
-  if (!absolute.empty()) folder = absolute.lexically_normal();
-  std::string directory = folder.string();
-  if (directory.size() > 1 && directory.back() == '/') directory.pop_back();
-
-  lua_getglobal(L, "package");
-  lua_getfield(L, -1, "path");
-  const std::string path = directory + "/?.lua;" + directory + "/?/init.lua;" +
-                           (lua_tostring(L, -1) ? lua_tostring(L, -1) : "");
-  lua_pop(L, 1);
-  lua_pushlstring(L, path.data(), path.size());
-  lua_setfield(L, -2, "path");
-  lua_pop(L, 1);
-}
-
-// Global `arg` as lua.c builds it: arg[0] is the script, arg[1..] its
-// arguments, negative indices the interpreter and the options before it.
-void create_arg_table(lua_State* L, const CommandLine& command_line) {
-  const int script = command_line.script < command_line.argc ? command_line.script : 0;
-  lua_createtable(L, command_line.argc - script - 1, script + 1);
-  for (int i = 0; i < command_line.argc; ++i) {
-    lua_pushstring(L, command_line.argv[i]);
-    lua_rawseti(L, -2, i - script);
-  }
-  lua_setglobal(L, "arg");
 }
 
 int run_script(lua_State* L, const CommandLine& command_line) {
@@ -333,20 +301,14 @@ void run_interactive(lua_State* L) {
 int run_host(lua_State* L) {
   const auto& command_line = *static_cast<const CommandLine*>(lua_touserdata(L, 1));
   luaL_checkversion(L);
-  luaL_openlibs(L);
-  // The same collector mode as stock lua5.4, so scripts time alike in both.
-  lua_gc(L, LUA_GCGEN, 0, 0);
-
-  lua_getglobal(L, "package");
-  lua_getfield(L, -1, "preload");
-  lua_pushcfunction(L, ashlar_open_library);
-  lua_setfield(L, -2, "ashlar");
-  lua_pop(L, 2);
-  ashlar_add_model_path(L);
   const bool has_script = command_line.script < command_line.argc;
-  if (has_script && !script_is_stdin(command_line))
-    prepend_script_folder_to_path(L, command_line.argv[command_line.script]);
-  create_arg_table(L, command_line);
+  const bool script_is_file = has_script && !script_is_stdin(command_line);
+  ashlar::lua::set_up_state(L, script_is_file ? command_line.argv[command_line.script] : nullptr);
+  ashlar::lua::ScriptInvocation invocation;
+  invocation.argv.assign(command_line.argv, command_line.argv + command_line.argc);
+  invocation.script = command_line.script;
+  ashlar::lua::create_arg_table(L, invocation.argv, invocation.script);
+  if (script_is_file) ashlar::lua::remember_script(L, invocation);
 
   if (command_line.show_version) print_version();
   bool succeeded = run_options(L, command_line);
@@ -370,6 +332,8 @@ int run_host(lua_State* L) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const std::string cluster_warning = ashlar::cluster::join_if_launched(&argc, &argv);
+  if (!cluster_warning.empty()) std::fprintf(stderr, "%s%s\n", kErrorPrefix, cluster_warning.c_str());
   CommandLine command_line = parse_command_line(argc, argv);
   if (!command_line.error.empty()) {
     std::fprintf(stderr, "%s%s\n", kErrorPrefix, command_line.error.c_str());
@@ -391,5 +355,8 @@ int main(int argc, char** argv) {
   const bool succeeded = status == LUA_OK && lua_toboolean(L, -1);
   report(L, status);
   lua_close(L);
+  // One rank failing alone would leave the others waiting for it.
+  if (!succeeded) ashlar::cluster::abort_job(EXIT_FAILURE);
+  ashlar::cluster::leave();
   return succeeded ? EXIT_SUCCESS : EXIT_FAILURE;
 }

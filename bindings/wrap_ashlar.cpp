@@ -20,6 +20,7 @@
 #include "wrap_margins.hpp"
 #include "wrap_optimize.hpp"
 #include "wrap_search.hpp"
+#include "wrap_study.hpp"
 #include "wrap_weights.hpp"
 
 namespace ashlar::lua {
@@ -176,6 +177,7 @@ int ashlar_open_library(lua_State* L) {
   register_Structure(L);
   register_Result(L);
   register_FeaResult(L);
+  register_Study(L);
   lua_newtable(L);
   lua_pushstring(L, ashlar::version());
   lua_setfield(L, -2, "version");
@@ -190,6 +192,7 @@ int ashlar_open_library(lua_State* L) {
   set_fea_functions(L);
   set_margin_functions(L);
   set_search_functions(L);
+  set_study_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

@@ -1,0 +1,65 @@
+// Where a study's runs are kept: a SQLite database with one table per study
+// (a column per parameter and per returned field, plus id, run_status,
+// run_error, run_seconds, run_worker, run_finished) and two bookkeeping
+// tables, ashlar_studies and ashlar_columns, that remember each study's
+// parameters and which columns hold booleans.
+//
+// Every change is one transaction in WAL mode, so a process killed at any
+// instant (kill -9 included) leaves every recorded run and no partial one;
+// a finished row is recorded once: recording skips rows already finished.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "study/parameter_rows.hpp"
+#include "study/study_table.hpp"
+
+struct sqlite3;
+
+namespace ashlar::study {
+
+class StudyStore {
+public:
+  // Opens (creating if missing) the database at `path`; an empty path is a
+  // private in-memory database. read_only opens an existing file without
+  // creating or changing anything. Throws IoError naming the path.
+  explicit StudyStore(const std::string& path, bool read_only = false);
+  ~StudyStore();
+  StudyStore(const StudyStore&) = delete;
+  StudyStore& operator=(const StudyStore&) = delete;
+
+  // Opens study `name` ([A-Za-z0-9_-], at most 64 characters) for the given
+  // rows: creates its table when new, adds the rows it does not hold yet
+  // (rows match by parameter values) and returns the table of these rows, in
+  // their order, with what earlier runs recorded. rerun_errors forgets the
+  // outcome of rows that ended in error so they run again. Throws
+  // InvalidArgument when the stored study has other parameter names.
+  StudyTable open_study(const std::string& name, const ParameterRows& rows, bool rerun_errors = false);
+
+  // Every row of a study as stored (for reading results without running).
+  // Throws InvalidArgument when there is no such study.
+  StudyTable read_study(const std::string& name);
+
+  // Records finished runs of study `name` in one transaction: returned
+  // fields not seen before become columns. Rows already finished are left
+  // as they are. Field names must pass column_name_problem.
+  void record(const std::string& name, const std::vector<Outcome>& outcomes);
+
+  const std::string& path() const { return path_; }
+
+private:
+  struct StudyColumns;
+  StudyColumns& columns_of(const std::string& name);
+  StudyTable read_rows(const std::string& name);
+
+  std::string path_;
+  sqlite3* db_ = nullptr;
+  std::vector<std::unique_ptr<StudyColumns>> columns_;
+};
+
+// Empty when `name` may name a study, otherwise why not.
+std::string study_name_problem(const std::string& name);
+
+}  // namespace ashlar::study
