@@ -172,9 +172,12 @@ StudyStore::~StudyStore() { sqlite3_close(db_); }
 StudyStore::StudyColumns& StudyStore::columns_of(const std::string& name) {
   for (auto& columns : columns_)
     if (columns->study == name) return *columns;
+  const std::string missing = "no study '" + name + "' in '" + path_ + "'";
+  Statement bookkeeping(db_, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'ashlar_studies'");
+  if (!bookkeeping.step()) throw InvalidArgument(missing);
   Statement study(db_, "SELECT parameters FROM ashlar_studies WHERE name = ?");
   study.bind(1, name);
-  if (!study.step()) throw InvalidArgument("no study '" + name + "' in '" + path_ + "'");
+  if (!study.step()) throw InvalidArgument(missing);
   auto columns = std::make_unique<StudyColumns>();
   columns->study = name;
   Statement select(db_, "SELECT name, role, kind FROM ashlar_columns WHERE study = ? ORDER BY position");
