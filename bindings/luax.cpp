@@ -350,6 +350,13 @@ std::optional<bool> OptionTable::boolean(const char* key) const {
   return value;
 }
 
+int image_size(const OptionTable& options, const char* key, int fallback) {
+  const std::optional<lua_Integer> value =
+      options.whole(key, 1, LUA_MAXINTEGER, "a positive whole number of pixels");
+  // Large values reach the engine's range check, not an int overflow.
+  return value ? static_cast<int>(std::min<lua_Integer>(*value, 1 << 30)) : fallback;
+}
+
 void protected_call(lua_State* L, int nargs, int nresults) {
   if (lua_pcall(L, nargs, nresults, 0) != LUA_OK) {
     std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)

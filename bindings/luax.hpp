@@ -116,6 +116,10 @@ private:
   std::string prefix_;
 };
 
+// An image size option: a positive whole number of px (pt for vector
+// formats), `fallback` when absent; the engine checks its range.
+int image_size(const OptionTable& options, const char* key, int fallback);
+
 // Calls the function at stack index idx with `nargs` values already pushed
 // above it; on a Lua error throws std::runtime_error with its message.
 // Leaves `nresults` results on the stack.

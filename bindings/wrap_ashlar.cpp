@@ -12,6 +12,7 @@
 #include "wrap_Block.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
+#include "wrap_chart.hpp"
 #include "wrap_colors.hpp"
 #include "wrap_draw.hpp"
 #include "wrap_fea.hpp"
@@ -189,6 +190,7 @@ int ashlar_open_library(lua_State* L) {
   set_weights_functions(L);
   set_force_flow_functions(L);
   set_draw_functions(L);
+  set_chart_functions(L);
   set_fea_functions(L);
   set_margin_functions(L);
   set_search_functions(L);

@@ -2,7 +2,6 @@
 // (colour-map legend images).
 #include "wrap_draw.hpp"
 
-#include <algorithm>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -17,15 +16,6 @@
 
 namespace ashlar::lua {
 namespace {
-
-// An image size option: a positive whole number of px (pt for SVG); the
-// engine checks its range.
-int image_size(const OptionTable& options, const char* key, int fallback) {
-  const std::optional<lua_Integer> value =
-      options.whole(key, 1, LUA_MAXINTEGER, "a positive whole number of pixels");
-  // Large values reach the engine's range check, not an int overflow.
-  return value ? static_cast<int>(std::min<lua_Integer>(*value, 1 << 30)) : fallback;
-}
 
 // The `view` option: "front" (looking along +y at the x-z plane), "side"
 // (looking along -x at the y-z plane) or a horizontal direction {x, y, z}.

@@ -1,33 +1,26 @@
 // Elevation drawings and colour-map legends with cairo.
 //
-// Both render into memory (the SVG surface writes to a stream, the image
-// surface is encoded as PNG into a string), so the file is written whole by
-// write_file_atomically or not at all. Blocks are drawn face by face: every
-// face turned towards the viewer is projected and painted, farthest first
-// (painter's algorithm on the face centroids), which is exact for the
-// extruded planar models and a fair picture of 3D ones. Sizes that depend
-// on the image (margins, fonts, line widths) grow with its smaller side so
-// that a larger image looks the same, only sharper.
+// Both are written whole or not at all (io/cairo_canvas). Blocks are drawn
+// face by face: every face turned towards the viewer is projected and
+// painted, farthest first (painter's algorithm on the face centroids), which
+// is exact for the extruded planar models and a fair picture of 3D ones.
+// Sizes that depend on the image (margins, fonts, line widths) grow with its
+// smaller side so that a larger image looks the same, only sharper.
 #include "io/drawing.hpp"
 #include "io/force_glyphs.hpp"
-
-#include <cairo-svg.h>
-#include <cairo.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <limits>
-#include <memory>
-#include <new>
 #include <sstream>
 
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/option_checks.hpp"
+#include "io/cairo_canvas.hpp"
 #include "io/color_map.hpp"
+#include "io/option_checks.hpp"
 
 namespace ashlar {
 namespace {
@@ -55,14 +48,9 @@ const Rgb kTensionColor{0.9, 0.1, 0.1};
 // ---------------------------------------------------------------------------
 // Files
 
-enum class DrawingFormat { svg, png };
-
-DrawingFormat format_for(const std::string& path, const std::string& what) {
-  const std::string extension = file_extension(path);
-  if (extension == "svg") return DrawingFormat::svg;
-  if (extension == "png") return DrawingFormat::png;
-  throw InvalidArgument(what + ": cannot tell the format of '" + path +
-                        "' from its extension; use .svg or .png");
+// The formats a drawing can be written in: .svg or .png.
+ImageFormat drawing_format(const std::string& path, const std::string& what) {
+  return image_format(path, {ImageFormat::svg, ImageFormat::png}, what);
 }
 
 void check_size(int width, int height, const std::string& what) {
@@ -73,52 +61,6 @@ void check_size(int width, int height, const std::string& what) {
                             "], got " + std::to_string(width) + " x " + std::to_string(height));
     }
   }
-}
-
-cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
-  // No exception may unwind through cairo's C frames.
-  try {
-    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-  } catch (const std::bad_alloc&) {
-    return CAIRO_STATUS_NO_MEMORY;
-  }
-  return CAIRO_STATUS_SUCCESS;
-}
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* surface) const { cairo_surface_destroy(surface); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* cr) const { cairo_destroy(cr); }
-};
-
-// Paints a white image of the given size with `paint` and writes it to path
-// atomically in the given format. `paint` must not throw.
-void render_file(const std::string& path, DrawingFormat format, int width, int height,
-                 const std::string& what, const std::function<void(cairo_t*)>& paint) {
-  std::string bytes;
-  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
-      format == DrawingFormat::svg
-          ? cairo_svg_surface_create_for_stream(append_to_string, &bytes, width, height)
-          : cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
-  cairo_status_t status = cairo_surface_status(surface.get());
-  if (status == CAIRO_STATUS_SUCCESS) {
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
-    cairo_set_source_rgb(cr.get(), 1.0, 1.0, 1.0);
-    cairo_paint(cr.get());
-    paint(cr.get());
-    status = cairo_status(cr.get());
-  }
-  if (status == CAIRO_STATUS_SUCCESS && format == DrawingFormat::png) {
-    status = cairo_surface_write_to_png_stream(surface.get(), append_to_string, &bytes);
-  }
-  // Finishing the SVG surface writes its last part into `bytes`.
-  cairo_surface_finish(surface.get());
-  if (status == CAIRO_STATUS_SUCCESS) status = cairo_surface_status(surface.get());
-  if (status != CAIRO_STATUS_SUCCESS) {
-    throw IoError(what + ": cannot draw '" + path + "': " + cairo_status_to_string(status));
-  }
-  write_file_atomically(path, bytes);
 }
 
 // ---------------------------------------------------------------------------
@@ -138,32 +80,8 @@ struct Metrics {
   }
 };
 
-void set_color(cairo_t* cr, const Rgb& color) {
-  cairo_set_source_rgb(cr, color.r, color.g, color.b);
-}
-
 Rgb darker(const Rgb& color, double factor) {
   return {color.r * factor, color.g * factor, color.b * factor};
-}
-
-void set_font(cairo_t* cr, double size) {
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-double text_width(cairo_t* cr, const std::string& text) {
-  cairo_text_extents_t extents;
-  cairo_text_extents(cr, text.c_str(), &extents);
-  return extents.x_advance;
-}
-
-// Draws text with its anchor at (x, y): align_x 0 puts its left end there,
-// 0.5 its middle, 1 its right end; the text's capital height is centred on y.
-void show_text(cairo_t* cr, const std::string& text, double x, double y, double align_x) {
-  cairo_text_extents_t capital;
-  cairo_text_extents(cr, "H", &capital);
-  cairo_move_to(cr, x - align_x * text_width(cr, text), y - capital.y_bearing / 2);
-  cairo_show_text(cr, text.c_str());
 }
 
 void move_or_line(cairo_t* cr, const Vec2& p, bool first) {
@@ -711,7 +629,7 @@ ElevationProjection elevation_projection(const Structure& structure,
 
 void draw_elevation(const Structure& structure, const std::string& path,
                     const ElevationOptions& options) {
-  const DrawingFormat format = format_for(path, "draw");
+  const ImageFormat format = drawing_format(path, "draw");
   check_options(structure, options);
   const ElevationProjection projection = elevation_projection(structure, options);
   const ImageRect fitted = covered_rect(projection, fitted_points(structure));
@@ -745,7 +663,7 @@ std::vector<LegendTick> legend_ticks(double lo, double hi, int count) {
 }
 
 void draw_legend(const std::string& path, const LegendOptions& options) {
-  const DrawingFormat format = format_for(path, "legend");
+  const ImageFormat format = drawing_format(path, "legend");
   check_legend(options);
   const int width = options.width != 0 ? options.width : (options.vertical ? 300 : 600);
   const int height = options.height != 0 ? options.height : (options.vertical ? 600 : 150);

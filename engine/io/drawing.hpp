@@ -8,17 +8,13 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "io/image_rect.hpp"
 #include "io/mesh_io.hpp"
 #include "structure/structure.hpp"
 
 namespace ashlar {
 
 struct EquilibriumResult;
-
-// A rectangle of an image (px), y down.
-struct ImageRect {
-  double left = 0.0, top = 0.0, width = 0.0, height = 0.0;
-};
 
 // Orthographic projection of 3D points onto a vertical plane, scaled and
 // shifted into an image rectangle: the elevation seen by a viewer looking

@@ -1,0 +1,161 @@
+// ashlar.chart: the option table's rows become engine ChartRows, the engine
+// splits them into series and draws them.
+#include "wrap_chart.hpp"
+
+#include <string>
+#include <vector>
+
+#include "io/chart.hpp"
+#include "io/chart_rows.hpp"
+#include "luax.hpp"
+
+namespace ashlar::lua {
+namespace {
+
+std::string required_string(const OptionTable& options, const char* key, const char* what) {
+  const std::optional<std::string> value = options.string(key);
+  if (!value) throw ArgError(options.arg(), std::string(key) + ": required, " + what);
+  return *value;
+}
+
+// A column name or a list of them; empty when absent.
+std::vector<std::string> column_names(const OptionTable& options, const char* key) {
+  lua_State* L = options.state();
+  const int type = options.push(key);
+  std::vector<std::string> names;
+  const std::string expected =
+      std::string(key) + ": expected a column name or a list of them, got ";
+  if (type == LUA_TSTRING) {
+    names.push_back(lua_tostring(L, -1));
+  } else if (type == LUA_TTABLE) {
+    const lua_Unsigned count = lua_rawlen(L, -1);
+    if (count == 0) throw ArgError(options.arg(), expected + "an empty table");
+    for (lua_Unsigned k = 1; k <= count; ++k) {
+      if (lua_rawgeti(L, -1, static_cast<lua_Integer>(k)) != LUA_TSTRING) {
+        throw ArgError(options.arg(), std::string(key) + "[" + std::to_string(k) +
+                                          "]: expected a column name, got " + type_name(L, -1));
+      }
+      names.push_back(lua_tostring(L, -1));
+      lua_pop(L, 1);
+    }
+  } else if (type != LUA_TNIL) {
+    throw ArgError(options.arg(), expected + type_name(L, -1));
+  }
+  lua_pop(L, 1);
+  return names;
+}
+
+// The value at the top of the stack as a cell.
+ChartCell to_cell(lua_State* L) {
+  ChartCell cell;
+  switch (lua_type(L, -1)) {
+    case LUA_TNUMBER:
+      cell.number = lua_tonumber(L, -1);
+      break;
+    case LUA_TBOOLEAN:
+      cell.type = ChartCell::Type::boolean;
+      cell.number = lua_toboolean(L, -1) ? 1.0 : 0.0;
+      break;
+    case LUA_TSTRING:
+      cell.type = ChartCell::Type::text;
+      cell.text = lua_tostring(L, -1);
+      break;
+    default:
+      cell.type = ChartCell::Type::other;
+      cell.text = type_name(L, -1);
+  }
+  return cell;
+}
+
+// `data`: a list of row tables; their string keys are the columns.
+std::vector<ChartRow> chart_rows(const OptionTable& options) {
+  lua_State* L = options.state();
+  const int type = options.push("data");
+  if (type == LUA_TNIL) throw ArgError(options.arg(), "data: required, a list of row tables");
+  if (type != LUA_TTABLE) {
+    throw ArgError(options.arg(), "data: expected a list of row tables, got " + type_name(L, -1));
+  }
+  const lua_Unsigned count = lua_rawlen(L, -1);
+  std::vector<ChartRow> rows(count);
+  for (lua_Unsigned i = 1; i <= count; ++i) {
+    if (lua_rawgeti(L, -1, static_cast<lua_Integer>(i)) != LUA_TTABLE) {
+      throw ArgError(options.arg(), "data[" + std::to_string(i) + "]: expected a row table, got " +
+                                        type_name(L, -1));
+    }
+    lua_pushnil(L);
+    while (lua_next(L, -2) != 0) {
+      if (lua_type(L, -2) == LUA_TSTRING) rows[i - 1][lua_tostring(L, -2)] = to_cell(L);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return rows;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
+  return text;
+}
+
+void push_chart_result(lua_State* L, const std::string& path, const RowSeries& lines) {
+  lua_createtable(L, 0, 3);
+  set_string(L, "path", path.c_str());
+  lua_createtable(L, static_cast<int>(lines.series.size()), 0);
+  for (size_t k = 0; k < lines.series.size(); ++k) {
+    lua_createtable(L, 0, 2);
+    set_string(L, "name", lines.series[k].name.c_str());
+    lua_pushinteger(L, static_cast<lua_Integer>(lines.series[k].points.size()));
+    lua_setfield(L, -2, "points");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  lua_setfield(L, -2, "series");
+  lua_pushinteger(L, lines.skipped);
+  lua_setfield(L, -2, "skipped");
+}
+
+int w_chart(lua_State* L) {
+  return guard(L, [&] {
+    if (lua_type(L, 1) != LUA_TTABLE) {
+      throw ArgError(1,
+                     "expected an option table {path = ..., data = rows, x = ..., y = ...}, "
+                     "got " +
+                         type_name(L, 1));
+    }
+    const OptionTable options(L, 1,
+                              {"path", "data", "x", "y", "series", "kind", "title", "x_label",
+                               "y_label", "log_x", "log_y", "width", "height"});
+    const std::string path =
+        required_string(options, "path", "the file to write (.png, .svg or .pdf)");
+    const std::vector<ChartRow> rows = chart_rows(options);
+    ChartColumns columns;
+    columns.x = required_string(options, "x", "the column plotted along x");
+    columns.y = column_names(options, "y");
+    if (columns.y.empty()) throw ArgError(1, "y: required, a column or a list of columns");
+    columns.series = column_names(options, "series");
+    ChartSpec spec;
+    spec.kind = chart_kind(options.string("kind").value_or("linespoints"));
+    spec.title = options.string("title").value_or("");
+    spec.x_label = options.string("x_label").value_or(columns.x);
+    spec.y_label = options.string("y_label").value_or(joined(columns.y));
+    spec.log_x = options.boolean("log_x").value_or(false);
+    spec.log_y = options.boolean("log_y").value_or(false);
+    spec.width = image_size(options, "width", spec.width);
+    spec.height = image_size(options, "height", spec.height);
+    RowSeries lines = series_from_rows(rows, columns);
+    spec.series = lines.series;
+    draw_chart(path, spec);
+    push_chart_result(L, path, lines);
+    return 1;
+  });
+}
+
+}  // namespace
+
+void set_chart_functions(lua_State* L) {
+  static const luaL_Reg functions[] = {{"chart", w_chart}, {nullptr, nullptr}};
+  luaL_setfuncs(L, functions, 0);
+}
+
+}  // namespace ashlar::lua

@@ -1,0 +1,216 @@
+#include "io/chart_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "core/error.hpp"
+
+namespace ashlar {
+namespace {
+
+// A row's values in the series columns; nullptr for nil.
+using SeriesKey = std::vector<const ChartCell*>;
+
+const ChartCell* find_cell(const ChartRow& row, const std::string& column) {
+  const auto found = row.find(column);
+  return found == row.end() ? nullptr : &found->second;
+}
+
+std::string number_text(double value) {
+  // As Lua's tostring writes numbers: 16, 0.5, 1e-05.
+  char text[32];
+  std::snprintf(text, sizeof text, "%.14g", value);
+  return text;
+}
+
+std::string value_text(const ChartCell* cell) {
+  if (!cell) return "nil";
+  switch (cell->type) {
+    case ChartCell::Type::number:
+      return number_text(cell->number);
+    case ChartCell::Type::boolean:
+      return cell->number != 0.0 ? "true" : "false";
+    case ChartCell::Type::text:
+      return cell->text;
+    case ChartCell::Type::other:
+      break;
+  }
+  return cell->text;
+}
+
+// Numbers, then booleans, then strings, then nil.
+int rank(const ChartCell* cell) {
+  if (!cell) return 3;
+  switch (cell->type) {
+    case ChartCell::Type::number:
+      return 0;
+    case ChartCell::Type::boolean:
+      return 1;
+    default:
+      return 2;
+  }
+}
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Compares strings with their runs of digits taken as whole numbers, so that
+// "case 2" comes before "case 10": < 0, 0 or > 0.
+int natural_compare(const std::string& a, const std::string& b) {
+  size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (!is_digit(a[i]) || !is_digit(b[j])) {
+      if (a[i] != b[j])
+        return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]) ? -1 : 1;
+      ++i;
+      ++j;
+      continue;
+    }
+    const auto number_at = [](const std::string& text, size_t& at) {
+      while (at < text.size() && text[at] == '0') ++at;  // leading zeros do not count
+      const size_t start = at;
+      while (at < text.size() && is_digit(text[at])) ++at;
+      return text.substr(start, at - start);
+    };
+    const std::string x = number_at(a, i), y = number_at(b, j);
+    if (x.size() != y.size()) return x.size() < y.size() ? -1 : 1;
+    if (x != y) return x < y ? -1 : 1;
+  }
+  return (a.size() - i > b.size() - j) - (a.size() - i < b.size() - j);
+}
+
+bool value_less(const ChartCell* a, const ChartCell* b) {
+  if (rank(a) != rank(b)) return rank(a) < rank(b);
+  if (!a) return false;
+  if (a->type == ChartCell::Type::text) {
+    // Strings equal but for leading zeros ("07", "7") stay apart.
+    const int order = natural_compare(a->text, b->text);
+    return order != 0 ? order < 0 : a->text < b->text;
+  }
+  return a->number < b->number;
+}
+
+struct KeyLess {
+  bool operator()(const SeriesKey& a, const SeriesKey& b) const {
+    return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), value_less);
+  }
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
+  return text;
+}
+
+void check_listed_once(const std::vector<std::string>& names, const char* role) {
+  std::set<std::string> seen;
+  for (const std::string& name : names) {
+    if (!seen.insert(name).second) {
+      throw InvalidArgument(std::string("chart: ") + role + ": column '" + name +
+                            "' is listed twice");
+    }
+  }
+}
+
+void check_present(const std::string& column, const char* role,
+                   const std::set<std::string>& present) {
+  if (present.count(column)) return;
+  const std::vector<std::string> names(present.begin(), present.end());
+  throw InvalidArgument(std::string("chart: ") + role + ": no row has a column '" + column + "' (" +
+                        (names.empty() ? "the rows have no columns" : "columns: " + joined(names)) +
+                        ")");
+}
+
+std::string cell_kind(const ChartCell& cell) {
+  return cell.type == ChartCell::Type::text ? "a string (\"" + cell.text + "\")" : "a " + cell.text;
+}
+
+// x and y cells: finite numbers or booleans.
+void check_plotted(const ChartCell* cell, const std::string& column, const char* role, size_t row) {
+  if (!cell) return;
+  const std::string where = std::string("chart: ") + role + ": row " + std::to_string(row + 1);
+  if (cell->type == ChartCell::Type::text || cell->type == ChartCell::Type::other) {
+    throw InvalidArgument(where + " has " + cell_kind(*cell) + " in column '" + column +
+                          "'; plotted columns take numbers or booleans");
+  }
+  if (!std::isfinite(cell->number)) {
+    throw InvalidArgument(where + " has " + column + " = " + number_text(cell->number) +
+                          "; plotted values must be finite");
+  }
+}
+
+// Series cells: finite numbers, booleans or strings.
+void check_series_value(const ChartCell* cell, const std::string& column, size_t row) {
+  if (!cell) return;
+  const std::string where = "chart: series: row " + std::to_string(row + 1);
+  if (cell->type == ChartCell::Type::other) {
+    throw InvalidArgument(where + " has a " + cell->text + " in column '" + column +
+                          "'; series columns take numbers, booleans or strings");
+  }
+  if (cell->type == ChartCell::Type::number && !std::isfinite(cell->number)) {
+    throw InvalidArgument(where + " has " + column + " = " + number_text(cell->number) +
+                          "; series values must be finite");
+  }
+}
+
+std::string series_name(const std::string& y, const SeriesKey& key, const ChartColumns& columns) {
+  if (columns.series.empty()) return y;
+  std::vector<std::string> parts;
+  for (size_t k = 0; k < key.size(); ++k) {
+    parts.push_back(columns.series[k] + " = " + value_text(key[k]));
+  }
+  return (columns.y.size() > 1 ? y + ", " : "") + joined(parts);
+}
+
+}  // namespace
+
+RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns& columns) {
+  if (columns.y.empty()) throw InvalidArgument("chart: y: expected at least one column");
+  check_listed_once(columns.y, "y");
+  check_listed_once(columns.series, "series");
+  if (rows.empty()) throw InvalidArgument("chart: nothing to plot: data has no rows");
+  std::set<std::string> present;
+  for (const ChartRow& row : rows) {
+    for (const auto& entry : row) present.insert(entry.first);
+  }
+  check_present(columns.x, "x", present);
+  for (const std::string& y : columns.y) check_present(y, "y", present);
+  for (const std::string& s : columns.series) check_present(s, "series", present);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    check_plotted(find_cell(rows[r], columns.x), columns.x, "x", r);
+    for (const std::string& y : columns.y) check_plotted(find_cell(rows[r], y), y, "y", r);
+    for (const std::string& s : columns.series) check_series_value(find_cell(rows[r], s), s, r);
+  }
+
+  RowSeries result;
+  std::vector<bool> skipped(rows.size(), false);
+  for (const std::string& y : columns.y) {
+    std::map<SeriesKey, std::vector<Vec2>, KeyLess> lines;
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const ChartCell* x_cell = find_cell(rows[r], columns.x);
+      const ChartCell* y_cell = find_cell(rows[r], y);
+      if (!x_cell || !y_cell) {
+        skipped[r] = true;
+        continue;
+      }
+      SeriesKey key;
+      for (const std::string& s : columns.series) key.push_back(find_cell(rows[r], s));
+      lines[key].emplace_back(x_cell->number, y_cell->number);
+    }
+    for (auto& [key, points] : lines) {
+      std::stable_sort(points.begin(), points.end(),
+                       [](const Vec2& a, const Vec2& b) { return a.x() < b.x(); });
+      result.series.push_back({series_name(y, key, columns), std::move(points)});
+    }
+  }
+  result.skipped = static_cast<int>(std::count(skipped.begin(), skipped.end(), true));
+  if (result.series.empty()) {
+    throw InvalidArgument("chart: nothing to plot: no row has both x ('" + columns.x +
+                          "') and y ('" + joined(columns.y) + "'); " +
+                          std::to_string(result.skipped) + " rows skipped");
+  }
+  return result;
+}
+
+}  // namespace ashlar

@@ -1,0 +1,53 @@
+// The rows of a parametric study (one table of named values per run) turned
+// into chart series: an x column against one or more y columns, split into
+// lines by the values of series columns.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/chart.hpp"
+
+namespace ashlar {
+
+// One value of a row.
+struct ChartCell {
+  enum class Type { number, boolean, text, other };
+  Type type = Type::number;
+  double number = 0.0;  // number: the value; boolean: 0 (false) or 1 (true)
+  std::string text;     // text: the string; other: its type's name, e.g. "table"
+};
+
+// Column name -> value; a column the row does not have is nil.
+using ChartRow = std::map<std::string, ChartCell>;
+
+struct ChartColumns {
+  std::string x;                    // plotted along x: numbers or booleans
+  std::vector<std::string> y;       // one or more, each plotted as lines: numbers or booleans
+  std::vector<std::string> series;  // none, or columns whose values split rows into lines
+};
+
+struct RowSeries {
+  // Per y column (in the given order), per distinct combination of series
+  // values (in order of those values), the points of the rows that have
+  // them, sorted by x (rows with equal x keep their order). Lines without
+  // any point are left out.
+  std::vector<ChartSeries> series;
+  int skipped = 0;  // rows left out of at least one line: x or a y column nil
+};
+
+// Builds the lines of a chart from rows. Booleans count as 0 and 1. A line's
+// name is its y column when there are no series columns; otherwise the
+// series values "n = 16, mu = 0.5", after "y, " when there are several y
+// columns. Series values are ordered numbers first (numerically), then
+// false, true, then strings (their runs of digits as numbers: "case 2"
+// before "case 10"), then nil (rows without the column).
+// Throws InvalidArgument (messages begin "chart: ", rows counted from 1)
+// for no y column, a column named twice, a column that no row has (naming
+// those present), a string or another non-number in an x or y column, a
+// non-finite number, a table or the like in a series column, or no row with
+// both x and a y.
+RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns& columns);
+
+}  // namespace ashlar
