@@ -488,6 +488,39 @@ int w_study_rows(lua_State* L) {
   });
 }
 
+// st:chart{...}: ashlar.chart with the study's rows as data.
+int w_study_chart(lua_State* L) {
+  guard(L, [&] {
+    check_study(L, 1);
+    if (!lua_istable(L, 2)) throw ArgError(2, "expected a table of chart options, got " + type_name(L, 2));
+    if (lua_getfield(L, 2, "data") != LUA_TNIL) throw ArgError(2, "data: not an option here, the study gives the rows");
+    lua_pop(L, 1);
+    return 0;
+  });
+  lua_getfield(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);
+  if (lua_getfield(L, -1, "ashlar") != LUA_TTABLE) return luaL_error(L, "chart: the ashlar library is not loaded");
+  lua_getfield(L, -1, "chart");
+  lua_newtable(L);  // the options, with data added
+  lua_pushnil(L);
+  while (lua_next(L, 2)) {
+    lua_pushvalue(L, -2);
+    lua_insert(L, -2);
+    lua_settable(L, -4);
+  }
+  lua_pushcfunction(L, w_study_rows);
+  lua_pushvalue(L, 1);
+  lua_call(L, 1, 1);
+  lua_setfield(L, -2, "data");
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
+    // ashlar.chart called from here cannot see the script's line: add it.
+    luaL_where(L, 1);
+    lua_insert(L, -2);
+    lua_concat(L, 2);
+    return lua_error(L);
+  }
+  return 1;
+}
+
 int w_study_csv(lua_State* L) {
   return guard(L, [&] {
     const StudyObject& study = check_study(L, 1);
@@ -555,7 +588,7 @@ int w_study_gc(lua_State* L) { return release_boxed<StudyObject>(L, kStudyMetata
 }  // namespace
 
 void register_Study(lua_State* L) {
-  static const luaL_Reg methods[] = {{"rows", w_study_rows}, {"csv", w_study_csv}, {"info", w_study_info},
+  static const luaL_Reg methods[] = {{"rows", w_study_rows}, {"csv", w_study_csv}, {"chart", w_study_chart}, {"info", w_study_info},
                                      {"name", w_study_name}, {nullptr, nullptr}};
   static const luaL_Reg metamethods[] = {{"__len", w_study_len},
                                          {"__tostring", w_study_tostring},
