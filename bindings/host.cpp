@@ -4,22 +4,23 @@
 //
 // It links the C++ build of Lua, so a Lua error unwinds C++ frames as an
 // exception: locals with destructors are safe in every function below.
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
-#include <system_error>
 
 #include <unistd.h>
 
 #include <lua.hpp>
 
-#include "ashlar_lua.hpp"
 #include "core/version.hpp"
+#include "host_state.hpp"
 
 namespace {
+
+using ashlar::host::call_with_traceback;
+using ashlar::host::open_host_libraries;
+using ashlar::host::prepend_script_folder_to_path;
 
 const char* const kProgramName = "ashlar";
 const char* const kErrorPrefix = "ashlar: ";
@@ -103,48 +104,6 @@ CommandLine parse_command_line(int argc, char** argv) {
   return command_line;
 }
 
-// The state running a chunk, for the SIGINT handler; chunks run one at a time.
-lua_State* g_running_state = nullptr;
-
-void stop_at_hook(lua_State* L, lua_Debug*) {
-  lua_sethook(L, nullptr, 0, 0);
-  luaL_error(L, "interrupted!");
-}
-
-// A signal handler may not touch the Lua state except to set a hook, so the
-// error is raised from the hook at the next instruction Lua runs.
-void on_interrupt(int signal_number) {
-  std::signal(signal_number, SIG_DFL);  // a second Ctrl-C kills a script stuck in C code
-  lua_sethook(g_running_state, stop_at_hook,
-              LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
-}
-
-int add_traceback(lua_State* L) {
-  const char* message = lua_tostring(L, 1);
-  if (message == nullptr) {
-    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
-      message = lua_tostring(L, -1);
-    else
-      message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
-  }
-  luaL_traceback(L, L, message, 1);
-  return 1;
-}
-
-// lua_pcall with a traceback on errors and Ctrl-C turned into a Lua error.
-// Expects the function and its arguments on the stack, like lua_pcall.
-int call_with_traceback(lua_State* L, int argument_count, int result_count) {
-  const int handler_index = lua_gettop(L) - argument_count;
-  lua_pushcfunction(L, add_traceback);
-  lua_insert(L, handler_index);
-  g_running_state = L;
-  std::signal(SIGINT, on_interrupt);
-  const int status = lua_pcall(L, argument_count, result_count, handler_index);
-  std::signal(SIGINT, SIG_DFL);
-  lua_remove(L, handler_index);
-  return status;
-}
-
 // Prints the error object on top of the stack and pops it; returns the status.
 int report(lua_State* L, int status, const char* prefix = kErrorPrefix) {
   if (status == LUA_OK) return status;
@@ -202,27 +161,6 @@ bool script_is_stdin(const CommandLine& command_line) {
   // `ashlar -- -` names a file called "-".
   return std::strcmp(command_line.argv[script], "-") == 0 &&
          std::strcmp(command_line.argv[script - 1], "--") != 0;
-}
-
-// Lets a script `require` the modules beside it wherever it is run from.
-void prepend_script_folder_to_path(lua_State* L, const char* script) {
-  namespace fs = std::filesystem;
-  fs::path folder = fs::path(script).parent_path();
-  if (folder.empty()) folder = ".";
-  std::error_code ignored;  // a relative folder still works while the cwd stays
-  const fs::path absolute = fs::absolute(folder, ignored);
-  if (!absolute.empty()) folder = absolute.lexically_normal();
-  std::string directory = folder.string();
-  if (directory.size() > 1 && directory.back() == '/') directory.pop_back();
-
-  lua_getglobal(L, "package");
-  lua_getfield(L, -1, "path");
-  const std::string path = directory + "/?.lua;" + directory + "/?/init.lua;" +
-                           (lua_tostring(L, -1) ? lua_tostring(L, -1) : "");
-  lua_pop(L, 1);
-  lua_pushlstring(L, path.data(), path.size());
-  lua_setfield(L, -2, "path");
-  lua_pop(L, 1);
 }
 
 // Global `arg` as lua.c builds it: arg[0] is the script, arg[1..] its
@@ -332,17 +270,7 @@ void run_interactive(lua_State* L) {
 // memory error during set-up is reported instead of aborting.
 int run_host(lua_State* L) {
   const auto& command_line = *static_cast<const CommandLine*>(lua_touserdata(L, 1));
-  luaL_checkversion(L);
-  luaL_openlibs(L);
-  // The same collector mode as stock lua5.4, so scripts time alike in both.
-  lua_gc(L, LUA_GCGEN, 0, 0);
-
-  lua_getglobal(L, "package");
-  lua_getfield(L, -1, "preload");
-  lua_pushcfunction(L, ashlar_open_library);
-  lua_setfield(L, -2, "ashlar");
-  lua_pop(L, 2);
-  ashlar_add_model_path(L);
+  open_host_libraries(L);
   const bool has_script = command_line.script < command_line.argc;
   if (has_script && !script_is_stdin(command_line))
     prepend_script_folder_to_path(L, command_line.argv[command_line.script]);
