@@ -15,6 +15,8 @@
 
 #include "core/version.hpp"
 #include "host_state.hpp"
+#include "regression_check.hpp"
+#include "regression_runner.hpp"
 
 namespace {
 
@@ -41,6 +43,7 @@ struct CommandLine {
 void print_usage(FILE* out) {
   std::fprintf(out,
       "usage: %s [options] [script [args]]\n"
+      "       %s test [--update] [folder [name ...]]\n"
       "Available options are:\n"
       "  -e stat    execute string 'stat'\n"
       "  -i         enter interactive mode after executing 'script'\n"
@@ -53,8 +56,10 @@ void print_usage(FILE* out) {
       "  --help     show this help\n"
       "  --version  show version information\n"
       "With no script and no -e, %s reads statements interactively when stdin\n"
-      "is a terminal, and runs stdin as a script otherwise.\n",
-      kProgramName, kProgramName);
+      "is a terminal, and runs stdin as a script otherwise.\n"
+      "'%s test' runs a folder of regression checks against their golden\n"
+      "values ('%s test --help' for more).\n",
+      kProgramName, kProgramName, kProgramName, kProgramName, kProgramName);
 }
 
 void print_version() {
@@ -271,6 +276,10 @@ void run_interactive(lua_State* L) {
 int run_host(lua_State* L) {
   const auto& command_line = *static_cast<const CommandLine*>(lua_touserdata(L, 1));
   open_host_libraries(L);
+  // A check script run on its own prints what it records; `ashlar test`
+  // compares it instead.
+  static ashlar::regression::CheckRecorder printed_checks(/*echo=*/true);
+  ashlar::regression::preload_regression_module(L, printed_checks);
   const bool has_script = command_line.script < command_line.argc;
   if (has_script && !script_is_stdin(command_line))
     prepend_script_folder_to_path(L, command_line.argv[command_line.script]);
@@ -298,6 +307,9 @@ int run_host(lua_State* L) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Exactly "test": `ashlar ./test` and `ashlar -- test` still run a script.
+  if (argc >= 2 && std::strcmp(argv[1], "test") == 0)
+    return ashlar::regression::run_regression_command(argc, argv);
   CommandLine command_line = parse_command_line(argc, argv);
   if (!command_line.error.empty()) {
     std::fprintf(stderr, "%s%s\n", kErrorPrefix, command_line.error.c_str());
