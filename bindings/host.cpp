@@ -4,7 +4,6 @@
 //
 // It links the C++ build of Lua, so a Lua error unwinds C++ frames as an
 // exception: locals with destructors are safe in every function below.
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -14,12 +13,17 @@
 
 #include <lua.hpp>
 
-#include "core/interrupt.hpp"
 #include "core/version.hpp"
-#include "script_state.hpp"
+#include "host_state.hpp"
 #include "study/cluster.hpp"
+#include "regression_check.hpp"
+#include "regression_runner.hpp"
 
 namespace {
+
+using ashlar::host::call_with_traceback;
+using ashlar::host::open_host_libraries;
+using ashlar::host::prepend_script_folder_to_path;
 
 const char* const kProgramName = "ashlar";
 const char* const kErrorPrefix = "ashlar: ";
@@ -40,6 +44,7 @@ struct CommandLine {
 void print_usage(FILE* out) {
   std::fprintf(out,
       "usage: %s [options] [script [args]]\n"
+      "       %s test [--update] [folder [name ...]]\n"
       "Available options are:\n"
       "  -e stat    execute string 'stat'\n"
       "  -i         enter interactive mode after executing 'script'\n"
@@ -52,8 +57,10 @@ void print_usage(FILE* out) {
       "  --help     show this help\n"
       "  --version  show version information\n"
       "With no script and no -e, %s reads statements interactively when stdin\n"
-      "is a terminal, and runs stdin as a script otherwise.\n",
-      kProgramName, kProgramName);
+      "is a terminal, and runs stdin as a script otherwise.\n"
+      "'%s test' runs a folder of regression checks against their golden\n"
+      "values ('%s test --help' for more).\n",
+      kProgramName, kProgramName, kProgramName, kProgramName, kProgramName);
 }
 
 void print_version() {
@@ -101,49 +108,6 @@ CommandLine parse_command_line(int argc, char** argv) {
   }
   command_line.script = i;
   return command_line;
-}
-
-// The state running a chunk, for the SIGINT handler; chunks run one at a time.
-lua_State* g_running_state = nullptr;
-
-void stop_at_hook(lua_State* L, lua_Debug*) {
-  lua_sethook(L, nullptr, 0, 0);
-  luaL_error(L, "interrupted!");
-}
-
-// A signal handler may not touch the Lua state except to set a hook, so the
-// error is raised from the hook at the next instruction Lua runs.
-void on_interrupt(int signal_number) {
-  std::signal(signal_number, SIG_DFL);  // a second Ctrl-C kills a script stuck in C code
-  ashlar::interrupt_requested() = true;  // for C++ loops that run no Lua, e.g. a study's coordinator
-  lua_sethook(g_running_state, stop_at_hook,
-              LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
-}
-
-int add_traceback(lua_State* L) {
-  const char* message = lua_tostring(L, 1);
-  if (message == nullptr) {
-    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
-      message = lua_tostring(L, -1);
-    else
-      message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
-  }
-  luaL_traceback(L, L, message, 1);
-  return 1;
-}
-
-// lua_pcall with a traceback on errors and Ctrl-C turned into a Lua error.
-// Expects the function and its arguments on the stack, like lua_pcall.
-int call_with_traceback(lua_State* L, int argument_count, int result_count) {
-  const int handler_index = lua_gettop(L) - argument_count;
-  lua_pushcfunction(L, add_traceback);
-  lua_insert(L, handler_index);
-  g_running_state = L;
-  std::signal(SIGINT, on_interrupt);
-  const int status = lua_pcall(L, argument_count, result_count, handler_index);
-  std::signal(SIGINT, SIG_DFL);
-  lua_remove(L, handler_index);
-  return status;
 }
 
 // Prints the error object on top of the stack and pops it; returns the status.
@@ -300,15 +264,20 @@ void run_interactive(lua_State* L) {
 // memory error during set-up is reported instead of aborting.
 int run_host(lua_State* L) {
   const auto& command_line = *static_cast<const CommandLine*>(lua_touserdata(L, 1));
-  luaL_checkversion(L);
+  open_host_libraries(L);
+  // A check script run on its own prints what it records; `ashlar test`
+  // compares it instead.
+  static ashlar::regression::CheckRecorder printed_checks(/*echo=*/true);
+  ashlar::regression::preload_regression_module(L, printed_checks);
   const bool has_script = command_line.script < command_line.argc;
-  const bool script_is_file = has_script && !script_is_stdin(command_line);
-  ashlar::lua::set_up_state(L, script_is_file ? command_line.argv[command_line.script] : nullptr);
-  ashlar::lua::ScriptInvocation invocation;
+  ashlar::host::ScriptInvocation invocation;
   invocation.argv.assign(command_line.argv, command_line.argv + command_line.argc);
   invocation.script = command_line.script;
-  ashlar::lua::create_arg_table(L, invocation.argv, invocation.script);
-  if (script_is_file) ashlar::lua::remember_script(L, invocation);
+  if (has_script && !script_is_stdin(command_line)) {
+    prepend_script_folder_to_path(L, command_line.argv[command_line.script]);
+    ashlar::host::remember_script(L, invocation);  // for a study's worker states
+  }
+  ashlar::host::create_arg_table(L, invocation.argv, invocation.script);
 
   if (command_line.show_version) print_version();
   bool succeeded = run_options(L, command_line);
@@ -334,6 +303,9 @@ int run_host(lua_State* L) {
 int main(int argc, char** argv) {
   const std::string cluster_warning = ashlar::cluster::join_if_launched(&argc, &argv);
   if (!cluster_warning.empty()) std::fprintf(stderr, "%s%s\n", kErrorPrefix, cluster_warning.c_str());
+  // Exactly "test": `ashlar ./test` and `ashlar -- test` still run a script.
+  if (argc >= 2 && std::strcmp(argv[1], "test") == 0)
+    return ashlar::regression::run_regression_command(argc, argv);
   CommandLine command_line = parse_command_line(argc, argv);
   if (!command_line.error.empty()) {
     std::fprintf(stderr, "%s%s\n", kErrorPrefix, command_line.error.c_str());

@@ -13,7 +13,7 @@
 #include "core/process_stats.hpp"
 #include "io/atomic_file.hpp"
 #include "luax.hpp"
-#include "script_state.hpp"
+#include "host_state.hpp"
 #include "study/cluster.hpp"
 #include "study/mpi_workers.hpp"
 #include "study/study_runner.hpp"
@@ -21,6 +21,9 @@
 namespace ashlar::lua {
 
 namespace {
+
+using host::ScriptInvocation;
+using host::remembered_script;
 
 using study::Value;
 
@@ -241,8 +244,9 @@ int do_nothing(lua_State*) { return 0; }
 int run_worker_script(lua_State* L) {
   const auto& invocation = *static_cast<const ScriptInvocation*>(lua_touserdata(L, 1));
   auto* slot = static_cast<WorkerSlot*>(lua_touserdata(L, 2));
-  set_up_state(L, invocation.path().c_str());
-  create_arg_table(L, invocation.argv, invocation.script);
+  host::open_host_libraries(L);
+  host::prepend_script_folder_to_path(L, invocation.path().c_str());
+  host::create_arg_table(L, invocation.argv, invocation.script);
   lua_pushcfunction(L, do_nothing);  // runs print in step; their output would garble the progress line
   lua_setglobal(L, "print");
   lua_pushlightuserdata(L, slot);

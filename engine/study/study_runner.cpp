@@ -154,46 +154,47 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
       record(batch);
     }
   } else {
-    WorkerThreads threads(queue, thread_workers, settings.threads);
-    std::vector<Outcome> batch;
-    auto next_task = [&queue]() {
-      std::lock_guard lock(queue.mutex);
-      return queue.take();
-    };
-    for (;;) {
-      bool local_idle;
-      bool stalled;
-      {
-        std::unique_lock lock(queue.mutex);
-        // Remote messages are polled, so wait briefly when there are remotes.
-        queue.changed.wait_for(lock, std::chrono::milliseconds(remote ? 1 : 200),
-                               [&] { return !queue.outcomes.empty() || queue.live_threads == 0; });
-        batch.swap(queue.outcomes);
-        if (interrupt_requested() && !queue.stop) {
-          queue.stop = true;
-          info.interrupted = true;
+    {
+      WorkerThreads threads(queue, thread_workers, settings.threads);
+      std::vector<Outcome> batch;
+      auto next_task = [&queue]() {
+        std::lock_guard lock(queue.mutex);
+        return queue.take();
+      };
+      for (;;) {
+        bool local_idle;
+        bool stalled;
+        {
+          std::unique_lock lock(queue.mutex);
+          // Remote messages are polled, so wait briefly when there are remotes.
+          queue.changed.wait_for(lock, std::chrono::milliseconds(remote ? 1 : 200),
+                                 [&] { return !queue.outcomes.empty() || queue.live_threads == 0; });
+          batch.swap(queue.outcomes);
+          if (interrupt_requested() && !queue.stop) {
+            queue.stop = true;
+            info.interrupted = true;
+          }
+          local_idle = queue.running == 0;
+          stalled = queue.live_threads == 0 && remote == nullptr && !queue.pending.empty() && !queue.stop;
         }
-        local_idle = queue.running == 0;
-        stalled = queue.live_threads == 0 && remote == nullptr && !queue.pending.empty() && !queue.stop;
+        if (remote) remote->exchange(next_task, batch);
+        record(batch);
+        const bool remote_idle = remote == nullptr || remote->in_flight() == 0;
+        bool finished;
+        {
+          std::lock_guard lock(queue.mutex);
+          finished = (queue.pending.empty() || queue.stop) && local_idle && queue.running == 0 &&
+                     queue.outcomes.empty() && remote_idle;
+        }
+        if (finished) break;
+        if (stalled) {
+          std::lock_guard lock(queue.mutex);
+          const std::string why = queue.failures.empty() ? "every worker stopped" : queue.failures.front();
+          throw Error("study '" + name + "': no worker left to run the " + std::to_string(queue.pending.size()) +
+                      " remaining rows; " + why);
+        }
       }
-      if (remote) remote->exchange(next_task, batch);
-      record(batch);
-      const bool remote_idle = remote == nullptr || remote->in_flight() == 0;
-      bool finished;
-      {
-        std::lock_guard lock(queue.mutex);
-        finished = (queue.pending.empty() || queue.stop) && local_idle && queue.running == 0 &&
-                   queue.outcomes.empty() && remote_idle;
-      }
-      if (finished) break;
-      if (stalled) {
-        std::lock_guard lock(queue.mutex);
-        const std::string why = queue.failures.empty() ? "every worker stopped" : queue.failures.front();
-        throw Error("study '" + name + "': no worker left to run the " + std::to_string(queue.pending.size()) +
-                    " remaining rows; " + why);
-      }
-    }
-    std::lock_guard lock(queue.mutex);
+    }  // joined: every thread's failure is in
     info.worker_failures = queue.failures;
   }
   info.seconds = monotonic_seconds() - start;

@@ -1,0 +1,139 @@
+// Links the C++ build of Lua, so a Lua error unwinds C++ frames as an
+// exception: locals with destructors are safe in every function below.
+#include "host_state.hpp"
+
+#include <csignal>
+#include <filesystem>
+#include <new>
+#include <string>
+#include <system_error>
+
+#include "ashlar_lua.hpp"
+#include "core/interrupt.hpp"
+
+namespace ashlar::host {
+
+namespace {
+
+// The state running a chunk, for the SIGINT handler; chunks run one at a time.
+lua_State* g_running_state = nullptr;
+volatile std::sig_atomic_t g_interrupted = 0;
+
+void stop_at_hook(lua_State* L, lua_Debug*) {
+  lua_sethook(L, nullptr, 0, 0);
+  luaL_error(L, "interrupted!");
+}
+
+// A signal handler may not touch the Lua state except to set a hook, so the
+// error is raised from the hook at the next instruction Lua runs.
+void on_interrupt(int signal_number) {
+  std::signal(signal_number, SIG_DFL);  // a second Ctrl-C kills a script stuck in C code
+  g_interrupted = 1;
+  ashlar::interrupt_requested() = true;  // for C++ loops that run no Lua, e.g. a study's coordinator
+  lua_sethook(g_running_state, stop_at_hook,
+              LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+}
+
+int add_traceback(lua_State* L) {
+  const char* message = lua_tostring(L, 1);
+  if (message == nullptr) {
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+      message = lua_tostring(L, -1);
+    else
+      message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  }
+  luaL_traceback(L, L, message, 1);
+  return 1;
+}
+
+const char* const kScriptKey = "ashlar.script";
+const char* const kScriptMetatable = "ashlar.ScriptInvocation";
+
+int release_invocation(lua_State* L) {
+  if (auto* invocation = static_cast<ScriptInvocation*>(luaL_testudata(L, 1, kScriptMetatable))) {
+    invocation->~ScriptInvocation();
+    lua_pushnil(L);
+    lua_setmetatable(L, 1);  // destroyed once, however often __gc runs
+  }
+  return 0;
+}
+
+}  // namespace
+
+void create_arg_table(lua_State* L, const std::vector<std::string>& argv, int script) {
+  const int argc = static_cast<int>(argv.size());
+  if (script >= argc) script = 0;
+  lua_createtable(L, argc - script - 1, script + 1);
+  for (int i = 0; i < argc; ++i) {
+    lua_pushstring(L, argv[static_cast<std::size_t>(i)].c_str());
+    lua_rawseti(L, -2, i - script);
+  }
+  lua_setglobal(L, "arg");
+}
+
+void remember_script(lua_State* L, const ScriptInvocation& invocation) {
+  void* memory = lua_newuserdatauv(L, sizeof(ScriptInvocation), 0);
+  new (memory) ScriptInvocation(invocation);
+  if (luaL_newmetatable(L, kScriptMetatable)) {
+    lua_pushcfunction(L, release_invocation);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
+  lua_setfield(L, LUA_REGISTRYINDEX, kScriptKey);
+}
+
+const ScriptInvocation* remembered_script(lua_State* L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, kScriptKey);
+  auto* invocation = static_cast<ScriptInvocation*>(luaL_testudata(L, -1, kScriptMetatable));
+  lua_pop(L, 1);
+  return invocation;
+}
+
+void open_host_libraries(lua_State* L) {
+  luaL_checkversion(L);
+  luaL_openlibs(L);
+  lua_gc(L, LUA_GCGEN, 0, 0);
+
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "preload");
+  lua_pushcfunction(L, ashlar_open_library);
+  lua_setfield(L, -2, "ashlar");
+  lua_pop(L, 2);
+  ashlar_add_model_path(L);
+}
+
+void prepend_script_folder_to_path(lua_State* L, const char* script) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::path(script).parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ignored;  // a relative folder still works while the cwd stays
+  const fs::path absolute = fs::absolute(folder, ignored);
+  if (!absolute.empty()) folder = absolute.lexically_normal();
+  std::string directory = folder.string();
+  if (directory.size() > 1 && directory.back() == '/') directory.pop_back();
+
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "path");
+  const std::string path = directory + "/?.lua;" + directory + "/?/init.lua;" +
+                           (lua_tostring(L, -1) ? lua_tostring(L, -1) : "");
+  lua_pop(L, 1);
+  lua_pushlstring(L, path.data(), path.size());
+  lua_setfield(L, -2, "path");
+  lua_pop(L, 1);
+}
+
+int call_with_traceback(lua_State* L, int argument_count, int result_count) {
+  const int handler_index = lua_gettop(L) - argument_count;
+  lua_pushcfunction(L, add_traceback);
+  lua_insert(L, handler_index);
+  g_running_state = L;
+  std::signal(SIGINT, on_interrupt);
+  const int status = lua_pcall(L, argument_count, result_count, handler_index);
+  std::signal(SIGINT, SIG_DFL);
+  lua_remove(L, handler_index);
+  return status;
+}
+
+bool interrupted() { return g_interrupted != 0; }
+
+}  // namespace ashlar::host
