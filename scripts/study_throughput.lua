@@ -1,8 +1,8 @@
 -- Throughput of the arch sweep (scripts/arch_sweep.lua, 726 analyses) with
 -- 1 and 2 worker threads and with `mpirun -np 2`, and a kill -9 / resume
 -- check: the sweep is killed mid-run, run again, and the table is checked
--- for lost and duplicated rows. Writes docs/figures/study/throughput.csv
--- and resume.txt.
+-- for lost and duplicated rows. Writes docs/figures/study/throughput.csv,
+-- resume.txt and arch_sweep.png (the resumed table, charted).
 --   build/bin/ashlar scripts/study_throughput.lua [output folder] [repeats]
 local ashlar = require "ashlar"
 local support = require "script_support"
@@ -98,4 +98,9 @@ after: %d rows, %d finished, %d pending, %d errors, duplicates: %d
 io.write(report)
 assert(resumed == before.pending and #after == 726 and after:info().ok == 726 and duplicates == 0, "resume lost or duplicated rows")
 support.write_atomically(out .. "/resume.txt", report)
+
+-- The resumed study's table, charted: where the arch stops needing tension.
+after:chart{ path = out .. "/arch_sweep.png", x = "t", y = "infeasibility", series = { "n", "mu" },
+             title = "Arch sweep after kill -9 and resume: 726 analyses", x_label = "thickness t / R",
+             y_label = "infeasibility (0 = stands)", kind = "lines" }
 os.execute("rm -rf " .. quote(work))
