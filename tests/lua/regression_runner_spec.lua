@@ -6,15 +6,7 @@ local ashlar_bin = assert(os.getenv("ASHLAR_BIN"), "set ASHLAR_BIN to the ashlar
 
 local support = require "spec_support"
 local quote, write_file, read_file = support.quote, support.write_file, support.read_file
-
--- Runs the shell command with stdout and stderr together; returns the
--- output and the exit code.
-local function run(command)
-  local pipe = assert(io.popen("{ " .. command .. "\n} 2>&1", "r"))
-  local output = pipe:read("a")
-  local _, _, code = pipe:close()
-  return output, code
-end
+local run = support.run
 
 local function escape_pattern(text)
   return (text:gsub("%p", "%%%0"))

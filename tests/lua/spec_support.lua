@@ -94,6 +94,15 @@ function support.temp_folder()
   return path
 end
 
+-- Runs shell commands with stdout and stderr together; returns the output
+-- and the exit code of the last command.
+function support.run(commands)
+  local pipe = assert(io.popen("{ " .. commands .. "\n} 2>&1", "r"))
+  local output = pipe:read("a")
+  local _, _, code = pipe:close()
+  return output, code
+end
+
 function support.remove_folder(path)
   os.execute("rm -rf " .. support.quote(path))
 end

@@ -3,17 +3,11 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local support = require "spec_support"
-local quote, expect_error = support.quote, support.expect_error
+local quote, expect_error, run = support.quote, support.expect_error, support.run
 
 local ashlar_bin = assert(os.getenv("ASHLAR_BIN"), "set ASHLAR_BIN to the ashlar binary")
-
--- Runs shell commands, stdout and stderr together; returns output and exit code.
-local function run(commands)
-  local pipe = assert(io.popen("{ " .. commands .. "\n} 2>&1", "r"))
-  local output = pipe:read("a")
-  local _, _, code = pipe:close()
-  return output, code
-end
+-- The example sweep (726 analyses): arguments db, workers, csv.
+local arch_sweep = (debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or ".") .. "/../../scripts/arch_sweep.lua"
 
 local function by_parameters(rows, names)
   local index = {}
@@ -174,36 +168,21 @@ describe("ashlar.study with the host", function()
   before_each(function() folder = support.temp_folder() end)
   after_each(function() support.remove_folder(folder) end)
 
-  local sweep = [[
-local ashlar = require "ashlar"
-local models = require "ashlar.models"
-local study = ashlar.study{
-  name = "arch", db = arg[1], workers = tonumber(arg[2]),
-  params = { t = ashlar.range(0.09, 0.14, 11), n = { 8, 16 }, mu = { 0.5, 0.7 } },
-  run = function(p)
-    local r = ashlar.analyze(models.arch{ radius = 1, thickness = p.t, voussoirs = p.n }, { friction = p.mu })
-    return { stable = r.stable, infeasibility = r.infeasibility }
-  end,
-}
-study:csv(arg[3])
-print("ran " .. study:info().ran .. " workers " .. study:info().workers)
-]]
-
   it("gives the same table with 2 worker threads as with 1", function()
-    support.write_file(folder .. "/sweep.lua", sweep)
-    local out1, code1 = run(("cd %s && %s sweep.lua one.sqlite 1 one.csv"):format(quote(folder), quote(ashlar_bin)))
-    local out2, code2 = run(("cd %s && %s sweep.lua two.sqlite 2 two.csv"):format(quote(folder), quote(ashlar_bin)))
+    local command = "cd " .. quote(folder) .. " && " .. quote(ashlar_bin) .. " " .. quote(arch_sweep)
+    local out1, code1 = run(command .. " one.sqlite 1 one.csv")
+    local out2, code2 = run(command .. " two.sqlite 2 two.csv")
     assert.equal(0, code1, out1)
     assert.equal(0, code2, out2)
-    assert.truthy(out1:find("ran 44 workers 1", 1, true), out1)
-    assert.truthy(out2:find("ran 44 workers 2", 1, true), out2)
+    assert.truthy(out1:find("runs 726 seconds [%d.]+ runs_per_second [%d.]+ workers 1 errors 0"), out1)
+    assert.truthy(out2:find("runs 726 seconds [%d.]+ runs_per_second [%d.]+ workers 2 errors 0"), out2)
     local function results(csv)  -- every column but run_seconds and run_worker
       local lines = {}
       for line in support.read_file(csv):gmatch("[^\r\n]+") do lines[#lines + 1] = line:match("^(.*),[^,]*,[^,]*$") end
       return lines
     end
     assert.same(results(folder .. "/one.csv"), results(folder .. "/two.csv"))
-    assert.equal(45, #results(folder .. "/two.csv"))
+    assert.equal(727, #results(folder .. "/two.csv"))
   end)
 
   it("resumes after kill -9 with every finished row kept once", function()
