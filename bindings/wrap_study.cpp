@@ -214,8 +214,9 @@ private:
     lua_pushnil(L_);
     while (lua_next(L_, -2)) {
       if (lua_type(L_, -2) != LUA_TSTRING) {
+        const std::string key_type = type_name(L_, -2);
         lua_pop(L_, 2);
-        return fail(outcome, "run returned a field with a " + type_name(L_, -2 + 2) + " key");
+        return fail(outcome, "run returned a field with a " + key_type + " key");
       }
       const std::string name = lua_tostring(L_, -2);
       std::string problem;

@@ -103,6 +103,15 @@ function support.run(commands)
   return output, code
 end
 
+-- The absolute folder of the file of the function at `level` (1: the caller),
+-- for paths that must survive a `cd`.
+function support.script_folder(level)
+  local source = debug.getinfo(level + 1, "S").source:match("^@(.*)$") or "."
+  local folder = source:match("^(.*)/[^/]*$") or "."
+  if folder:sub(1, 1) ~= "/" then folder = assert(os.getenv("PWD"), "no PWD") .. "/" .. folder end
+  return folder
+end
+
 function support.remove_folder(path)
   os.execute("rm -rf " .. support.quote(path))
 end

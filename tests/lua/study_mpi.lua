@@ -8,7 +8,7 @@ local ashlar_bin = assert(arg[-1], "run by the ashlar host")
 local folder = support.temp_folder()
 
 -- The example sweep (726 analyses): arguments db, workers, csv.
-local sweep = quote((debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or ".") .. "/../../scripts/arch_sweep.lua")
+local sweep = quote(support.script_folder(1) .. "/../../scripts/arch_sweep.lua")
 
 local function run(command)
   local output, code = support.run("cd " .. quote(folder) .. " && " .. command)
