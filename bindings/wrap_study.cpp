@@ -298,9 +298,9 @@ void push_study(lua_State* L, StudyObject study) {
   push_boxed(L, std::make_shared<StudyObject>(std::move(study)), kStudyMetatable);
 }
 
-// The threads to run `pending` rows with, from the workers option.
-int thread_count(lua_State* L, lua_Integer workers, std::size_t pending) {
-  const ScriptInvocation* script = remembered_script(L);
+// The threads to run `pending` rows with, from the workers option; `script`
+// is the host's script, which worker states run again (nullptr: none).
+int thread_count(const ScriptInvocation* script, lua_Integer workers, std::size_t pending) {
   if (workers > 1 && script == nullptr)
     throw ArgError(1, "workers: more than 1 needs the ashlar host running a script file (worker threads run "
                       "the script again; the C module, stdin and -e chunks cannot be)");
@@ -359,13 +359,12 @@ int w_study(lua_State* L) {
       settings.threads = 1;  // one row at a time on every rank, rank 0's beside its coordinating thread
       if (script == nullptr) throw ArgError(1, "under MPI, a study needs the ashlar host running a script file");
     } else {
-      settings.threads = thread_count(L, workers, pending);
+      settings.threads = thread_count(script, workers, pending);
     }
+    // Copied: the threads must not read the registry of the script's state.
     const ScriptInvocation invocation = script ? *script : ScriptInvocation{};
-    const std::vector<std::string> names = rows.names;
-    const std::string study_name = study.name;
-    const study::WorkerFactory start_worker = [&invocation, &study_name, &names](int) {
-      return start_script_worker(invocation, study_name, names);
+    const study::WorkerFactory start_worker = [&invocation, &study, &rows](int) {
+      return start_script_worker(invocation, study.name, rows.names);
     };
     study.info = study::run_study(store, study.name, study.table, settings, &script_worker, start_worker,
                                   ranks ? &*ranks : nullptr);

@@ -142,9 +142,7 @@ ParameterRows checked(ParameterRows rows) {
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rows.names[a] < rows.names[b]; });
   ParameterRows sorted;
   for (std::size_t i : order) sorted.names.push_back(rows.names[i]);
-  auto row_less = [](const std::vector<Value>* a, const std::vector<Value>* b) {
-    return std::lexicographical_compare(a->begin(), a->end(), b->begin(), b->end(), value_less);
-  };
+  auto row_less = [](const std::vector<Value>* a, const std::vector<Value>* b) { return rows_less(*a, *b); };
   std::map<const std::vector<Value>*, std::size_t, decltype(row_less)> first_row(row_less);
   sorted.rows.reserve(rows.rows.size());
   for (std::size_t r = 0; r < rows.rows.size(); ++r) {

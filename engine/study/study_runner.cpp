@@ -1,6 +1,5 @@
 #include "study/study_runner.hpp"
 
-#include <algorithm>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
@@ -15,17 +14,7 @@
 namespace ashlar::study {
 
 Outcome checked_outcome(Outcome outcome, const std::vector<std::string>& parameter_names) {
-  std::set<std::string> seen;
-  std::string problem;
-  for (const auto& field : outcome.fields) {
-    const std::string& name = field.first;
-    problem = column_name_problem(name);
-    if (problem.empty() && std::find(parameter_names.begin(), parameter_names.end(), name) != parameter_names.end())
-      problem = "'" + name + "' is a parameter";
-    if (problem.empty() && !seen.insert(name).second) problem = "'" + name + "' is returned twice";
-    if (!problem.empty()) break;
-  }
-  if (!problem.empty()) {
+  if (const std::string problem = fields_problem(outcome, parameter_names); !problem.empty()) {
     outcome.status = RunStatus::error;
     outcome.error = "returned field " + problem;
     outcome.fields.clear();

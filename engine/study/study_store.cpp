@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <set>
 
 #include <sqlite3.h>
 
@@ -123,6 +124,18 @@ private:
 
 }  // namespace
 
+std::string fields_problem(const Outcome& outcome, const std::vector<std::string>& parameter_names) {
+  std::set<std::string> seen;
+  for (const auto& field : outcome.fields) {
+    const std::string& name = field.first;
+    if (std::string problem = column_name_problem(name); !problem.empty()) return problem;
+    if (std::find(parameter_names.begin(), parameter_names.end(), name) != parameter_names.end())
+      return "'" + name + "' is a parameter";
+    if (!seen.insert(name).second) return "'" + name + "' is returned twice";
+  }
+  return "";
+}
+
 std::string study_name_problem(const std::string& name) {
   const bool allowed =
       !name.empty() && name.size() <= 64 &&
@@ -222,10 +235,7 @@ StudyTable StudyStore::open_study(const std::string& name, const ParameterRows& 
                      " SET run_status = NULL, run_error = NULL, run_seconds = NULL, run_worker = NULL,"
                      " run_finished = NULL WHERE run_status = 'error'");
 
-  auto row_less = [](const std::vector<Value>& a, const std::vector<Value>& b) {
-    return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), value_less);
-  };
-  std::map<std::vector<Value>, std::int64_t, decltype(row_less)> stored_ids(row_less);
+  std::map<std::vector<Value>, std::int64_t, decltype(&rows_less)> stored_ids(&rows_less);
   {
     std::string select = "SELECT id";
     for (const std::string& parameter : rows.names) select += ", " + quoted(parameter);
@@ -318,11 +328,10 @@ void StudyStore::record(const std::string& name, const std::vector<Outcome>& out
   const auto old_kinds = columns.kind;
   try {
     for (const Outcome& outcome : outcomes) {
+      if (const std::string problem = fields_problem(outcome, columns.parameter_names); !problem.empty())
+        throw InvalidArgument("returned field " + problem);
       std::string update = "UPDATE " + quoted(name) + " SET ";
       for (const auto& [field, value] : outcome.fields) {
-        if (const std::string problem = column_name_problem(field); !problem.empty()) throw InvalidArgument(problem);
-        if (std::find(columns.parameter_names.begin(), columns.parameter_names.end(), field) != columns.parameter_names.end())
-          throw InvalidArgument("returned field '" + field + "' is a parameter");
         const bool known = columns.kind.count(field) != 0;
         const std::string kind = merged_kind(known ? columns.kind[field] : "", kind_of(value));
         if (!known) {

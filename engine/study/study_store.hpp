@@ -44,7 +44,7 @@ public:
 
   // Records finished runs of study `name` in one transaction: returned
   // fields not seen before become columns. Rows already finished are left
-  // as they are. Field names must pass column_name_problem.
+  // as they are. Throws InvalidArgument for fields that fields_problem rejects.
   void record(const std::string& name, const std::vector<Outcome>& outcomes);
 
   const std::string& path() const { return path_; }
@@ -58,6 +58,11 @@ private:
   sqlite3* db_ = nullptr;
   std::vector<std::unique_ptr<StudyColumns>> columns_;
 };
+
+// Empty when the outcome's fields may be columns of a study with these
+// parameters (column_name_problem, not a parameter's name, each name once),
+// otherwise what is wrong, starting with the field's quoted name.
+std::string fields_problem(const Outcome& outcome, const std::vector<std::string>& parameter_names);
 
 // Empty when `name` may name a study, otherwise why not.
 std::string study_name_problem(const std::string& name);

@@ -1,5 +1,6 @@
 #include "study/study_value.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -30,16 +31,6 @@ std::string to_text(const Value& value) {
       value);
 }
 
-bool same_value(const Value& a, const Value& b) {
-  const auto* ai = std::get_if<std::int64_t>(&a);
-  const auto* bi = std::get_if<std::int64_t>(&b);
-  const auto* ad = std::get_if<double>(&a);
-  const auto* bd = std::get_if<double>(&b);
-  if (ai && bd) return static_cast<double>(*ai) == *bd;
-  if (ad && bi) return *ad == static_cast<double>(*bi);
-  return a == b;
-}
-
 bool value_less(const Value& a, const Value& b) {
   auto numeric = [](const Value& v, double& out) {
     if (const auto* i = std::get_if<std::int64_t>(&v)) return out = static_cast<double>(*i), true;
@@ -51,6 +42,10 @@ bool value_less(const Value& a, const Value& b) {
   if (a_numeric && b_numeric) return x < y;
   if (a_numeric != b_numeric) return a_numeric;
   return a < b;
+}
+
+bool rows_less(const std::vector<Value>& a, const std::vector<Value>& b) {
+  return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), value_less);
 }
 
 const char* status_name(RunStatus status) {

@@ -19,13 +19,12 @@ using Value = std::variant<std::monostate, bool, std::int64_t, double, std::stri
 // (round-trip exact), booleans as true/false, nil as the empty string.
 std::string to_text(const Value& value);
 
-// Same value, with an integer equal to a number (16 == 16.0): parameter rows
-// are matched this way when a study resumes.
-bool same_value(const Value& a, const Value& b);
-
-// Strict weak order that agrees with same_value: numbers (integer or not)
-// by value, then booleans, then strings.
+// Strict weak order in which an integer and a number with its value are
+// equal (16 and 16.0: rows match this way when a study resumes): numbers by
+// value, then the other kinds.
 bool value_less(const Value& a, const Value& b);
+// The same order over rows, value by value.
+bool rows_less(const std::vector<Value>& a, const std::vector<Value>& b);
 
 // One row to run: its id in the study's table and its parameter values, in
 // the order of the study's parameter names.
