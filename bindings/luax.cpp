@@ -4,18 +4,14 @@
 #include <cmath>
 #include <limits>
 
+#include "core/text.hpp"
+
 namespace ashlar::lua {
 
 namespace {
 
 // Position of the calling Lua code ("file:line: "), as luaL_error gives.
 void push_where(lua_State* L) { luaL_where(L, 1); }
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
-  return out;
-}
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar {
 namespace {
@@ -97,12 +98,6 @@ struct KeyLess {
   }
 };
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
-  return text;
-}
-
 void check_listed_once(const std::vector<std::string>& names, const char* role) {
   std::set<std::string> seen;
   for (const std::string& name : names) {
@@ -118,7 +113,7 @@ void check_present(const std::string& column, const char* role,
   if (present.count(column)) return;
   const std::vector<std::string> names(present.begin(), present.end());
   throw InvalidArgument(std::string("chart: ") + role + ": no row has a column '" + column + "' (" +
-                        (names.empty() ? "the rows have no columns" : "columns: " + joined(names)) +
+                        (names.empty() ? "the rows have no columns" : "columns: " + join(names)) +
                         ")");
 }
 
@@ -160,7 +155,7 @@ std::string series_name(const std::string& y, const SeriesKey& key, const ChartC
   for (size_t k = 0; k < key.size(); ++k) {
     parts.push_back(columns.series[k] + " = " + value_text(key[k]));
   }
-  return (columns.y.size() > 1 ? y + ", " : "") + joined(parts);
+  return (columns.y.size() > 1 ? y + ", " : "") + join(parts);
 }
 
 }  // namespace
@@ -207,7 +202,7 @@ RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns
   result.skipped = static_cast<int>(std::count(skipped.begin(), skipped.end(), true));
   if (result.series.empty()) {
     throw InvalidArgument("chart: nothing to plot: no row has both x ('" + columns.x +
-                          "') and y ('" + joined(columns.y) + "'); " +
+                          "') and y ('" + join(columns.y) + "'); " +
                           std::to_string(result.skipped) + " rows skipped");
   }
   return result;

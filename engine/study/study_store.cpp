@@ -8,6 +8,7 @@
 #include <sqlite3.h>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar::study {
 
@@ -33,12 +34,6 @@ std::string merged_kind(const std::string& kind, const char* added) {
 }
 
 std::string quoted(const std::string& identifier) { return "\"" + identifier + "\""; }
-
-std::string join(const std::vector<std::string>& names, const std::string& separator) {
-  std::string text;
-  for (std::size_t i = 0; i < names.size(); ++i) text += (i ? separator : "") + names[i];
-  return text;
-}
 
 class Statement {
 public:
