@@ -7,7 +7,7 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local script_support = require "script_support"
-local shell_quoted, write_atomically = script_support.shell_quoted, script_support.write_atomically
+local write_atomically = script_support.write_atomically
 
 local LIMIT = 0.1075
 local VOUSSOIRS = { 4, 8, 16, 32, 64, 128, 256, 512, 1024 }
@@ -77,7 +77,7 @@ plot $points using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4", \
 ]])
 end
 
-assert(os.execute("mkdir -p " .. shell_quoted(output)), "cannot create " .. output)
+script_support.make_folders(output)
 local columns = "%9s %12s %14s %13s %9s %16s %15s %14s"
 print(columns:format("voussoirs", "t/R found", "error", "bisection s", "analyses", "mean analysis s",
   "mean iterations", "not converged"))

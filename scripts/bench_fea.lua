@@ -7,11 +7,10 @@
 --    1,000 and 10,000 elements: an arch refined, with relaxation.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
-package.path = (arg[0]:match("^(.*)/[^/]+$") or ".") .. "/?.lua;" .. package.path
 local support = require "script_support"
 
 local folder = arg[1] or "docs/figures"
-assert(os.execute("mkdir -p " .. support.shell_quoted(folder)), "cannot create " .. folder)
+support.make_folders(folder)
 
 local E, RHO, G = 20e9, 2400, 9.81
 local SIDE, COUNT = 0.2, 10

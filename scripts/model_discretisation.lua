@@ -108,7 +108,7 @@ local base = output .. "/model_discretisation"
 local chosen = {}
 for i = 2, #arg do chosen[#chosen + 1] = arg[i] end
 if #chosen == 0 then chosen = ORDER end
-assert(os.execute("mkdir -p " .. script_support.shell_quoted(output)), "cannot create " .. output)
+script_support.make_folders(output)
 
 local rows = { "study,count,answer,relative_error" }
 local series, plots = {}, {}

@@ -9,6 +9,13 @@ end
 
 -- Writes `text` to `path` through a temporary file renamed into place, so a
 -- reader never sees half a file.
+-- Creates each folder (and its parents) unless it exists; an error names it.
+function support.make_folders(...)
+  for _, folder in ipairs({ ... }) do
+    assert(os.execute("mkdir -p " .. support.shell_quoted(folder)), "cannot create " .. folder)
+  end
+end
+
 function support.write_atomically(path, text)
   local temporary = path .. ".tmp"
   local file = assert(io.open(temporary, "w"))

@@ -20,7 +20,7 @@ local script_support = require "script_support"
 
 local output = arg[1] or "docs/figures/speed_accuracy"
 local chosen = { table.unpack(arg, 2) }
-assert(os.execute("mkdir -p " .. script_support.shell_quoted(output)), "cannot create " .. output)
+script_support.make_folders(output)
 
 -- Relative tolerance of the searches, far below the errors being judged.
 local SEARCH = 1e-6

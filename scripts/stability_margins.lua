@@ -14,7 +14,7 @@ local script_support = require "script_support"
 local four_hinge = require "four_hinge"
 
 local output = arg[1] or "docs/figures"
-assert(os.execute("mkdir -p " .. script_support.shell_quoted(output)), "cannot create " .. output)
+script_support.make_folders(output)
 local VOUSSOIRS = 64
 local csv = { "quantity,t_over_R,voussoirs,value,reference,seconds" }
 

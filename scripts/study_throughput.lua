@@ -15,7 +15,7 @@ local ashlar_bin = arg[-1]
 local sweep = here .. "/arch_sweep.lua"
 local work = os.tmpname()
 os.remove(work)
-assert(os.execute("mkdir -p " .. quote(work) .. " " .. quote(out)))
+support.make_folders(work, out)
 
 local function run(command)
   local pipe = assert(io.popen("{ " .. command .. "\n} 2>/dev/null"))

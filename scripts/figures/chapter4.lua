@@ -11,7 +11,7 @@ package.path = (arg[0]:match("^(.*)/[^/]+/[^/]+$") or "..") .. "/?.lua;" .. pack
 local support = require "script_support"
 
 local folder = arg[1] or "docs/figures/chapter4"
-assert(os.execute("mkdir -p " .. support.shell_quoted(folder)), "cannot create " .. folder)
+support.make_folders(folder)
 local NO_SLIDING = { friction = math.huge }
 
 local pictures = support.can_render()

@@ -13,7 +13,7 @@ package.path = (arg[0]:match("^(.*)/[^/]+/[^/]+$") or "..") .. "/?.lua;" .. pack
 local support = require "script_support"
 
 local folder = arg[1] or "docs/figures/chapter5"
-assert(os.execute("mkdir -p " .. support.shell_quoted(folder)), "cannot create " .. folder)
+support.make_folders(folder)
 local pictures = support.can_render()
 if not pictures then print("f3d or xvfb-run not found: no PNG renderings of the .glb files") end
 local NO_SLIDING = { friction = math.huge }
