@@ -150,7 +150,8 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   // without tension prove it, converged or not. Without such forces only a
   // converged optimum (whose tension is then needed) proves instability.
   const bool floating = problem.has_floating_bodies();
-  result.stable = !floating && result.imbalance_without_tension <= settings.stable_tolerance;
+  result.stable = !floating && result.status != SolverStatus::interrupted &&
+                  result.imbalance_without_tension <= settings.stable_tolerance;
   result.borderline = !floating &&
                       result.imbalance_without_tension > settings.stable_tolerance * kBorderlineBelow &&
                       result.imbalance_without_tension <= settings.stable_tolerance * kBorderlineAbove;
@@ -158,7 +159,7 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   // a problem with no equilibrium even with tension, e.g. no friction under
   // a sideways load, ends in) leaves no usable equilibrium either.
   const int bodies = std::max(problem.body_count, 1);
-  if (floating || result.status == SolverStatus::numerical_error) {
+  if (floating || has_no_answer(result.status)) {
     result.infeasibility = std::numeric_limits<double>::infinity();
     result.penalty = std::numeric_limits<double>::infinity();
   } else {

@@ -329,7 +329,7 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
   flow.support_interface.assign(options.traces, -1);
   flow.lost = options.traces;
   EquilibriumSolver solver(problem);
-  if (flow.analysis.status == SolverStatus::numerical_error ||
+  if (has_no_answer(flow.analysis.status) ||
       !solver.prepare_response(problem, flow.analysis.solution)) {
     flow.seconds = seconds_since(start);
     return flow;

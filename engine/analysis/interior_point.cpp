@@ -8,6 +8,7 @@
 
 #include "analysis/sparse_cholesky.hpp"
 #include "core/clock.hpp"
+#include "core/interrupt.hpp"
 
 namespace ashlar {
 
@@ -48,6 +49,8 @@ const char* status_name(SolverStatus status) {
       return "max_iterations";
     case SolverStatus::numerical_error:
       return "numerical_error";
+    case SolverStatus::interrupted:
+      return "interrupted";
   }
   return "numerical_error";
 }
@@ -338,6 +341,10 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     }
     if (iteration >= settings.max_iterations) {
       info.status = SolverStatus::max_iterations;
+      break;
+    }
+    if (stop_requested()) {
+      info.status = SolverStatus::interrupted;
       break;
     }
 

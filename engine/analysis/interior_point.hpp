@@ -35,10 +35,16 @@ enum class SolverStatus {
   inaccurate,       // stopped short of the tolerance; the best iterate meets inaccurate_tolerance
   max_iterations,   // stopped at max_iterations, or after 20 iterations without progress
   numerical_error,  // a factorisation or step failed (e.g. loss of positive definiteness)
+  interrupted,      // Ctrl-C or a sandboxed script's deadline (ashlar::stop_requested)
 };
 
-// "converged", "inaccurate", "max_iterations" or "numerical_error".
+// "converged", "inaccurate", "max_iterations", "numerical_error" or "interrupted".
 const char* status_name(SolverStatus status);
+
+// Whether the solve ended without an equilibrium one may use.
+inline bool has_no_answer(SolverStatus status) {
+  return status == SolverStatus::numerical_error || status == SolverStatus::interrupted;
+}
 
 struct InteriorPointInfo {
   SolverStatus status = SolverStatus::numerical_error;

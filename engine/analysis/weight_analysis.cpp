@@ -72,9 +72,9 @@ public:
     }
     result.weights[block] = own_weight;
     const bool floating = problem_.has_floating_bodies();
-    result.stable = !floating && info.status != SolverStatus::numerical_error &&
+    result.stable = !floating && !has_no_answer(info.status) &&
                     compression_only_imbalance(problem_, solution_.x) <= settings_.stable_tolerance;
-    if (floating || info.status == SolverStatus::numerical_error) {
+    if (floating || has_no_answer(info.status)) {
       result.infeasibility = std::numeric_limits<double>::infinity();
     } else {
       result.infeasibility = result.stable ? 0.0 : penalised / std::max(problem_.body_count, 1);
@@ -105,7 +105,7 @@ WeightSensitivity weight_sensitivity(const Structure& structure, int block,
   result.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
   check_analysed_block(problem, structure, block, "");
   const auto start = Clock::now();
-  if (result.analysis.status == SolverStatus::numerical_error) return result;
+  if (has_no_answer(result.analysis.status)) return result;
   EquilibriumSolver solver(problem);
   if (!solver.prepare_response(problem, result.analysis.solution)) return result;
 

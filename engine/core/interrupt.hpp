@@ -1,9 +1,13 @@
-// Ctrl-C for long C++ loops: the host's SIGINT handler sets the flag (an
-// async-signal-safe atomic store), loops that cannot rely on a Lua hook
-// (a study's coordinator waiting for worker threads) poll it.
+// Stopping long C++ loops: Ctrl-C, and the deadline of a sandboxed script.
+// The host's SIGINT handler sets interrupt_requested (an async-signal-safe
+// atomic store); the Lua bindings set the calling thread's stop_deadline
+// for the length of each call from a sandboxed state. Loops that run no Lua
+// (solver iterations, a study's coordinator) poll stop_requested.
 #pragma once
 
 #include <atomic>
+
+#include "core/clock.hpp"
 
 namespace ashlar {
 
@@ -11,5 +15,30 @@ inline std::atomic<bool>& interrupt_requested() {
   static std::atomic<bool> requested{false};
   return requested;
 }
+
+inline Clock::time_point& stop_deadline() {
+  thread_local Clock::time_point deadline = Clock::time_point::max();
+  return deadline;
+}
+
+inline bool stop_requested() {
+  return interrupt_requested().load(std::memory_order_relaxed) ||
+         (stop_deadline() != Clock::time_point::max() && Clock::now() >= stop_deadline());
+}
+
+// Sets the calling thread's deadline for its lifetime (nested calls keep the
+// earlier of the two).
+class DeadlineScope {
+public:
+  explicit DeadlineScope(Clock::time_point deadline) : saved_(stop_deadline()) {
+    if (deadline < saved_) stop_deadline() = deadline;
+  }
+  ~DeadlineScope() { stop_deadline() = saved_; }
+  DeadlineScope(const DeadlineScope&) = delete;
+  DeadlineScope& operator=(const DeadlineScope&) = delete;
+
+private:
+  Clock::time_point saved_;
+};
 
 }  // namespace ashlar

@@ -7,6 +7,7 @@
 // Axes: glTF is +Y up by specification, ashlar is +Z up, so glTF/GLB scenes
 // are rotated (x, y, z) -> (x, -z, y) on import (the inverse of export).
 // Other formats carry no convention and are taken as they are.
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -125,11 +126,25 @@ void check_options(const ImportOptions& options) {
   }
 }
 
+// The file system as ImportOptions::may_open lets assimp see it.
+class GuardedFiles : public Assimp::DefaultIOSystem {
+public:
+  explicit GuardedFiles(std::function<bool(const std::string&)> may_open) : may_open_(std::move(may_open)) {}
+  bool Exists(const char* file) const override { return may_open_(file) && DefaultIOSystem::Exists(file); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    return may_open_(file) ? DefaultIOSystem::Open(file, mode) : nullptr;
+  }
+
+private:
+  std::function<bool(const std::string&)> may_open_;
+};
+
 }  // namespace
 
 std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOptions& options) {
   check_options(options);
   Assimp::Importer importer;
+  if (options.may_open) importer.SetIOHandler(new GuardedFiles(options.may_open));  // the importer owns it
   // No JoinIdenticalVertices and no Triangulate: welding is by position in
   // block_from_mesh, and polygon faces are kept as they are.
   const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);

@@ -1,6 +1,7 @@
 // Mesh files through assimp: import objects as blocks, export structures.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,10 @@ struct ImportOptions {
   // Vertices closer than this fraction of the scene's bounding-box diagonal
   // are welded (files such as STL repeat each vertex per triangle).
   double relative_weld_tolerance = 1e-9;
+  // Whether the importer may open a file: the mesh itself and the files it
+  // names (OBJ materials, glTF buffers, ...). Empty: any file. A refused
+  // file is as if it did not exist.
+  std::function<bool(const std::string& path)> may_open;
 };
 
 struct ImportedBlock {

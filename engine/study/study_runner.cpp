@@ -133,7 +133,7 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
     if (calling_thread_worker == nullptr) throw InvalidArgument("study: no worker to run the rows");
     std::vector<Outcome> batch;
     while (!queue.pending.empty()) {
-      if (interrupt_requested()) {
+      if (stop_requested()) {
         info.interrupted = true;
         break;
       }
@@ -159,7 +159,7 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
           queue.changed.wait_for(lock, std::chrono::milliseconds(remote ? 1 : 200),
                                  [&] { return !queue.outcomes.empty() || queue.live_threads == 0; });
           batch.swap(queue.outcomes);
-          if (interrupt_requested() && !queue.stop) {
+          if (stop_requested() && !queue.stop) {
             queue.stop = true;
             info.interrupted = true;
           }
