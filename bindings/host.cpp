@@ -15,6 +15,7 @@
 
 #include "core/version.hpp"
 #include "host_state.hpp"
+#include "sandbox_process.hpp"
 #include "study/cluster.hpp"
 #include "regression_check.hpp"
 #include "regression_runner.hpp"
@@ -38,6 +39,8 @@ struct CommandLine {
   bool show_version = false;
   bool has_chunk = false;  // at least one -e
   bool show_help = false;
+  ashlar::sandbox::ProcessOptions sandbox;
+  bool sandbox_option_given = false;  // --read, --memory, ... (they need --sandbox)
   std::string error;  // set when the options are wrong
 };
 
@@ -52,12 +55,21 @@ void print_usage(FILE* out) {
       "  -l g=mod   require library 'mod' into global 'g'\n"
       "  -v         show version information\n"
       "  -W         turn warnings on\n"
+      "  --sandbox  run the script as untrusted (see below)\n"
+      "  --read DIR, --write DIR   folders a sandboxed script may read, or read and\n"
+      "             write (repeatable; default: read the script's folder, write ./out)\n"
+      "  --memory SIZE             Lua heap limit, e.g. 256M (default 1G)\n"
+      "  --engine-memory SIZE      memory the whole process may add (default 4G; 0: none)\n"
+      "  --instructions N          Lua instruction budget (default: none)\n"
+      "  --time S                  time limit in seconds (default 600; 0: none)\n"
       "  --         stop handling options\n"
       "  -          stop handling options and execute stdin\n"
       "  --help     show this help\n"
       "  --version  show version information\n"
       "With no script and no -e, %s reads statements interactively when stdin\n"
       "is a terminal, and runs stdin as a script otherwise.\n"
+      "A sandboxed script cannot run programs, load binary chunks or C modules,\n"
+      "use the debug library, or touch files outside its folders.\n"
       "'%s test' runs a folder of regression checks against their golden\n"
       "values ('%s test --help' for more).\n",
       kProgramName, kProgramName, kProgramName, kProgramName, kProgramName);
@@ -92,6 +104,9 @@ CommandLine parse_command_line(int argc, char** argv) {
       command_line.show_version = true;
     } else if (std::strcmp(option, "-W") == 0) {
       // acted on in run_options
+    } else if (ashlar::sandbox::parse_option(argc, argv, i, command_line.sandbox, command_line.error)) {
+      if (!command_line.error.empty()) break;
+      command_line.sandbox_option_given |= std::strcmp(option, "--sandbox") != 0;
     } else if (option[1] == 'e' || option[1] == 'l') {
       command_line.has_chunk |= option[1] == 'e';
       if (option[2] == '\0') {  // the argument is the next word, not "-estat"
@@ -107,8 +122,13 @@ CommandLine parse_command_line(int argc, char** argv) {
     }
   }
   command_line.script = i;
+  if (command_line.error.empty() && command_line.sandbox_option_given && !command_line.sandbox.enabled)
+    command_line.error = "'--read', '--write', '--memory', '--engine-memory', '--instructions' and '--time' need --sandbox";
   return command_line;
 }
+
+// Under --engine-memory, what a failed allocation outside the Lua heap means.
+std::string g_engine_memory_note;
 
 // Prints the error object on top of the stack and pops it; returns the status.
 int report(lua_State* L, int status, const char* prefix = kErrorPrefix) {
@@ -118,7 +138,9 @@ int report(lua_State* L, int status, const char* prefix = kErrorPrefix) {
   if (message == nullptr)  // not raised through add_traceback
     message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, error_index));
   std::fflush(stdout);  // what the script wrote comes before its error in a shared log
-  std::fprintf(stderr, "%s%s\n", prefix, message);
+  std::string shown = ashlar::sandbox::explain_error(L, message);
+  if (!g_engine_memory_note.empty() && shown.find("not enough memory") != std::string::npos) shown += g_engine_memory_note;
+  std::fprintf(stderr, "%s%s\n", prefix, shown.c_str());
   std::fflush(stderr);
   lua_settop(L, error_index - 1);
   return status;
@@ -154,6 +176,10 @@ bool run_options(lua_State* L, const CommandLine& command_line) {
       lua_warning(L, "@on", 0);
       continue;
     }
+    if (ashlar::sandbox::takes_value(option)) {
+      ++i;  // its value, read by parse_command_line
+      continue;
+    }
     if (option[1] != 'e' && option[1] != 'l') continue;
     const char* value = option[2] != '\0' ? option + 2 : command_line.argv[++i];
     const int status = option[1] == 'e' ? run_string(L, value) : require_into_global(L, value);
@@ -171,13 +197,21 @@ bool script_is_stdin(const CommandLine& command_line) {
 
 int run_script(lua_State* L, const CommandLine& command_line) {
   const char* file_name = script_is_stdin(command_line) ? nullptr : command_line.argv[command_line.script];
-  int status = luaL_loadfile(L, file_name);
+  // A sandboxed script may not be a precompiled (binary) chunk.
+  int status = luaL_loadfilex(L, file_name, command_line.sandbox.enabled ? "t" : nullptr);
   if (status == LUA_OK) {
     const int first_argument = command_line.script + 1;
     const int argument_count = command_line.argc - first_argument;
     luaL_checkstack(L, argument_count + 3, "too many arguments to script");
     for (int i = first_argument; i < command_line.argc; ++i) lua_pushstring(L, command_line.argv[i]);
     status = call_with_traceback(L, argument_count, LUA_MULTRET);
+  }
+  if (status == LUA_OK && command_line.sandbox.enabled) {
+    const std::string late = ashlar::sandbox::deadline_problem(L);
+    if (!late.empty()) {
+      lua_pushstring(L, late.c_str());
+      status = LUA_ERRRUN;
+    }
   }
   return report(L, status);
 }
@@ -264,7 +298,7 @@ void run_interactive(lua_State* L) {
 // memory error during set-up is reported instead of aborting.
 int run_host(lua_State* L) {
   const auto& command_line = *static_cast<const CommandLine*>(lua_touserdata(L, 1));
-  open_host_libraries(L);
+  if (!command_line.sandbox.enabled) open_host_libraries(L);  // else opened, restricted
   // A check script run on its own prints what it records; `ashlar test`
   // compares it instead.
   static ashlar::regression::CheckRecorder printed_checks(/*echo=*/true);
@@ -290,12 +324,25 @@ int run_host(lua_State* L) {
         print_version();
         run_interactive(L);
       } else {
-        succeeded = run_loaded_chunk(L, luaL_loadfile(L, nullptr)) == LUA_OK;
+        succeeded = run_loaded_chunk(L, luaL_loadfilex(L, nullptr, command_line.sandbox.enabled ? "t" : nullptr)) == LUA_OK;
       }
     }
   }
   lua_pushboolean(L, succeeded);
   return 1;
+}
+
+// The script's state under --sandbox, with the process limited too.
+lua_State* sandboxed_state(CommandLine& command_line) {
+  const bool has_script = command_line.script < command_line.argc && !script_is_stdin(command_line);
+  ashlar::sandbox::complete_settings(command_line.sandbox, has_script ? command_line.argv[command_line.script] : nullptr);
+  lua_State* L = ashlar::sandbox::new_state(command_line.sandbox.settings);
+  ashlar::sandbox::limit_process(command_line.sandbox);
+  if (command_line.sandbox.engine_memory_bytes != 0)
+    g_engine_memory_note = " (the sandboxed process may use " +
+                           std::to_string(command_line.sandbox.engine_memory_bytes >> 20) +
+                           " MiB more than at its start: --engine-memory)";
+  return L;
 }
 
 }  // namespace
@@ -316,7 +363,13 @@ int main(int argc, char** argv) {
     print_usage(stdout);
     return EXIT_SUCCESS;
   }
-  lua_State* L = luaL_newstate();
+  lua_State* L = nullptr;
+  try {
+    L = command_line.sandbox.enabled ? sandboxed_state(command_line) : luaL_newstate();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s%s\n", kErrorPrefix, e.what());
+    return EXIT_FAILURE;
+  }
   if (L == nullptr) {
     std::fprintf(stderr, "%scannot create state: not enough memory\n", kErrorPrefix);
     return EXIT_FAILURE;
@@ -326,7 +379,7 @@ int main(int argc, char** argv) {
   const int status = lua_pcall(L, 1, 1, 0);
   const bool succeeded = status == LUA_OK && lua_toboolean(L, -1);
   report(L, status);
-  lua_close(L);
+  ashlar::sandbox::close_state(L);
   // One rank failing alone would leave the others waiting for it.
   if (!succeeded) ashlar::cluster::abort_job(EXIT_FAILURE);
   ashlar::cluster::leave();

@@ -10,6 +10,7 @@
 
 #include "ashlar_lua.hpp"
 #include "core/interrupt.hpp"
+#include "sandbox.hpp"
 
 namespace ashlar::host {
 
@@ -21,6 +22,7 @@ volatile std::sig_atomic_t g_interrupted = 0;
 
 void stop_at_hook(lua_State* L, lua_Debug*) {
   lua_sethook(L, nullptr, 0, 0);
+  sandbox::restore_hook(L);
   luaL_error(L, "interrupted!");
 }
 
@@ -126,10 +128,13 @@ int call_with_traceback(lua_State* L, int argument_count, int result_count) {
   const int handler_index = lua_gettop(L) - argument_count;
   lua_pushcfunction(L, add_traceback);
   lua_insert(L, handler_index);
+  // A sandboxed script run by ashlar.sandbox nests in the host's script.
+  lua_State* const outer_state = g_running_state;
   g_running_state = L;
-  std::signal(SIGINT, on_interrupt);
+  const auto outer_handler = std::signal(SIGINT, on_interrupt);
   const int status = lua_pcall(L, argument_count, result_count, handler_index);
-  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGINT, outer_handler == SIG_ERR ? SIG_DFL : outer_handler);
+  g_running_state = outer_state;
   lua_remove(L, handler_index);
   return status;
 }

@@ -10,6 +10,7 @@
 #include <functional>
 #include <initializer_list>
 #include <memory>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -17,7 +18,9 @@
 
 #include <lua.hpp>
 
+#include "core/interrupt.hpp"
 #include "core/types.hpp"
+#include "sandbox.hpp"
 
 namespace ashlar::lua {
 
@@ -39,10 +42,15 @@ template <class Body>
 int guard(lua_State* L, Body&& body) {
   int arg = -1;
   try {
+    // The engine's long loops stop at a sandboxed script's deadline.
+    const DeadlineScope deadline(sandbox::deadline_of(L));
     return body();
   } catch (const ArgError& e) {
     arg = e.arg();
     lua_pushstring(L, e.what());
+  } catch (const std::bad_alloc&) {
+    arg = 0;
+    lua_pushliteral(L, "not enough memory (the engine's allocation failed)");
   } catch (const std::exception& e) {
     arg = 0;
     lua_pushstring(L, e.what());

@@ -102,7 +102,7 @@ int w_analyze(lua_State* L) {
 int w_export_qp(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
-    const std::string path = check_string(L, 2, "path");
+    const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const AnalysisSettings settings = settings_from(L, 3);
     write_equilibrium_qps(build_equilibrium_problem(s, settings.problem), path);
     return 0;

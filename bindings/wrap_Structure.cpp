@@ -44,7 +44,7 @@ int w_structure(lua_State* L) {
 
 int w_load(lua_State* L) {
   return guard(L, [&] {
-    const std::string path = check_string(L, 1, "path");
+    const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::read);
     luax_pushStructure(L, std::make_shared<Structure>(load_structure(path)));
     return 1;
   });
@@ -253,7 +253,7 @@ int w_Structure_is_planar(lua_State* L) {
 int w_Structure_save(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
-    save_structure(s, check_string(L, 2, "path"));
+    save_structure(s, sandbox::checked_path(L, 2, "path", sandbox::Access::write));
     return 0;
   });
 }

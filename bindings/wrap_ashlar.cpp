@@ -22,6 +22,7 @@
 #include "wrap_optimize.hpp"
 #include "wrap_search.hpp"
 #include "wrap_study.hpp"
+#include "wrap_sandbox.hpp"
 #include "wrap_weights.hpp"
 
 namespace ashlar::lua {
@@ -54,7 +55,7 @@ std::vector<std::vector<Vec3>> load_traces(lua_State* L, const OptionTable& opti
 int w_export(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
-    const std::string path = check_string(L, 2, "path");
+    const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"color", "interfaces", "tolerance", "result", "forces",
                                      "thrust", "force_scale", "opacity", "cable_color", "traces",
                                      "trace_color"});
@@ -127,10 +128,14 @@ bool is_support(lua_State* L, int rule, const ImportedBlock& imported) {
 
 int w_import(lua_State* L) {
   return guard(L, [&] {
-    const std::string path = check_string(L, 1, "path");
+    const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::read);
     const OptionTable options(L, 2, {"support", "density"});
     ImportOptions import_options;
     import_options.density = options.positive("density", kDefaultDensity);
+    if (sandbox::settings_of(L) != nullptr)
+      import_options.may_open = [L](const std::string& file) {
+        return sandbox::access_problem(L, file, sandbox::Access::read).empty();
+      };
     options.push("support");
     const int rule = lua_gettop(L);
     if (!lua_isnil(L, rule) && lua_type(L, rule) != LUA_TSTRING && !lua_isfunction(L, rule)) {
@@ -195,6 +200,7 @@ int ashlar_open_library(lua_State* L) {
   set_margin_functions(L);
   set_search_functions(L);
   set_study_functions(L);
+  set_sandbox_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
                                        {nullptr, nullptr}};

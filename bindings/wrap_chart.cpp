@@ -128,6 +128,7 @@ int w_chart(lua_State* L) {
                                "y_label", "log_x", "log_y", "width", "height"});
     const std::string path =
         required_string(options, "path", "the file to write (.png, .svg or .pdf)");
+    sandbox::require_access(L, 1, "path", path, sandbox::Access::write);
     const std::vector<ChartRow> rows = chart_rows(options);
     ChartColumns columns;
     columns.x = required_string(options, "x", "the column plotted along x");

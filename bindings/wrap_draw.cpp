@@ -44,7 +44,7 @@ Vec3 view_direction(const OptionTable& options) {
 int w_draw(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
-    const std::string path = check_string(L, 2, "path");
+    const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"result", "thrust", "forces", "force_scale", "view", "width",
                                      "height", "title", "color", "thrust_color", "tolerance"});
     ElevationOptions drawing;
@@ -77,7 +77,7 @@ int w_draw(lua_State* L) {
 
 int w_legend(lua_State* L) {
   return guard(L, [&] {
-    const std::string path = check_string(L, 1, "path");
+    const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::write);
     const OptionTable options(L, 2, {"map", "range", "label", "width", "height", "orientation"});
     LegendOptions legend;
     legend.map = options.string("map").value_or(legend.map);

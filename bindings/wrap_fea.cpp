@@ -184,7 +184,7 @@ void push_stresses(lua_State* L, const FeaRecord& r) {
 int w_FeaResult_export(lua_State* L) {
   return guard(L, [&] {
     const FeaRecord& r = check_record(L, 1);
-    const std::string path = check_string(L, 2, "path");
+    const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"scale", "color", "map", "undeformed", "contacts"});
     if (file_extension(path) == "vtu") {
       for (const char* key : {"scale", "color", "map", "undeformed", "contacts"})

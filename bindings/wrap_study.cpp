@@ -171,7 +171,7 @@ public:
   LuaRowWorker(lua_State* L, int run_ref, std::vector<std::string> names, bool owns_state)
       : L_(L), run_ref_(run_ref), names_(std::move(names)), owns_state_(owns_state) {}
   ~LuaRowWorker() override {
-    if (owns_state_) lua_close(L_);
+    if (owns_state_) sandbox::close_state(L_);
     else luaL_unref(L_, LUA_REGISTRYINDEX, run_ref_);
   }
   LuaRowWorker(const LuaRowWorker&) = delete;
@@ -187,6 +187,12 @@ public:
     const int status = lua_pcall(L_, 1, 1, 0);
     outcome.seconds = monotonic_seconds() - start;
     if (status != LUA_OK) {
+      // A stopped script stops the study instead of filling it with error rows.
+      if (sandbox::budget_exhausted(L_)) {
+        const std::string message = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "sandbox limit";
+        lua_settop(L_, top);
+        throw Error(message);
+      }
       if (!owns_state_ && interrupt_requested()) {
         lua_settop(L_, top);
         throw Error("interrupted!");
@@ -245,14 +251,15 @@ int do_nothing(lua_State*) { return 0; }
 int run_worker_script(lua_State* L) {
   const auto& invocation = *static_cast<const ScriptInvocation*>(lua_touserdata(L, 1));
   auto* slot = static_cast<WorkerSlot*>(lua_touserdata(L, 2));
-  host::open_host_libraries(L);
+  const bool sandboxed = sandbox::settings_of(L) != nullptr;
+  if (!sandboxed) host::open_host_libraries(L);  // else they are open, restricted
   host::prepend_script_folder_to_path(L, invocation.path().c_str());
   host::create_arg_table(L, invocation.argv, invocation.script);
   lua_pushcfunction(L, do_nothing);  // runs print in step; their output would garble the progress line
   lua_setglobal(L, "print");
   lua_pushlightuserdata(L, slot);
   lua_setfield(L, LUA_REGISTRYINDEX, kWorkerSlotKey);
-  if (luaL_loadfile(L, invocation.path().c_str()) != LUA_OK) return lua_error(L);
+  if (luaL_loadfilex(L, invocation.path().c_str(), sandboxed ? "t" : nullptr) != LUA_OK) return lua_error(L);
   const int first = invocation.script + 1;
   for (std::size_t i = static_cast<std::size_t>(first); i < invocation.argv.size(); ++i)
     lua_pushstring(L, invocation.argv[i].c_str());
@@ -260,9 +267,26 @@ int run_worker_script(lua_State* L) {
   return 0;
 }
 
+// The script's state, sandboxed or not, decides its workers' states.
+struct WorkerSandbox {
+  std::optional<sandbox::Settings> settings;
+  Clock::time_point deadline = Clock::time_point::max();
+};
+
+WorkerSandbox worker_sandbox(lua_State* L) {
+  WorkerSandbox worker;
+  if (const sandbox::Settings* settings = sandbox::settings_of(L)) {
+    worker.settings = *settings;
+    worker.deadline = sandbox::deadline_of(L);
+  }
+  return worker;
+}
+
 std::unique_ptr<study::RowWorker> start_script_worker(const ScriptInvocation& invocation, const std::string& study_name,
-                                                     const std::vector<std::string>& names) {
-  lua_State* W = luaL_newstate();
+                                                     const std::vector<std::string>& names,
+                                                     const WorkerSandbox& worker_sandbox) {
+  lua_State* W = worker_sandbox.settings ? sandbox::new_state(*worker_sandbox.settings, worker_sandbox.deadline)
+                                         : luaL_newstate();
   if (W == nullptr) throw Error("not enough memory for a Lua state");
   WorkerSlot slot{study_name};
   lua_pushcfunction(W, run_worker_script);
@@ -279,7 +303,7 @@ std::unique_ptr<study::RowWorker> start_script_worker(const ScriptInvocation& in
   lua_pushnil(W);
   lua_setfield(W, LUA_REGISTRYINDEX, kWorkerSlotKey);  // the slot goes out of scope
   if (!kept) {
-    lua_close(W);
+    sandbox::close_state(W);
     throw Error(problem);
   }
   return std::make_unique<LuaRowWorker>(W, slot.run_ref, names, true);
@@ -324,6 +348,7 @@ int w_study(lua_State* L) {
     StudyObject study;
     study.name = *name;
     study.db = options.string("db").value_or("");
+    if (!study.db.empty()) sandbox::require_access(L, 1, "db", study.db, sandbox::Access::write);
     const lua_Integer workers = options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(0);
     study::StudySettings settings;
     settings.progress = options.boolean("progress").value_or(true);
@@ -363,8 +388,9 @@ int w_study(lua_State* L) {
     }
     // Copied: the threads must not read the registry of the script's state.
     const ScriptInvocation invocation = script ? *script : ScriptInvocation{};
-    const study::WorkerFactory start_worker = [&invocation, &study, &rows](int) {
-      return start_script_worker(invocation, study.name, rows.names);
+    const WorkerSandbox sandbox = worker_sandbox(L);
+    const study::WorkerFactory start_worker = [&invocation, &study, &rows, &sandbox](int) {
+      return start_script_worker(invocation, study.name, rows.names, sandbox);
     };
     study.info = study::run_study(store, study.name, study.table, settings, &script_worker, start_worker,
                                   ranks ? &*ranks : nullptr);
@@ -389,6 +415,7 @@ int w_load_study(lua_State* L) {
     study.db = options.string("db").value_or("");
     study.name = options.string("name").value_or("");
     if (study.db.empty()) throw ArgError(1, "db: missing (the study database's path)");
+    sandbox::require_access(L, 1, "db", study.db, sandbox::Access::read);
     if (study.name.empty()) throw ArgError(1, "name: missing (the study's name)");
     study.table = study::StudyStore(study.db, true).read_study(study.name);
     push_study(L, std::move(study));
@@ -528,7 +555,7 @@ int w_study_chart(lua_State* L) {
 int w_study_csv(lua_State* L) {
   return guard(L, [&] {
     const StudyObject& study = check_study(L, 1);
-    const std::string path = check_string(L, 2, "path");
+    const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     if (cluster::rank() == 0) write_file_atomically(path, study::csv_text(study.table));  // one writer per MPI job
     lua_pushstring(L, path.c_str());
     return 1;

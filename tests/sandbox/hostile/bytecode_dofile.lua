@@ -1,0 +1,5 @@
+-- expect: attempt to load a binary chunk (mode is 't')
+local file = assert(io.open("out/chunk2.luac", "wb"))
+file:write("\27LuaT\0\25\147\13\10\26\10\4\8\8")
+file:close()
+dofile("out/chunk2.luac")

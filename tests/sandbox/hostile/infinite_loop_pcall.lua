@@ -1,0 +1,6 @@
+-- expect: sandbox: time limit of 1 s exceeded
+-- options: --time 1
+-- Catching the limit's error does not help: it is raised again at every instruction.
+while true do
+  pcall(function() while true do pcall(function() while true do end end) end end)
+end

@@ -1,0 +1,3 @@
+-- expect: writing '/tmp/ashlar-sandbox-pwned.txt' is not allowed
+io.output("/tmp/ashlar-sandbox-pwned.txt")
+io.write("pwned")

@@ -1,0 +1,2 @@
+-- expect: io.popen is not allowed in the sandbox
+print(io.popen("cat ../secret/secret.txt"):read("a"))

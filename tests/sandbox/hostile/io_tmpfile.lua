@@ -1,0 +1,2 @@
+-- expect: io.tmpfile is not allowed in the sandbox
+io.tmpfile():write("x")

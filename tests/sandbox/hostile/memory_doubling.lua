@@ -1,0 +1,4 @@
+-- expect: sandbox: memory limit of 64 MiB exceeded
+-- options: --memory 64M
+local s = "x"
+while true do s = s .. s end

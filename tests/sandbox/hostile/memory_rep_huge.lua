@@ -1,0 +1,2 @@
+-- expect: resulting string too large
+print(#string.rep("x", 2^62))

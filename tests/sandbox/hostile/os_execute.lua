@@ -1,0 +1,2 @@
+-- expect: os.execute is not allowed in the sandbox
+os.execute("touch pwned")

@@ -1,0 +1,2 @@
+-- expect: writing '../secret/secret.txt' is not allowed
+assert(os.remove("../secret/secret.txt"))

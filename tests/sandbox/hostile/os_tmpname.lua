@@ -1,0 +1,2 @@
+-- expect: os.tmpname is not allowed in the sandbox
+print(os.tmpname())

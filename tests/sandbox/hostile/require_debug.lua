@@ -1,0 +1,3 @@
+-- expect: module 'debug' not found
+local d = require "debug"
+d.sethook()

@@ -1,0 +1,2 @@
+-- expect: string.dump is not allowed in the sandbox
+load(string.dump(function() end))

@@ -1,0 +1,2 @@
+-- expect: writing '../secret/secret.txt' is not allowed
+assert(io.open("../secret/secret.txt", "r+")):write("overwritten")
