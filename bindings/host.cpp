@@ -75,8 +75,15 @@ void print_usage(FILE* out) {
       kProgramName, kProgramName, kProgramName, kProgramName, kProgramName);
 }
 
+// A sanitizer build says so: it cannot cap the process's memory (--sandbox).
+#if defined(__SANITIZE_ADDRESS__)
+const char* const kBuildNote = " [AddressSanitizer]";
+#else
+const char* const kBuildNote = "";
+#endif
+
 void print_version() {
-  std::printf("%s %s (%s)\n", kProgramName, ashlar::version(), LUA_VERSION);
+  std::printf("%s %s (%s)%s\n", kProgramName, ashlar::version(), LUA_VERSION, kBuildNote);
   std::fflush(stdout);
 }
 
