@@ -265,6 +265,8 @@ void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options) {
   check_options(options);
+  structure.require_free_block("analysis");
+  structure.require_no_overlaps(options.contact, "analysis");
   const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
   const int n = structure.size();
   const std::vector<Cable>& cables = structure.cables();

@@ -1,0 +1,149 @@
+#include "structure/overlap_detection.hpp"
+
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "geometry/solid_intersection.hpp"
+
+namespace ashlar {
+
+namespace {
+
+using BoxWithIndex = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+// Edge directions closer than this (1 - |cos|) are one direction, and edge
+// pairs closer than it to parallel give no axis.
+constexpr double kParallel = 1e-12;
+
+// The box shrunk by `shrink` on every side (no further than its centre), so
+// that boxes meeting within the tolerance are not candidates at all.
+BoxWithIndex shrunk_box(const Box3& box, double shrink, int index) {
+  const Vec3 centre = 0.5 * (box.lo + box.hi);
+  const Vec3 lo = (box.lo.array() + shrink).min(centre.array());
+  const Vec3 hi = (box.hi.array() - shrink).max(centre.array());
+  return BoxWithIndex(CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()), index);
+}
+
+std::vector<Vec3> edge_directions(const Block& block) {
+  std::vector<Vec3> directions;
+  for (const FaceLoop& face : block.faces()) {
+    for (size_t k = 0; k < face.size(); ++k) {
+      const int from = face[k], to = face[(k + 1) % face.size()];
+      if (from > to) continue;  // each edge once: its other face runs it the other way
+      const Vec3 d = (block.vertices()[to] - block.vertices()[from]).normalized();
+      const bool known = std::any_of(directions.begin(), directions.end(), [&](const Vec3& e) {
+        return 1.0 - std::abs(e.dot(d)) <= kParallel;
+      });
+      if (!known) directions.push_back(d);
+    }
+  }
+  return directions;
+}
+
+// Overlap (m) of the two blocks' projections on a unit axis; <= 0 when the
+// axis separates them.
+double projected_overlap(const Block& a, const Block& b, const Vec3& axis) {
+  double lo_a = std::numeric_limits<double>::infinity(), hi_a = -lo_a;
+  for (const Vec3& p : a.vertices()) {
+    const double t = axis.dot(p);
+    lo_a = std::min(lo_a, t);
+    hi_a = std::max(hi_a, t);
+  }
+  double lo_b = std::numeric_limits<double>::infinity(), hi_b = -lo_b;
+  for (const Vec3& p : b.vertices()) {
+    const double t = axis.dot(p);
+    lo_b = std::min(lo_b, t);
+    hi_b = std::max(hi_b, t);
+  }
+  return std::min(hi_a, hi_b) - std::max(lo_a, lo_b);
+}
+
+// Face normals of both blocks: most touching pairs are separated by one.
+std::vector<Vec3> face_axes(const Block& a, const Block& b) {
+  std::vector<Vec3> axes;
+  for (const Block* block : {&a, &b}) {
+    for (const FacePlane& plane : block->face_planes()) axes.push_back(plane.normal);
+  }
+  return axes;
+}
+
+// The rest of the separating-axis candidates: cross products of edge
+// directions, one of each block.
+std::vector<Vec3> edge_axes(const Block& a, const Block& b) {
+  std::vector<Vec3> axes;
+  const std::vector<Vec3> edges_a = edge_directions(a), edges_b = edge_directions(b);
+  for (const Vec3& e : edges_a) {
+    for (const Vec3& f : edges_b) {
+      const Vec3 axis = e.cross(f);
+      const double length = axis.norm();
+      if (length * length > kParallel) axes.push_back(axis / length);
+    }
+  }
+  return axes;
+}
+
+// How deep a and b overlap (m), or nothing when they do not by more than tol.
+std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) {
+  std::vector<Vec3> axes = face_axes(a, b);
+  double least = std::numeric_limits<double>::infinity();
+  const auto separated = [&](const std::vector<Vec3>& candidates) {
+    for (const Vec3& axis : candidates) {
+      least = std::min(least, projected_overlap(a, b, axis));
+      if (least <= tol) return true;
+    }
+    return false;
+  };
+  if (separated(axes)) return std::nullopt;
+  const std::vector<Vec3> more = edge_axes(a, b);
+  if (separated(more)) return std::nullopt;
+  axes.insert(axes.end(), more.begin(), more.end());
+  if (a.convex() && b.convex()) return least;
+  // Unseparated non-convex blocks may still only touch (a box in an L's
+  // corner): measure the solid they share. When CGAL cannot build it, the
+  // pair is left alone: a refused valid structure is worse than a missed
+  // overlap.
+  const std::optional<std::vector<Vec3>> shared = shared_solid_vertices(a, b);
+  if (!shared || shared->empty()) return std::nullopt;
+  double thickness = std::numeric_limits<double>::infinity();
+  for (const Vec3& axis : axes) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec3& p : *shared) {
+      lo = std::min(lo, axis.dot(p));
+      hi = std::max(hi, axis.dot(p));
+    }
+    thickness = std::min(thickness, hi - lo);
+  }
+  if (thickness <= tol) return std::nullopt;
+  return thickness;
+}
+
+}  // namespace
+
+std::vector<BlockOverlap> detect_overlaps(const std::vector<const Block*>& blocks,
+                                          double tolerance) {
+  std::vector<BoxWithIndex> boxes;
+  boxes.reserve(blocks.size());
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    boxes.push_back(shrunk_box(blocks[i]->bounds(), 0.5 * tolerance, static_cast<int>(i)));
+  }
+  std::vector<std::pair<int, int>> candidates;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
+                                [&](const BoxWithIndex& x, const BoxWithIndex& y) {
+                                  candidates.emplace_back(std::min(x.info(), y.info()),
+                                                          std::max(x.info(), y.info()));
+                                });
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<BlockOverlap> overlaps;
+  for (const auto& [a, b] : candidates) {
+    if (const std::optional<double> depth = overlap_depth(*blocks[a], *blocks[b], tolerance)) {
+      overlaps.push_back({a, b, *depth});
+    }
+  }
+  return overlaps;
+}
+
+}  // namespace ashlar
