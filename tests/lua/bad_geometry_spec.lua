@@ -96,6 +96,27 @@ for i = 1, 6 do
   solids.two_pieces.faces[6 + i] = face
 end
 
+-- Two cubes that share only the edge from vertex 4 to vertex 8, as one
+-- block: four faces meet at that edge.
+solids.non_manifold = cube()
+do
+  local shared = { [1] = 4, [5] = 8 }  -- the second cube's corners on the first's
+  local index = {}
+  for i, p in ipairs(CUBE_VERTICES) do
+    if shared[i] then
+      index[i] = shared[i]
+    else
+      table.insert(solids.non_manifold.vertices, { p[1] + 1, p[2] + 1, p[3] })
+      index[i] = #solids.non_manifold.vertices
+    end
+  end
+  for _, face in ipairs(CUBE_FACES) do
+    local moved = {}
+    for k, i in ipairs(face) do moved[k] = index[i] end
+    table.insert(solids.non_manifold.faces, moved)
+  end
+end
+
 -- A prism over the bow tie (0, 0), (3, 1), (3, 0), (0, 2), whose lobes
 -- have unequal areas: closed and oriented, but its caps cross themselves.
 solids.crossed_outline = {
@@ -359,7 +380,14 @@ describe("bad geometry", function()
       expect_import_error(solids.self_intersecting, FORMATS, "is not a valid block: self-intersecting: faces ")
     end)
 
-    it("a block in separate pieces is refused: they would move as one body", function()
+    it("an edge of more than two faces is refused", function()
+    local defect = "non-manifold surface: the edge between vertices 4 and 8 belongs to 4 faces (expected two)"
+    expect_block_error(solids.non_manifold, defect)
+    expect_load_error(solids.non_manifold, { invalid(defect) })
+    expect_import_error(solids.non_manifold, FORMATS, "is not a valid block: non-manifold surface: ")
+  end)
+
+  it("a block in separate pieces is refused: they would move as one body", function()
       local defect = "its surface is in separate pieces (face 1 and face 7 are not joined by any path of shared "
         .. "edges): expected one connected solid; make each piece a block of its own"
       expect_block_error(solids.two_pieces, defect)
@@ -378,7 +406,9 @@ describe("bad geometry", function()
       expect_block_error(solids.crossed_outline, defect)
       expect_load_error(solids.crossed_outline, { invalid(defect) })
       expect_error({ defect }, ashlar.prism, { { 0, 0, 0 }, { 3, 1, 0 }, { 3, 0, 0 }, { 0, 2, 0 } }, { 0, 0, 1 })
-      expect_import_error(solids.crossed_outline, { "obj", "off", "ply" }, "is not a valid block: ")
+      -- (The face's number is the repaired mesh's: merging orders faces by area.)
+    expect_import_error(solids.crossed_outline, { "obj", "off", "ply" },
+      "has an outline that crosses itself: expected a simple polygon")
     end)
 
     it("NaN and infinite coordinates are refused, naming the vertex", function()
@@ -422,6 +452,9 @@ describe("bad geometry", function()
 
     it("a block far from the origin is valid, but a mesh file's float32 coordinates are too coarse for it", function()
       support.near(block_of(solids.far_away, "keystone"):volume(), 1, 1e-6)
+      local path = structure_file(folder .. "/far.json",
+        { { name = "keystone", vertices = solids.far_away.vertices, faces = solids.far_away.faces } })
+      support.near(ashlar.load(path):block(1):volume(), 1, 1e-6)
       expect_import_error(solids.far_away, FORMATS, "; mesh files are read in single precision, in steps of about "
         .. "119 m this far from the origin, coarse for an object ")
     end)
