@@ -44,22 +44,28 @@ std::vector<Vec3> edge_directions(const Block& block) {
   return directions;
 }
 
+struct Extent {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+};
+
+// Extent of points along a unit axis, measured from `origin`: relative to a
+// point near them, the products keep their digits far from the origin.
+Extent extent_along(const std::vector<Vec3>& points, const Vec3& axis, const Vec3& origin) {
+  Extent extent;
+  for (const Vec3& p : points) {
+    const double t = axis.dot(p - origin);
+    extent.lo = std::min(extent.lo, t);
+    extent.hi = std::max(extent.hi, t);
+  }
+  return extent;
+}
+
 // Overlap (m) of the two blocks' projections on a unit axis; <= 0 when the
 // axis separates them.
-double projected_overlap(const Block& a, const Block& b, const Vec3& axis) {
-  double lo_a = std::numeric_limits<double>::infinity(), hi_a = -lo_a;
-  for (const Vec3& p : a.vertices()) {
-    const double t = axis.dot(p);
-    lo_a = std::min(lo_a, t);
-    hi_a = std::max(hi_a, t);
-  }
-  double lo_b = std::numeric_limits<double>::infinity(), hi_b = -lo_b;
-  for (const Vec3& p : b.vertices()) {
-    const double t = axis.dot(p);
-    lo_b = std::min(lo_b, t);
-    hi_b = std::max(hi_b, t);
-  }
-  return std::min(hi_a, hi_b) - std::max(lo_a, lo_b);
+double projected_overlap(const Block& a, const Block& b, const Vec3& axis, const Vec3& origin) {
+  const Extent ea = extent_along(a.vertices(), axis, origin), eb = extent_along(b.vertices(), axis, origin);
+  return std::min(ea.hi, eb.hi) - std::max(ea.lo, eb.lo);
 }
 
 // Face normals of both blocks: most touching pairs are separated by one.
@@ -88,11 +94,12 @@ std::vector<Vec3> edge_axes(const Block& a, const Block& b) {
 
 // How deep a and b overlap (m), or nothing when they do not by more than tol.
 std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) {
+  const Vec3 origin = 0.5 * (a.bounds().lo + a.bounds().hi);
   std::vector<Vec3> axes = face_axes(a, b);
   double least = std::numeric_limits<double>::infinity();
   const auto separated = [&](const std::vector<Vec3>& candidates) {
     for (const Vec3& axis : candidates) {
-      least = std::min(least, projected_overlap(a, b, axis));
+      least = std::min(least, projected_overlap(a, b, axis, origin));
       if (least <= tol) return true;
     }
     return false;
@@ -110,12 +117,8 @@ std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) 
   if (!shared || shared->empty()) return std::nullopt;
   double thickness = std::numeric_limits<double>::infinity();
   for (const Vec3& axis : axes) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const Vec3& p : *shared) {
-      lo = std::min(lo, axis.dot(p));
-      hi = std::max(hi, axis.dot(p));
-    }
-    thickness = std::min(thickness, hi - lo);
+    const Extent extent = extent_along(*shared, axis, origin);
+    thickness = std::min(thickness, extent.hi - extent.lo);
   }
   if (thickness <= tol) return std::nullopt;
   return thickness;
