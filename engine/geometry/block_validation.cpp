@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/error.hpp"
+#include "core/union_find.hpp"
 #include "geometry/block.hpp"
 #include "geometry/polygon.hpp"
 #include "geometry/polygon_boolean.hpp"
@@ -93,20 +94,6 @@ void check_coincident_vertices(const std::vector<Vec3>& vertices, double size,
   }
 }
 
-// Faces joined through shared edges, for the check that a surface is one piece.
-class FaceGroups {
-public:
-  explicit FaceGroups(size_t count) : parent_(count) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int root(int f) {
-    while (parent_[f] != f) f = parent_[f] = parent_[parent_[f]];
-    return f;
-  }
-  void join(int f, int g) { parent_[root(f)] = root(g); }
-
-private:
-  std::vector<int> parent_;
-};
-
 void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::string& what) {
   // (low, high, forward, face): forward when the face runs low -> high.
   std::vector<std::tuple<int, int, bool, int>> edges;
@@ -118,7 +105,7 @@ void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::st
     }
   }
   std::sort(edges.begin(), edges.end());
-  FaceGroups pieces(faces.size());
+  UnionFind pieces(faces.size());  // faces joined through shared edges
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
     int forward = 0;

@@ -1,32 +1,20 @@
 #include "structure/overlap_detection.hpp"
 
-#include <CGAL/box_intersection_d.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
 #include "geometry/solid_intersection.hpp"
+#include "structure/contact_detection.hpp"
 
 namespace ashlar {
 
 namespace {
 
-using BoxWithIndex = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
-
 // Edge directions closer than this (1 - |cos|) are one direction, and edge
 // pairs closer than it to parallel give no axis.
 constexpr double kParallel = 1e-12;
-
-// The box shrunk by `shrink` on every side (no further than its centre), so
-// that boxes meeting within the tolerance are not candidates at all.
-BoxWithIndex shrunk_box(const Box3& box, double shrink, int index) {
-  const Vec3 centre = 0.5 * (box.lo + box.hi);
-  const Vec3 lo = (box.lo.array() + shrink).min(centre.array());
-  const Vec3 hi = (box.hi.array() - shrink).max(centre.array());
-  return BoxWithIndex(CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()), index);
-}
 
 std::vector<Vec3> edge_directions(const Block& block) {
   std::vector<Vec3> directions;
@@ -128,20 +116,10 @@ std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) 
 
 std::vector<BlockOverlap> detect_overlaps(const std::vector<const Block*>& blocks,
                                           double tolerance) {
-  std::vector<BoxWithIndex> boxes;
-  boxes.reserve(blocks.size());
-  for (size_t i = 0; i < blocks.size(); ++i) {
-    boxes.push_back(shrunk_box(blocks[i]->bounds(), 0.5 * tolerance, static_cast<int>(i)));
-  }
-  std::vector<std::pair<int, int>> candidates;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
-                                [&](const BoxWithIndex& x, const BoxWithIndex& y) {
-                                  candidates.emplace_back(std::min(x.info(), y.info()),
-                                                          std::max(x.info(), y.info()));
-                                });
-  std::sort(candidates.begin(), candidates.end());
+  // Boxes shrunk by half the tolerance: boxes that only meet within it hold
+  // no overlap deeper than it.
   std::vector<BlockOverlap> overlaps;
-  for (const auto& [a, b] : candidates) {
+  for (const auto& [a, b] : box_pairs(blocks, -0.5 * tolerance)) {
     if (const std::optional<double> depth = overlap_depth(*blocks[a], *blocks[b], tolerance)) {
       overlaps.push_back({a, b, *depth});
     }
