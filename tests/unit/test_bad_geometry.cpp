@@ -183,7 +183,7 @@ TEST(BadGeometryStructureFiles, BareNanAndInfinityAreNamedByEntry) {
   const auto vertices = [](const std::string& third) {
     return R"("vertices": [[0,0,0],[1,0,0],)" + third + R"(,[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]],)";
   };
-  for (const std::string& bad : {"NaN", "Infinity", "-Infinity"}) {
+  for (const std::string bad : {"NaN", "Infinity", "-Infinity"}) {
     const std::string message =
         error_of([&] { structure_from_json(head + vertices("[0," + bad + ",0]") + cube, "python.json"); });
     EXPECT_EQ(message, "python.json: blocks[0].vertices[2]: expected 3 finite numbers, got array [0,\"" +
