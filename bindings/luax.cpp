@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/text.hpp"
@@ -40,8 +41,16 @@ namespace {
 
 std::string describe_number_problem(lua_State* L, int idx) {
   if (lua_type(L, idx) != LUA_TNUMBER) return "expected a number, got " + type_name(L, idx);
-  return std::isnan(lua_tonumber(L, idx)) ? "expected a finite number, got nan"
-                                          : "expected a finite number, got inf";
+  const double value = lua_tonumber(L, idx);
+  if (std::isnan(value)) return "expected a finite number, got nan";
+  return value > 0 ? "expected a finite number, got inf" : "expected a finite number, got -inf";
+}
+
+// As Lua prints numbers: 0 and 2.5, not 0.000000 and 2.500000.
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, LUA_NUMBER_FMT, value);
+  return text;
 }
 
 bool finite_number_at(lua_State* L, int idx, double& out) {
@@ -275,7 +284,7 @@ double OptionTable::positive(const char* key, double fallback, bool zero_allowed
   const double value = number(key, fallback);
   if (value < 0.0 || (!zero_allowed && value == 0.0)) {
     fail(key, std::string("expected a number ") + (zero_allowed ? ">= 0" : "> 0") + ", got " +
-                  std::to_string(value));
+                  number_text(value));
   }
   return value;
 }

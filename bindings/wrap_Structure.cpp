@@ -232,6 +232,25 @@ int w_Structure_interfaces(lua_State* L) {
   });
 }
 
+int w_Structure_overlaps(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"tolerance"});
+    ContactOptions contact;
+    contact.tolerance = options.positive("tolerance", 0.0, true);
+    const std::vector<BlockOverlap>& found = s.overlaps(contact);
+    lua_createtable(L, static_cast<int>(found.size()), 0);
+    for (size_t k = 0; k < found.size(); ++k) {
+      lua_createtable(L, 0, 3);
+      set_index_field(L, "a", found[k].a);
+      set_index_field(L, "b", found[k].b);
+      set_field(L, "depth", found[k].depth);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    return 1;
+  });
+}
+
 int w_Structure_set_planar(lua_State* L) {
   return guard(L, [&] {
     Structure& s = *luax_checkStructure(L, 1);
@@ -316,6 +335,7 @@ void register_Structure(lua_State* L) {
                                      {"loads", w_Structure_loads},
                                      {"bounds", w_Structure_bounds},
                                      {"interfaces", w_Structure_interfaces},
+                                     {"overlaps", w_Structure_overlaps},
                                      {"set_planar", w_Structure_set_planar},
                                      {"is_planar", w_Structure_is_planar},
                                      {"save", w_Structure_save},

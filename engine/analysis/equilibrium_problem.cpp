@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 
 #include "core/error.hpp"
+#include "core/union_find.hpp"
 
 namespace ashlar {
 
@@ -27,20 +27,6 @@ void check_options(const EquilibriumOptions& options) {
   }
 }
 
-// Union-find over blocks, to find free blocks with no contact path to a support.
-class Components {
-public:
-  explicit Components(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int root(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(int a, int b) { parent_[root(a)] = root(b); }
-
-private:
-  std::vector<int> parent_;
-};
-
 // Which bodies (blocks, then junctions) are joined to a support by a path of
 // contacts and cables.
 std::vector<bool> grounded_bodies(const Structure& structure,
@@ -49,7 +35,7 @@ std::vector<bool> grounded_bodies(const Structure& structure,
                                   int junction_count) {
   const int n = structure.size();
   const int bodies = n + junction_count;
-  Components components(bodies);
+  UnionFind components(bodies);
   for (const Interface& contact : interfaces) components.join(contact.a, contact.b);
   for (const std::array<int, 2>& ends : cable_bodies) components.join(ends[0], ends[1]);
   std::vector<bool> root_grounded(bodies, false);
@@ -265,6 +251,8 @@ void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options) {
   check_options(options);
+  structure.require_free_block("analysis");
+  structure.require_no_overlaps(options.contact, "analysis");
   const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
   const int n = structure.size();
   const std::vector<Cable>& cables = structure.cables();

@@ -305,6 +305,8 @@ std::vector<int> most_tensile_interfaces(const std::vector<FeaContact>& ties, co
 FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const FeaSettings& settings) {
   const Clock::time_point start = Clock::now();
   check_settings(structure, settings);
+  structure.require_free_block("fea");
+  structure.require_no_overlaps(settings.contact, "fea");
   FeaResult result;
   const std::vector<Interface>& interfaces = structure.interfaces(settings.contact);
   const double size = structure.bounds().diagonal();

@@ -15,13 +15,9 @@ namespace {
 // still count as behind it: rounding of rotated coordinates.
 constexpr double kConvexSlack = 1e-9;
 
-std::string describe(const std::string& name) {
-  return name.empty() ? std::string("block") : "block '" + name + "'";
-}
-
 void check_density(double density, const std::string& name) {
   if (!std::isfinite(density) || density <= 0.0) {
-    throw InvalidArgument(describe(name) + ": density must be a positive finite number (kg/m^3), got " +
+    throw InvalidArgument(block_label(name) + ": density must be a positive finite number (kg/m^3), got " +
                           std::to_string(density));
   }
 }
@@ -31,6 +27,10 @@ void check_finite(const Vec3& v, const char* what) {
 }
 
 }  // namespace
+
+std::string block_label(const std::string& name) {
+  return name.empty() ? std::string("unnamed block") : "block '" + name + "'";
+}
 
 MassProperties mass_properties(const std::vector<Vec3>& vertices,
                                const std::vector<FaceLoop>& faces) {
@@ -112,7 +112,7 @@ Block::Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double den
       density_(density),
       name_(std::move(name)) {
   check_density(density_, name_);
-  validate_block(vertices_, faces_, describe(name_));
+  validate_block(vertices_, faces_, block_label(name_));
   compute_derived();
 }
 

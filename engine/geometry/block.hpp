@@ -73,6 +73,10 @@ private:
 
 using BlockPtr = std::shared_ptr<const Block>;
 
+// "block 'name'", or "unnamed block": how messages name a block outside a
+// structure (inside one, Structure::label gives its index too).
+std::string block_label(const std::string& name);
+
 // Exact volume and centroid of a closed polyhedron with planar (or not)
 // polygon faces; faces are fan-triangulated, which is exact for planar faces
 // whatever their convexity because the signed contributions cancel.

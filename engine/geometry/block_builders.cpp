@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
@@ -37,6 +38,17 @@ Vec3 polygon_normal(const std::vector<Vec3>& polygon, const char* what) {
     throw InvalidArgument(std::string(what) + " has zero area (its points are collinear)");
   }
   return n.normalized();
+}
+
+// "box", or "box 'name'" for a named one.
+std::string builder_label(const char* builder, const BlockStyle& style) {
+  return style.name.empty() ? std::string(builder) : std::string(builder) + " '" + style.name + "'";
+}
+
+std::string text(const Vec3& v) {
+  std::ostringstream out;
+  out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return out.str();
 }
 
 Vec3 mean_point(const std::vector<Vec3>& points) {
@@ -82,9 +94,12 @@ std::vector<FaceLoop> side_faces_between(const std::vector<Vec3>& vertices, int 
 
 Block make_box(const Vec3& size, const Vec3& center, const BlockStyle& style) {
   if (!size.allFinite() || (size.array() <= 0.0).any()) {
-    throw InvalidArgument("box size must be three positive finite numbers (m)");
+    throw InvalidArgument(builder_label("box", style) +
+                          " size must be three positive finite numbers (m), got " + text(size));
   }
-  if (!center.allFinite()) throw InvalidArgument("box center must be finite");
+  if (!center.allFinite()) {
+    throw InvalidArgument(builder_label("box", style) + " center must be finite, got " + text(center));
+  }
   const Vec3 half = 0.5 * size;
   std::vector<Vec3> corners;
   // Corner k has x = hi when bit 0 is set, y when bit 1, z when bit 2.
@@ -101,7 +116,8 @@ Block make_prism(const std::vector<Vec3>& polygon, const Vec3& direction,
                  const BlockStyle& style) {
   check_points(polygon, "prism polygon", 3);
   if (!direction.allFinite() || direction.norm() == 0.0) {
-    throw InvalidArgument("prism vector must be finite and non-zero");
+    throw InvalidArgument(builder_label("prism", style) + " vector must be finite and non-zero, got " +
+                          text(direction));
   }
   const Vec3 normal = polygon_normal(polygon, "prism polygon");
   if (std::abs(normal.dot(direction)) <= 1e-12 * direction.norm()) {

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
 #include "core/error.hpp"
+#include "core/union_find.hpp"
 #include "geometry/block.hpp"
 #include "geometry/polygon.hpp"
 #include "geometry/polygon_boolean.hpp"
@@ -21,6 +23,10 @@ constexpr double kCoincidentVertices = 1e-9;
 constexpr double kPlanarity = 1e-6;
 constexpr double kDegenerateArea = 1e-12;    // of size^2
 constexpr double kDegenerateVolume = 1e-12;  // of size^3
+// Block sizes (m) whose volume and first moments (size^4) stay normal
+// doubles, with room for densities and forces.
+constexpr double kSmallestSize = 1e-30;
+constexpr double kLargestSize = 1e30;
 
 [[noreturn]] void fail(const std::string& what, const std::string& defect) {
   throw GeometryError(what + " is not a valid block: " + defect);
@@ -38,14 +44,20 @@ void check_counts_and_indices(const std::vector<Vec3>& vertices,
   if (faces.size() < 4) fail(what, "needs at least 4 faces, got " + std::to_string(faces.size()));
   for (size_t i = 0; i < vertices.size(); ++i) {
     if (!vertices[i].allFinite()) {
-      fail(what, "vertex " + std::to_string(i + 1) + " has a NaN or infinite coordinate");
+      std::ostringstream message;
+      message << "vertex " << i + 1 << " is (" << vertices[i].x() << ", " << vertices[i].y() << ", "
+              << vertices[i].z() << "): expected finite coordinates, not NaN or infinity";
+      fail(what, message.str());
     }
   }
   const int count = static_cast<int>(vertices.size());
   for (size_t f = 0; f < faces.size(); ++f) {
     const FaceLoop& face = faces[f];
     const std::string face_name = "face " + std::to_string(f + 1);
-    if (face.size() < 3) fail(what, face_name + " has fewer than 3 vertices");
+    if (face.size() < 3) {
+      fail(what, face_name + " has " + std::to_string(face.size()) +
+                     " vertices: expected a polygon of at least 3");
+    }
     for (int index : face) {
       if (index < 0 || index >= count) {
         fail(what, face_name + " refers to vertex " + std::to_string(index + 1) + " but there are " +
@@ -56,7 +68,8 @@ void check_counts_and_indices(const std::vector<Vec3>& vertices,
     std::sort(sorted.begin(), sorted.end());
     const auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
     if (repeat != sorted.end()) {
-      fail(what, face_name + " uses vertex " + std::to_string(*repeat + 1) + " twice");
+      fail(what, face_name + " uses vertex " + std::to_string(*repeat + 1) +
+                     " twice: expected each corner of a face once");
     }
   }
 }
@@ -74,22 +87,25 @@ void check_coincident_vertices(const std::vector<Vec3>& vertices, double size,
       if ((vertices[order[j]] - vertices[order[i]]).norm() <= eps) {
         const int a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);
         fail(what, "vertices " + std::to_string(a + 1) + " and " + std::to_string(b + 1) +
-                       " coincide (degenerate)");
+                       " coincide: expected distinct points (faces that share a corner use "
+                       "one vertex index for it)");
       }
     }
   }
 }
 
 void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::string& what) {
-  // (low, high, forward): forward when the face runs low -> high.
-  std::vector<std::tuple<int, int, bool>> edges;
-  for (const FaceLoop& face : faces) {
+  // (low, high, forward, face): forward when the face runs low -> high.
+  std::vector<std::tuple<int, int, bool, int>> edges;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const FaceLoop& face = faces[f];
     for (size_t i = 0; i < face.size(); ++i) {
       const int from = face[i], to = face[(i + 1) % face.size()];
-      edges.emplace_back(std::min(from, to), std::max(from, to), from < to);
+      edges.emplace_back(std::min(from, to), std::max(from, to), from < to, static_cast<int>(f));
     }
   }
   std::sort(edges.begin(), edges.end());
+  UnionFind pieces(faces.size());  // faces joined through shared edges
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
     int forward = 0;
@@ -100,16 +116,32 @@ void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::st
     }
     const size_t uses = j - i;
     const int a = std::get<0>(edges[i]), b = std::get<1>(edges[i]);
-    if (uses == 1) fail(what, "open surface: the " + edge_name(a, b) + " belongs to one face only");
+    const std::string first_face = "face " + std::to_string(std::get<3>(edges[i]) + 1);
+    if (uses == 1) {
+      fail(what, "open surface: the " + edge_name(a, b) + " belongs to " + first_face +
+                     " only (expected a closed surface: every edge shared by two faces)");
+    }
     if (uses > 2) {
       fail(what, "non-manifold surface: the " + edge_name(a, b) + " belongs to " +
-                     std::to_string(uses) + " faces");
+                     std::to_string(uses) + " faces (expected two)");
     }
     if (forward != 1) {
-      fail(what, "inconsistent face orientation: two faces run the " + edge_name(a, b) +
-                     " in the same direction");
+      fail(what, "inconsistent face orientation: " + first_face + " and face " +
+                     std::to_string(std::get<3>(edges[i + 1]) + 1) + " run the " + edge_name(a, b) +
+                     " in the same direction (expected every face counter-clockwise seen from "
+                     "outside, so that neighbours run a shared edge in opposite directions)");
     }
+    pieces.join(std::get<3>(edges[i]), std::get<3>(edges[i + 1]));
     i = j;
+  }
+  // Two solids in one block (two mesh objects of one name, which OBJ
+  // readers merge, or a shell inside a shell) would move as one rigid body.
+  for (size_t f = 1; f < faces.size(); ++f) {
+    if (pieces.root(static_cast<int>(f)) != pieces.root(0)) {
+      fail(what, "its surface is in separate pieces (face 1 and face " + std::to_string(f + 1) +
+                     " are not joined by any path of shared edges): expected one connected solid; "
+                     "make each piece a block of its own");
+    }
   }
 }
 
@@ -122,7 +154,8 @@ void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
     for (int index : faces[f]) loop.push_back(vertices[index]);
     const Vec3 normal = newell_normal(loop);
     if (0.5 * normal.norm() <= kDegenerateArea * size * size) {
-      fail(what, face_name + " has zero area (degenerate)");
+      fail(what, face_name + " has zero area: expected a polygon whose vertices do not all lie "
+                             "on one line");
     }
     const PlaneFrame frame = PlaneFrame::from_normal(loop[0], normal);
     Vec3 mean = Vec3::Zero();
@@ -141,7 +174,7 @@ void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
       Loop2 flat;
       for (const Vec3& p : loop) flat.push_back(frame.project(p));
       if (!is_convex(flat) && !is_simple_loop(flat)) {
-        fail(what, face_name + " has an outline that crosses itself");
+        fail(what, face_name + " has an outline that crosses itself: expected a simple polygon");
       }
     }
   }
@@ -154,14 +187,22 @@ void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoo
   check_counts_and_indices(vertices, faces, what);
   Box3 box;
   for (const Vec3& p : vertices) box.add(p);
-  const double size = box.diagonal();
-  if (size == 0.0) fail(what, "all vertices coincide (degenerate)");
+  // stableNorm: the plain norm squares the extent, which overflows or
+  // underflows long before the extent itself does.
+  const double size = (box.hi - box.lo).stableNorm();
+  if (size == 0.0) fail(what, "all vertices coincide: expected a solid with extent");
+  if (size < kSmallestSize || size > kLargestSize) {
+    std::ostringstream message;
+    message << "its size (bounding-box diagonal) is " << size << " m: expected " << kSmallestSize
+            << " to " << kLargestSize << " m, where its volume and moments stay within double range";
+    fail(what, message.str());
+  }
   check_coincident_vertices(vertices, size, what);
   check_closed_and_oriented(faces, what);
   check_faces(vertices, faces, size, what);
   const double volume = mass_properties(vertices, faces).volume;
   if (std::abs(volume) <= kDegenerateVolume * size * size * size) {
-    fail(what, "zero volume (degenerate: the vertices are flat or collapsed)");
+    fail(what, "zero volume: its vertices are flat or collapsed (expected a solid with volume)");
   }
   if (volume < 0.0) {
     fail(what, "inverted: its faces point inward (list each face's vertices counter-clockwise "
@@ -172,8 +213,11 @@ void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoo
   // (CGAL) intersection test.
   const bool convex =
       is_convex_polyhedron(vertices, face_planes(vertices, faces), kCoincidentVertices * size);
-  if (!convex && surface_self_intersects(vertices, faces)) {
-    fail(what, "self-intersecting: some of its faces cross each other");
+  if (!convex) {
+    if (const std::optional<std::string> crossing = surface_self_intersection(vertices, faces)) {
+      fail(what, "self-intersecting: " + *crossing +
+                     " (expected a surface that does not cross or touch itself)");
+    }
   }
 }
 

@@ -2,6 +2,7 @@
 // constructor; exposed so importers can report defects before building.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,12 +12,14 @@ namespace ashlar {
 
 // Throws GeometryError naming the first defect found, in this order:
 //  - fewer than 4 vertices or 4 faces, non-finite coordinates;
+//  - a size (bounding-box diagonal) of zero or outside 1e-30 to 1e30 m;
 //  - a face with fewer than 3 vertices, an index out of range, or a repeated
 //    vertex;
 //  - coincident vertices (closer than 1e-9 of the block's size);
 //  - open surface (an edge used by one face only) or inconsistent
 //    orientation (an edge used twice in the same direction) or an edge
-//    shared by more than two faces (non-manifold);
+//    shared by more than two faces (non-manifold), or a surface in
+//    separate pieces;
 //  - degenerate (zero-area) or non-planar face, or a face whose outline
 //    crosses itself;
 //  - zero volume, or negative volume (inverted: faces point inward);
@@ -26,9 +29,10 @@ namespace ashlar {
 void validate_block(const std::vector<Vec3>& vertices,
                     const std::vector<FaceLoop>& faces, const std::string& what);
 
-// The CGAL part of validation: true if any two non-adjacent faces of the
-// (triangulated) surface intersect. Only called for non-convex blocks.
-bool surface_self_intersects(const std::vector<Vec3>& vertices,
-                             const std::vector<FaceLoop>& faces);
+// The CGAL part of validation: where the (triangulated) surface crosses or
+// touches itself, e.g. "faces 2 and 7 cross each other" (1-based), or
+// nothing when it does not. Only called for non-convex blocks.
+std::optional<std::string> surface_self_intersection(const std::vector<Vec3>& vertices,
+                                                     const std::vector<FaceLoop>& faces);
 
 }  // namespace ashlar

@@ -55,8 +55,11 @@ void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
   }
   for (size_t i = 0; i < vertices.size(); ++i) {
     if (!vertices[i].allFinite()) {
-      throw GeometryError(what + ": vertex " + std::to_string(i + 1) +
-                          " has a NaN or infinite coordinate");
+      std::ostringstream message;
+      message << what << ": vertex " << i + 1 << " is (" << vertices[i].x() << ", "
+              << vertices[i].y() << ", " << vertices[i].z()
+              << "): expected finite coordinates, not NaN or infinity";
+      throw GeometryError(message.str());
     }
   }
   const int count = static_cast<int>(vertices.size());
@@ -154,20 +157,33 @@ std::vector<FaceLoop> drop_flat_faces(const std::vector<Vec3>& points, std::vect
       owner[{face[i], face[(i + 1) % face.size()]}] = static_cast<int>(f);
     }
   }
-  std::vector<bool> dropped(faces.size(), false);
+  std::vector<bool> flat(faces.size(), false);
+  std::vector<size_t> longest_edge(faces.size(), 0);
   for (size_t f = 0; f < faces.size(); ++f) {
     const FaceLoop& face = faces[f];
-    size_t longest_at = 0;
     double longest = 0.0;
     for (size_t i = 0; i < face.size(); ++i) {
       const double length = (points[face[(i + 1) % face.size()]] - points[face[i]]).norm();
       if (length > longest) {
         longest = length;
-        longest_at = i;
+        longest_edge[f] = i;
       }
     }
     const double twice_area = newell_normal(loop_points(points, face)).norm();
-    if (twice_area > kCollinear * size * longest) continue;
+    flat[f] = twice_area <= kCollinear * size * longest;
+  }
+  // Slivers back to back (a zero-area face and the fan triangle of its
+  // neighbour over the same points) close against each other: neither is
+  // glued anywhere.
+  const std::map<DirectedEdge, int> first_owner = owner;
+  const auto against_flat_face = [&](int from, int to) {
+    const auto partner = first_owner.find({to, from});
+    return partner != first_owner.end() && flat[partner->second];
+  };
+  std::vector<bool> dropped(faces.size(), false);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!flat[f]) continue;
+    const FaceLoop& face = faces[f];
     dropped[f] = true;
     for (size_t i = 0; i < face.size(); ++i) {
       const auto edge = owner.find({face[i], face[(i + 1) % face.size()]});
@@ -175,8 +191,10 @@ std::vector<FaceLoop> drop_flat_faces(const std::vector<Vec3>& points, std::vect
     }
     if (face.size() != 3) continue;
     // The longest edge runs next -> prev, and m sits between them.
+    const size_t longest_at = longest_edge[f];
     const int next = face[longest_at], prev = face[(longest_at + 1) % 3],
               m = face[(longest_at + 2) % 3];
+    if (against_flat_face(prev, m) || against_flat_face(m, next)) continue;
     const auto across = owner.find({prev, next});
     if (across == owner.end()) continue;
     const int g = across->second;
@@ -366,10 +384,19 @@ Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceL
   loops = merge_coplanar_faces(points, loops, kPlaneTolerance * size);
   remove_edge_midpoints(points, loops, kCollinear * size);
   drop_unused_vertices(points, loops);
+  // The defect is reported in the repaired mesh's numbering, so say what
+  // the repair did when it changed the counts.
+  std::ostringstream repair;
+  if (points.size() != vertices.size() || loops.size() != faces.size()) {
+    repair << "; welding vertices closer than " << weld_tolerance
+           << " m, dropping flat faces and merging coplanar ones made the mesh's "
+           << faces.size() << " faces and " << vertices.size() << " vertices into "
+           << loops.size() << " faces and " << points.size() << " vertices";
+  }
   try {
     return Block(std::move(points), std::move(loops), style.density, style.name);
   } catch (const GeometryError& error) {
-    throw GeometryError(what + ": " + error.what());
+    throw GeometryError(what + ": " + error.what() + repair.str());
   }
 }
 

@@ -4,35 +4,74 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
+#include <iterator>
+#include <utility>
+
 #include "geometry/block_validation.hpp"
 
 namespace ashlar {
 
 namespace {
 
+namespace PMP = CGAL::Polygon_mesh_processing;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using FaceSource = Mesh::Property_map<Mesh::Face_index, int>;
+
+// Gives the triangles a face is cut into the face's index, so that a
+// crossing of triangles can be reported as a crossing of the user's faces.
+class KeepFaceSource : public PMP::Triangulate_faces::Default_visitor<Mesh> {
+public:
+  explicit KeepFaceSource(FaceSource source) : source_(source) {}
+  void before_subface_creations(Mesh::Face_index split) { current_ = source_[split]; }
+  void after_subface_created(Mesh::Face_index created) { source_[created] = current_; }
+
+private:
+  FaceSource source_;
+  int current_ = -1;
+};
+
+std::string face_pair(int a, int b) {
+  return "faces " + std::to_string(std::min(a, b) + 1) + " and " + std::to_string(std::max(a, b) + 1);
+}
 
 }  // namespace
 
-bool surface_self_intersects(const std::vector<Vec3>& vertices,
-                             const std::vector<FaceLoop>& faces) {
-  namespace PMP = CGAL::Polygon_mesh_processing;
+std::optional<std::string> surface_self_intersection(const std::vector<Vec3>& vertices,
+                                                     const std::vector<FaceLoop>& faces) {
   Mesh mesh;
+  FaceSource source = mesh.add_property_map<Mesh::Face_index, int>("f:source", -1).first;
   std::vector<Mesh::Vertex_index> handles;
   handles.reserve(vertices.size());
   for (const Vec3& p : vertices) handles.push_back(mesh.add_vertex({p.x(), p.y(), p.z()}));
   std::vector<Mesh::Vertex_index> loop;
-  for (const FaceLoop& face : faces) {
+  for (size_t f = 0; f < faces.size(); ++f) {
     loop.clear();
-    for (int index : face) loop.push_back(handles[index]);
+    for (int index : faces[f]) loop.push_back(handles[index]);
     // Surface_mesh refuses a face that would make a vertex non-manifold: two
     // sheets of the surface meet at that vertex, so the surface touches itself.
-    if (mesh.add_face(loop) == Mesh::null_face()) return true;
+    const Mesh::Face_index added = mesh.add_face(loop);
+    if (added == Mesh::null_face()) {
+      return "face " + std::to_string(f + 1) +
+             " meets the rest of the surface at a vertex where two sheets of it touch";
+    }
+    source[added] = static_cast<int>(f);
   }
   // A face that cannot be triangulated folds over itself in its own plane.
-  if (!PMP::triangulate_faces(mesh)) return true;
-  return PMP::does_self_intersect(mesh);
+  const std::vector<Mesh::Face_index> polygons(mesh.faces().begin(), mesh.faces().end());
+  for (const Mesh::Face_index face : polygons) {
+    if (!PMP::triangulate_face(face, mesh, CGAL::parameters::visitor(KeepFaceSource(source)))) {
+      return "face " + std::to_string(source[face] + 1) + " folds over itself";
+    }
+  }
+  if (!PMP::does_self_intersect(mesh)) return std::nullopt;
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossings;
+  PMP::self_intersections(mesh, std::back_inserter(crossings));
+  for (const auto& [x, y] : crossings) {
+    if (source[x] != source[y]) return face_pair(source[x], source[y]) + " cross each other";
+  }
+  return "face " + std::to_string(source[crossings.front().first] + 1) + " crosses itself";
 }
 
 }  // namespace ashlar

@@ -38,10 +38,6 @@ constexpr double kNearVertex = 1e-5;
 // Points closer than this would fail validation as coincident: weld them.
 constexpr double kWeld = 1e-9;
 
-std::string describe(const Block& block) {
-  return block.name().empty() ? std::string("block") : "block '" + block.name() + "'";
-}
-
 Vec3 to_vec(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 Mesh triangulated_surface(const Block& block, const std::string& what) {
@@ -160,7 +156,7 @@ std::string near_vertex_hint(const Block& block, const Vec3& point, const Vec3& 
 }  // namespace
 
 SplitResult split_block(const Block& block, const Vec3& point, const Vec3& normal) {
-  const std::string what = "split of " + describe(block);
+  const std::string what = "split of " + block_label(block.name());
   if (!point.allFinite()) throw InvalidArgument(what + ": the plane's point must be finite");
   if (!normal.allFinite() || normal.norm() == 0.0) {
     throw InvalidArgument(what + ": the plane's normal must be a finite, non-zero vector");

@@ -13,7 +13,9 @@
 
 #include <Eigen/Core>
 #include <assimp/Importer.hpp>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -112,6 +114,28 @@ void make_names_unique(std::vector<RawObject>& objects) {
   }
 }
 
+// assimp reads coordinates as 32-bit floats: far from the origin, or for a
+// tiny object, their steps are coarse against the object's size, and points
+// merge or faces bend. Such a failure says so.
+std::string single_precision_note(const std::vector<Vec3>& vertices) {
+  Box3 box;
+  double farthest = 0.0;
+  for (const Vec3& v : vertices) {
+    if (!v.allFinite()) return {};
+    box.add(v);
+    farthest = std::max(farthest, v.cwiseAbs().maxCoeff());
+  }
+  const double step = farthest * std::numeric_limits<float>::epsilon();
+  const double size = (box.hi - box.lo).stableNorm();
+  if (!(step > 1e-6 * size)) return {};
+  std::ostringstream note;
+  note.precision(3);
+  note << "; mesh files are read in single precision, in steps of about " << step
+       << " m this far from the origin, coarse for an object " << size
+       << " m across: expected coordinates near the origin, in metres";
+  return note.str();
+}
+
 void check_options(const ImportOptions& options) {
   if (!std::isfinite(options.density) || options.density <= 0) {
     std::ostringstream message;
@@ -159,19 +183,28 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
   if (objects.empty()) throw IoError("cannot import '" + path + "': it contains no polygon mesh");
   make_names_unique(objects);
 
+  // Non-finite vertices are left to block_from_mesh, which names them; here
+  // they would make the tolerance infinite.
   Box3 bounds;
   for (const RawObject& object : objects) {
-    for (const Vec3& v : object.vertices) bounds.add(v);
+    for (const Vec3& v : object.vertices) {
+      if (v.allFinite()) bounds.add(v);
+    }
   }
-  const double weld_tolerance = options.relative_weld_tolerance * bounds.diagonal();
+  const double weld_tolerance =
+      bounds.empty() ? 0.0 : options.relative_weld_tolerance * (bounds.hi - bounds.lo).stableNorm();
 
   std::vector<ImportedBlock> blocks;
   blocks.reserve(objects.size());
   for (const RawObject& object : objects) {
     const BlockStyle style{options.density, object.name};
-    blocks.push_back({object.name,
-                      block_from_mesh(object.vertices, object.faces, weld_tolerance, style,
-                                      "object '" + object.name + "' in '" + path + "'")});
+    const std::string what = "object '" + object.name + "' in '" + path + "'";
+    try {
+      blocks.push_back({object.name, block_from_mesh(object.vertices, object.faces,
+                                                     weld_tolerance, style, what)});
+    } catch (const GeometryError& error) {
+      throw GeometryError(error.what() + single_precision_note(object.vertices));
+    }
   }
   return blocks;
 }

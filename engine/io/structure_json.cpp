@@ -2,11 +2,12 @@
 // Doubles are written in nlohmann's shortest round-trip form and read back
 // with correct rounding, so a save/load cycle reproduces every coordinate
 // bit for bit. Reading is strict: every defect is reported with the path of
-// the offending entry, e.g. "blocks[3].vertices[2]: expected 3 numbers".
+// the offending entry, e.g. "blocks[3].vertices[2]: expected 3 finite numbers".
 #include "io/structure_json.hpp"
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -115,14 +116,14 @@ public:
 
   // Numbers are finite here: the parser rejects NaN, Infinity and overflow.
   double number(const json& value, const std::string& where) const {
-    if (!value.is_number()) fail(where, "expected a number, got " + describe(value));
+    if (!value.is_number()) fail(where, "expected a finite number, got " + describe(value));
     return value.get<double>();
   }
 
   Vec3 vec3(const json& value, const std::string& where) const {
     if (!value.is_array() || value.size() != 3 || !value[0].is_number() ||
         !value[1].is_number() || !value[2].is_number()) {
-      fail(where, "expected 3 numbers, got " + describe(value));
+      fail(where, "expected 3 finite numbers, got " + describe(value));
     }
     return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
   }
@@ -293,6 +294,74 @@ json cable_end_to_json(const CableEnd& end) {
   return out;
 }
 
+// JSON has no NaN or Infinity, but some writers (Python's json module)
+// emit them bare. The text with them quoted, or nothing when it has none.
+std::optional<std::string> quote_non_numbers(const std::string& text) {
+  static const std::string kTokens[] = {"-Infinity", "Infinity", "NaN"};
+  std::string quoted;
+  quoted.reserve(text.size());
+  bool in_string = false, changed = false;
+  for (size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (in_string) {
+      const size_t length = (c == '\\' && i + 1 < text.size()) ? 2 : 1;
+      quoted.append(text, i, length);
+      in_string = c != '"';
+      i += length;
+      continue;
+    }
+    in_string = c == '"';
+    const std::string* token = nullptr;
+    for (const std::string& candidate : kTokens) {
+      if (text.compare(i, candidate.size(), candidate) == 0) token = &candidate;
+      if (token) break;
+    }
+    if (token) {
+      quoted += '"' + *token + '"';
+      i += token->size();
+      changed = true;
+    } else {
+      quoted += c;
+      ++i;
+    }
+  }
+  if (!changed) return std::nullopt;
+  return quoted;
+}
+
+Structure read_document(const Reader& reader, const json& root) {
+  reader.expect_object(root, "top level");
+  // Format and version first: a file of another kind or a later version is
+  // reported as such, not by its first unknown field.
+  check_header(reader, root);
+  reader.reject_unknown_keys(root, {"format", "version", "units", "planar", "blocks", "loads", "cables"},
+                             "top level");
+
+  Structure structure;
+  if (const auto planar = root.find("planar"); planar != root.end()) {
+    if (!planar->is_boolean()) reader.fail("planar", "expected true or false");
+    structure.set_planar(planar->get<bool>());
+  }
+  const json& blocks = reader.member(root, "blocks", "");
+  reader.expect_array(blocks, "blocks");
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    read_block(reader, blocks[i], static_cast<int>(i), structure);
+  }
+  if (const auto loads = root.find("loads"); loads != root.end()) {
+    reader.expect_array(*loads, "loads");
+    for (size_t i = 0; i < loads->size(); ++i) {
+      read_load(reader, (*loads)[i], static_cast<int>(i), structure);
+    }
+  }
+  if (const auto cables = root.find("cables"); cables != root.end()) {
+    reader.expect_array(*cables, "cables");
+    for (size_t i = 0; i < cables->size(); ++i) {
+      read_cable(reader, (*cables)[i], static_cast<int>(i), structure);
+    }
+  }
+  return structure;
+}
+
 }  // namespace
 
 std::string structure_to_json(const Structure& structure) {
@@ -357,38 +426,16 @@ Structure structure_from_json(const std::string& text, const std::string& source
     if (const auto end = message.find("] "); end != std::string::npos) {
       message = message.substr(end + 2);
     }
+    // With bare NaN or Infinity quoted the reader names the entry that holds
+    // one and says a number was expected; should nothing refuse them there,
+    // the syntax error stands.
+    if (const std::optional<std::string> quoted = quote_non_numbers(text)) {
+      const json tolerant = json::parse(*quoted, nullptr, false);
+      if (!tolerant.is_discarded()) read_document(reader, tolerant);
+    }
     reader.fail("", "not valid JSON: " + message);
   }
-  reader.expect_object(root, "top level");
-  // Format and version first: a file of another kind or a later version is
-  // reported as such, not by its first unknown field.
-  check_header(reader, root);
-  reader.reject_unknown_keys(root, {"format", "version", "units", "planar", "blocks", "loads", "cables"},
-                             "top level");
-
-  Structure structure;
-  if (const auto planar = root.find("planar"); planar != root.end()) {
-    if (!planar->is_boolean()) reader.fail("planar", "expected true or false");
-    structure.set_planar(planar->get<bool>());
-  }
-  const json& blocks = reader.member(root, "blocks", "");
-  reader.expect_array(blocks, "blocks");
-  for (size_t i = 0; i < blocks.size(); ++i) {
-    read_block(reader, blocks[i], static_cast<int>(i), structure);
-  }
-  if (const auto loads = root.find("loads"); loads != root.end()) {
-    reader.expect_array(*loads, "loads");
-    for (size_t i = 0; i < loads->size(); ++i) {
-      read_load(reader, (*loads)[i], static_cast<int>(i), structure);
-    }
-  }
-  if (const auto cables = root.find("cables"); cables != root.end()) {
-    reader.expect_array(*cables, "cables");
-    for (size_t i = 0; i < cables->size(); ++i) {
-      read_cable(reader, (*cables)[i], static_cast<int>(i), structure);
-    }
-  }
-  return structure;
+  return read_document(reader, root);
 }
 
 void save_structure(const Structure& structure, const std::string& path) {

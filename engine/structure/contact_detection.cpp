@@ -21,10 +21,13 @@ using BoxWithIndex = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 // box intersection instead of testing all of them (meshes with many facets).
 constexpr size_t kBruteForceFacePairs = 1024;
 
+// The box grown by `grow` on every side; a negative grow shrinks it, no
+// further than its centre.
 BoxWithIndex make_box(const Box3& box, double grow, int index) {
-  const CGAL::Bbox_3 bbox(box.lo.x() - grow, box.lo.y() - grow, box.lo.z() - grow,
-                          box.hi.x() + grow, box.hi.y() + grow, box.hi.z() + grow);
-  return BoxWithIndex(bbox, index);
+  const Vec3 centre = 0.5 * (box.lo + box.hi);
+  const Vec3 lo = (box.lo.array() - grow).min(centre.array());
+  const Vec3 hi = (box.hi.array() + grow).max(centre.array());
+  return BoxWithIndex(CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()), index);
 }
 
 // Per-face data computed once per block.
@@ -275,21 +278,26 @@ double effective_tolerance(const std::vector<const Block*>& blocks,
   return options.relative_tolerance * box.diagonal();
 }
 
-std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
-                                         const ContactOptions& options) {
-  const double tol = effective_tolerance(blocks, options);
+std::vector<std::pair<int, int>> box_pairs(const std::vector<const Block*>& blocks, double grow) {
   std::vector<BoxWithIndex> boxes;
   boxes.reserve(blocks.size());
   for (size_t i = 0; i < blocks.size(); ++i) {
-    boxes.push_back(make_box(blocks[i]->bounds(), 0.5 * tol, static_cast<int>(i)));
+    boxes.push_back(make_box(blocks[i]->bounds(), grow, static_cast<int>(i)));
   }
-  std::vector<std::pair<int, int>> candidates;
+  std::vector<std::pair<int, int>> pairs;
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
                                 [&](const BoxWithIndex& x, const BoxWithIndex& y) {
-                                  candidates.emplace_back(std::min(x.info(), y.info()),
-                                                          std::max(x.info(), y.info()));
+                                  pairs.emplace_back(std::min(x.info(), y.info()),
+                                                     std::max(x.info(), y.info()));
                                 });
-  std::sort(candidates.begin(), candidates.end());
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
+                                         const ContactOptions& options) {
+  const double tol = effective_tolerance(blocks, options);
+  const std::vector<std::pair<int, int>> candidates = box_pairs(blocks, 0.5 * tol);
 
   // Face data only for blocks that have a neighbour, computed once each.
   std::vector<std::vector<FaceInfo>> faces(blocks.size());

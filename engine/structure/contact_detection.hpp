@@ -1,6 +1,7 @@
 // Finds every contact polygon between the blocks of a structure.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "geometry/block.hpp"
@@ -43,6 +44,11 @@ bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
                      const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol);
 // Whether the plane (normal, offset) is `plane` within `tol` (m).
 bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol);
+
+// The broad phase of contact and overlap detection: the pairs (i, j), i < j,
+// sorted, of blocks whose bounding boxes intersect when each is grown by
+// `grow` (m) on every side, or shrunk when it is negative.
+std::vector<std::pair<int, int>> box_pairs(const std::vector<const Block*>& blocks, double grow);
 
 // The tolerance actually used for `blocks` under `options` (m).
 double effective_tolerance(const std::vector<const Block*>& blocks,

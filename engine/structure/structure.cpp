@@ -1,6 +1,8 @@
 #include "structure/structure.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -24,6 +26,7 @@ int Structure::add(BlockPtr block, bool support, std::string name) {
   blocks_.push_back({std::move(block), support, name});
   index_by_name_.emplace(blocks_.back().name, index);
   cache_.valid = false;
+  overlap_cache_.valid = false;
   return index;
 }
 
@@ -121,17 +124,64 @@ Box3 Structure::bounds() const {
   return box;
 }
 
+std::vector<const Block*> Structure::block_pointers() const {
+  std::vector<const Block*> blocks;
+  blocks.reserve(blocks_.size());
+  for (const StructureBlock& entry : blocks_) blocks.push_back(entry.block.get());
+  return blocks;
+}
+
 const std::vector<Interface>& Structure::interfaces(const ContactOptions& options) const {
   if (!cache_.valid || cache_.options.tolerance != options.tolerance ||
       cache_.options.relative_tolerance != options.relative_tolerance) {
-    std::vector<const Block*> blocks;
-    blocks.reserve(blocks_.size());
-    for (const StructureBlock& entry : blocks_) blocks.push_back(entry.block.get());
-    cache_.interfaces = detect_interfaces(blocks, options);
+    cache_.interfaces = detect_interfaces(block_pointers(), options);
     cache_.options = options;
     cache_.valid = true;
   }
   return cache_.interfaces;
+}
+
+const std::vector<BlockOverlap>& Structure::overlaps(const ContactOptions& options) const {
+  if (!overlap_cache_.valid || overlap_cache_.options.tolerance != options.tolerance ||
+      overlap_cache_.options.relative_tolerance != options.relative_tolerance) {
+    const std::vector<const Block*> blocks = block_pointers();
+    overlap_cache_.tolerance = effective_tolerance(blocks, options);
+    overlap_cache_.overlaps = detect_overlaps(blocks, overlap_cache_.tolerance);
+    overlap_cache_.options = options;
+    overlap_cache_.valid = true;
+  }
+  return overlap_cache_.overlaps;
+}
+
+void Structure::require_free_block(const std::string& caller) const {
+  if (blocks_.empty()) {
+    throw InvalidArgument(caller + ": the structure is empty: expected at least one block that is "
+                                   "not a support (add blocks with s:add)");
+  }
+  const bool free = std::any_of(blocks_.begin(), blocks_.end(),
+                                [](const StructureBlock& entry) { return !entry.support; });
+  if (!free) {
+    throw InvalidArgument(caller + ": all " + std::to_string(size()) +
+                          " blocks are supports: expected at least one block that is not a support");
+  }
+}
+
+void Structure::require_no_overlaps(const ContactOptions& options, const std::string& caller) const {
+  const std::vector<BlockOverlap>& found = overlaps(options);
+  if (found.empty()) return;
+  constexpr size_t kListed = 3;
+  std::ostringstream message;
+  message.precision(3);
+  message << caller << ": " << label(found[0].a) << " and " << label(found[0].b) << " overlap by "
+          << found[0].depth << " m";
+  for (size_t k = 1; k < std::min(found.size(), kListed); ++k) {
+    message << "; " << label(found[k].a) << " and " << label(found[k].b) << " by "
+            << found[k].depth << " m";
+  }
+  if (found.size() > kListed) message << "; and " << found.size() - kListed << " more pairs";
+  message << " (expected blocks that touch along faces, not interpenetrate; contact tolerance "
+          << overlap_cache_.tolerance << " m)";
+  throw GeometryError(message.str());
 }
 
 }  // namespace ashlar

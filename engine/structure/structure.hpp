@@ -10,6 +10,7 @@
 #include "geometry/block.hpp"
 #include "structure/contact_detection.hpp"
 #include "structure/interface.hpp"
+#include "structure/overlap_detection.hpp"
 
 namespace ashlar {
 
@@ -81,8 +82,19 @@ public:
   // Contact interfaces; recomputed only when blocks were added or the
   // options differ from the cached call.
   const std::vector<Interface>& interfaces(const ContactOptions& options = {}) const;
+  // Pairs of blocks that interpenetrate by more than the contact tolerance
+  // of `options`; cached like the interfaces.
+  const std::vector<BlockOverlap>& overlaps(const ContactOptions& options = {}) const;
+  // Throws GeometryError naming the overlapping pairs (the first few) and
+  // how deep they overlap: an analysis of interpenetrating blocks would miss
+  // the contacts between them. `caller` starts the message.
+  void require_no_overlaps(const ContactOptions& options, const std::string& caller) const;
+  // Throws InvalidArgument unless some block is not a support: an empty
+  // structure, or ground alone, has nothing to analyse.
+  void require_free_block(const std::string& caller) const;
 
 private:
+  std::vector<const Block*> block_pointers() const;
   void check_cable(const Cable& cable, int index) const;
 
   std::vector<StructureBlock> blocks_;
@@ -97,6 +109,14 @@ private:
     std::vector<Interface> interfaces;
   };
   mutable InterfaceCache cache_;
+
+  struct OverlapCache {
+    bool valid = false;
+    ContactOptions options;
+    double tolerance = 0.0;  // m, the one options give for these blocks
+    std::vector<BlockOverlap> overlaps;
+  };
+  mutable OverlapCache overlap_cache_;
 };
 
 }  // namespace ashlar

@@ -108,7 +108,7 @@ TEST(BlockValidation, FlatSolidHasZeroVolume) {
       << message;
 }
 
-TEST(BlockValidation, SelfIntersectingSurface) {
+TEST(BlockValidation, SurfaceInSeparatePieces) {
   // Two overlapping cubes written as one closed, consistently oriented surface.
   Mesh a = unit_cube();
   Mesh m = a;
@@ -117,7 +117,16 @@ TEST(BlockValidation, SelfIntersectingSurface) {
     for (int& i : f) i += 8;
     m.faces.push_back(f);
   }
-  expect_error(m, "self-intersecting");
+  expect_error(m, "its surface is in separate pieces (face 1 and face 7 are not joined");
+}
+
+TEST(BlockValidation, SelfIntersectingSurface) {
+  // The top replaced by a tent whose apex is pushed down through the bottom.
+  Mesh m = unit_cube();
+  m.vertices.emplace_back(0.5, 0.5, -0.5);
+  m.faces[1] = {4, 5, 8};
+  m.faces.insert(m.faces.end(), {{5, 7, 8}, {7, 6, 8}, {6, 4, 8}});
+  expect_error(m, "self-intersecting: faces 1 and 2 cross each other");
 }
 
 TEST(BlockValidation, NonPositiveDensity) {

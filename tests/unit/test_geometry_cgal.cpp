@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <regex>
 #include <string>
 
 #include "core/error.hpp"
@@ -221,7 +222,7 @@ TEST(CgalPolygonBoolean, SimpleLoops) {
 
 TEST(CgalSelfIntersection, ValidNonConvexBlockDoesNotIntersect) {
   const Mesh l_prism = prism_mesh(kLShape, 1.0);  // non-convex hexagons top and bottom
-  EXPECT_FALSE(surface_self_intersects(l_prism.vertices, l_prism.faces));
+  EXPECT_FALSE(surface_self_intersection(l_prism.vertices, l_prism.faces));
   const Block block(l_prism.vertices, l_prism.faces);
   EXPECT_FALSE(block.convex());
   EXPECT_DOUBLE_EQ(block.volume(), 3.0);
@@ -237,7 +238,11 @@ TEST(CgalSelfIntersection, InterpenetratingCubesIntersect) {
     for (int& index : face) index += offset;
     both.faces.push_back(face);
   }
-  EXPECT_TRUE(surface_self_intersects(both.vertices, both.faces));
+  // A face of the first cube (1-6) crosses one of the second (7-12).
+  const std::optional<std::string> crossing = surface_self_intersection(both.vertices, both.faces);
+  ASSERT_TRUE(crossing);
+  EXPECT_TRUE(std::regex_match(*crossing, std::regex("faces [1-6] and ([7-9]|1[0-2]) cross each other")))
+      << *crossing;
   EXPECT_THROW(Block(both.vertices, both.faces), GeometryError);
 }
 

@@ -183,9 +183,9 @@ TEST(StructureJson, NamesTheOffendingEntry) {
   const std::vector<Case> cases = {
       {[](auto& d) { d.erase("blocks"); }, "test.json: missing field 'blocks'"},
       {[](auto& d) { d["blocks"][0]["vertices"][2] = {1, 2}; },
-       "test.json: blocks[0].vertices[2]: expected 3 numbers"},
+       "test.json: blocks[0].vertices[2]: expected 3 finite numbers"},
       {[](auto& d) { d["blocks"][0]["vertices"][3][1] = "1"; },
-       "blocks[0].vertices[3]: expected 3 numbers"},
+       "blocks[0].vertices[3]: expected 3 finite numbers"},
       {[](auto& d) { d["blocks"][0]["faces"][1][2] = 8; },
        "blocks[0].faces[1][2]: index 8 is out of range (8 vertices, 0-based)"},
       {[](auto& d) { d["blocks"][0]["faces"][1][0] = -1; }, "blocks[0].faces[1][0]: index -1"},
@@ -203,7 +203,7 @@ TEST(StructureJson, NamesTheOffendingEntry) {
       {[](auto& d) { d["loads"] = {{{"block", 1}, {"force", {0, 0, -1}}, {"at", {0, 0, 0}}}}; },
        "loads[0].block: index 1 is out of range (1 blocks, 0-based)"},
       {[](auto& d) { d["loads"] = {{{"block", 0}, {"force", {0, 0}}, {"at", {0, 0, 0}}}}; },
-       "loads[0].force: expected 3 numbers"},
+       "loads[0].force: expected 3 finite numbers"},
       {[](auto& d) { d["loads"] = {{{"block", 0}, {"at", {0, 0, 0}}}}; },
        "loads[0]: missing field 'force'"},
   };

@@ -110,6 +110,8 @@ return function(opts)
   local deck
   if type(given) == "table" then deck, given.deck = given.deck, nil end
   local o = options.check(GENERATOR, given, spec)
+  options.limit_blocks(GENERATOR, o.spans * (2 * o.voussoirs + o.pier_courses),
+    ("spans = %d with voussoirs = %d and pier_courses = %d"):format(o.spans, o.voussoirs, o.pier_courses))
   resolve(o, given or {})
   -- deck: true / false, or a table of deck options; without spandrels there
   -- is nothing level to carry it, so it defaults to false there.

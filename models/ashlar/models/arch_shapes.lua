@@ -17,15 +17,21 @@ local function turn(a, b, c)
   return (b[1] - a[1]) * (c[2] - b[2]) - (b[2] - a[2]) * (c[1] - b[1])
 end
 
+local function distance(a, b)
+  return math.sqrt((b[1] - a[1]) ^ 2 + (b[2] - a[2]) ^ 2)
+end
+
 -- A voussoir's section (intrados and extrados chords between two joints)
--- must be a convex quadrilateral with some area.
+-- must be a convex quadrilateral with some area. A corner is flat when the
+-- sine of its turn is below 1e-12: relative to its edges, so the test holds
+-- at any scale.
 local function check_section(k, a, b, fail)
   local p = { { a.ix, a.iz }, { a.ex, a.ez }, { b.ex, b.ez }, { b.ix, b.iz } }
   local sign
   for i = 1, 4 do
-    local t = turn(p[i], p[i % 4 + 1], p[(i + 1) % 4 + 1])
-    local size = math.max(math.abs(p[i][1]), math.abs(p[i][2]), 1)
-    if math.abs(t) <= 1e-12 * size * size then sign = nil; break end
+    local q, r = p[i % 4 + 1], p[(i + 1) % 4 + 1]
+    local t = turn(p[i], q, r)
+    if math.abs(t) <= 1e-12 * distance(p[i], q) * distance(q, r) then sign = nil; break end
     if sign == nil then sign = t > 0 elseif sign ~= (t > 0) then sign = nil; break end
     if i == 4 then return end
   end

@@ -22,6 +22,8 @@ local spec = {
 
 return function(opts)
   local o = options.check("models.barrel_vault", opts, spec)
+  options.limit_blocks("models.barrel_vault", o.voussoirs * (o.courses + 1),
+    ("voussoirs = %d with courses = %d"):format(o.voussoirs, o.courses))
   semicircle.check_thickness("models.barrel_vault", o)
   local inner, outer = o.radius - o.thickness / 2, o.radius + o.thickness / 2
   local n = o.voussoirs

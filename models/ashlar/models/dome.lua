@@ -156,6 +156,8 @@ end
 
 return function(opts)
   local o = options.check("models.dome", opts, spec)
+  options.limit_blocks("models.dome", o.meridians * o.parallels,
+    ("meridians x parallels = %d x %d"):format(o.meridians, o.parallels))
   if o.thickness >= 2 * o.radius then
     error(("models.dome: thickness must be < 2 * radius (%g), got %g"):format(2 * o.radius,
       o.thickness), 2)

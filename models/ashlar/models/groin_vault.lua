@@ -68,6 +68,8 @@ local webs = {
 
 return function(opts)
   local o = options.check("models.groin_vault", opts, spec)
+  options.limit_blocks("models.groin_vault", 4 * o.voussoirs * (o.courses + 1),
+    ("voussoirs = %d with courses = %d"):format(o.voussoirs, o.courses))
   semicircle.check_thickness("models.groin_vault", o)
   if o.voussoirs % 2 ~= 0 then
     fail(("voussoirs: a groin vault needs an even count (a crown joint on the axis), got %d"):format(o.voussoirs))

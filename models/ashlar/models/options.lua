@@ -2,6 +2,11 @@
 -- ranges are errors that name the generator, the key and what is allowed.
 local options = {}
 
+-- The most blocks a generator makes, and the most any count option may ask
+-- for: a count of 1e9 is a typing mistake, refused before a loop or a table
+-- of that size is attempted.
+options.MAX_BLOCKS = 1000000
+
 local function fail(generator, message)
   -- Level 4: the caller of the generator (check -> generator -> caller).
   error(("%s: %s"):format(generator, message), 4)
@@ -10,6 +15,7 @@ end
 -- spec: { key = { type = "number" | "string" | "boolean" | "vec2" | "vec3",
 --                 default = value, min = n, max = n, above = n, integer = true,
 --                 one_of = { ... } } }
+-- Integer options are counts: at most options.MAX_BLOCKS unless max says.
 -- Returns a new table with defaults filled in.
 function options.check(generator, given, spec)
   if given ~= nil and type(given) ~= "table" then
@@ -61,6 +67,10 @@ function options.check(generator, given, spec)
         if rule.max and value > rule.max then
           fail(generator, ("%s: must be <= %g, got %g"):format(key, rule.max, value))
         end
+        if rule.integer and not rule.max and value > options.MAX_BLOCKS then
+          fail(generator, ("%s: must be <= %d (the most blocks a model may have), got %g")
+            :format(key, options.MAX_BLOCKS, value))
+        end
       elseif rule.one_of then
         local ok = false
         for _, name in ipairs(rule.one_of) do ok = ok or value == name end
@@ -72,6 +82,15 @@ function options.check(generator, given, spec)
     out[key] = value
   end
   return out
+end
+
+-- For generators whose counts multiply: `count` blocks, as `how` explains
+-- (e.g. "meridians x parallels = 16 x 18"), must be at most MAX_BLOCKS.
+function options.limit_blocks(generator, count, how)
+  if count > options.MAX_BLOCKS then
+    fail(generator, ("%s makes %.0f blocks, more than the %d a model may have")
+      :format(how, count, options.MAX_BLOCKS))
+  end
 end
 
 return options

@@ -27,6 +27,8 @@ return function(opts)
   local l, h, t = o.brick[1], o.brick[2], o.thickness
   local per_course = count("length", o.length, l)
   local courses = count("height", o.height, h)
+  options.limit_blocks("models.wall", per_course * courses,
+    ("%.0f bricks per course x %.0f courses"):format(per_course, courses))
   local s = ashlar.structure()
   if o.ground then
     s:add(ashlar.box{ size = { o.length + 2 * h, t + 2 * h, h }, center = { o.length / 2, 0, -h / 2 },
