@@ -2,7 +2,6 @@
 // closed again with the cut face; block_from_mesh restores polygon faces).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/clip.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "geometry/cgal_surface.hpp"
 #include "geometry/block_builders.hpp"
 
 namespace ashlar {
@@ -42,19 +42,13 @@ Vec3 to_vec(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 Mesh triangulated_surface(const Block& block, const std::string& what) {
   Mesh mesh;
-  std::vector<Mesh::Vertex_index> handles;
-  handles.reserve(block.vertices().size());
-  for (const Vec3& p : block.vertices()) handles.push_back(mesh.add_vertex({p.x(), p.y(), p.z()}));
-  std::vector<Mesh::Vertex_index> loop;
-  for (const FaceLoop& face : block.faces()) {
-    loop.clear();
-    for (int index : face) loop.push_back(handles[index]);
-    if (mesh.add_face(loop) == Mesh::null_face()) {
+  switch (triangulate_surface(block, mesh)) {
+    case SurfaceProblem::not_manifold:
       throw GeometryError(what + ": its surface is not a manifold CGAL can cut");
-    }
-  }
-  if (!PMP::triangulate_faces(mesh)) {
-    throw GeometryError(what + ": a face could not be triangulated for cutting");
+    case SurfaceProblem::not_triangulable:
+      throw GeometryError(what + ": a face could not be triangulated for cutting");
+    case SurfaceProblem::none:
+      break;
   }
   return mesh;
 }
