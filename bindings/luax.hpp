@@ -155,6 +155,16 @@ const std::shared_ptr<T>& check_boxed(lua_State* L, int idx, const char* metatab
   return box->ptr;
 }
 
+// For __tostring: pushes "Block (closed)" and returns true when the userdata
+// at index 1 was closed, so that printing an object never raises.
+template <class T>
+bool push_if_closed(lua_State* L, const char* metatable, const char* type) {
+  Box<T>* box = test_boxed<T>(L, 1, metatable);
+  if (!box || box->ptr) return false;
+  lua_pushfstring(L, "%s (closed)", type);
+  return true;
+}
+
 template <class T>
 int release_boxed(lua_State* L, const char* metatable) {
   if (Box<T>* box = test_boxed<T>(L, 1, metatable)) box->ptr.reset();

@@ -196,6 +196,7 @@ int w_Block_split(lua_State* L) {
 }
 
 int w_Block_tostring(lua_State* L) {
+  if (push_if_closed<const Block>(L, kBlockMeta, "Block")) return 1;
   return guard(L, [&] {
     const BlockPtr& block = luax_checkBlock(L, 1);
     std::ostringstream text;

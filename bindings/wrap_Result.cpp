@@ -210,6 +210,7 @@ int w_Result_index(lua_State* L) {
 }
 
 int w_Result_tostring(lua_State* L) {
+  if (push_if_closed<AnalysisRecord>(L, kResultMeta, "Result")) return 1;
   return guard(L, [&] {
     const EquilibriumResult& r = check_record(L, 1).result;
     lua_pushfstring(L, "Result (%s, infeasibility %f, %s after %d iterations)",

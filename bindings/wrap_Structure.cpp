@@ -259,6 +259,7 @@ int w_Structure_save(lua_State* L) {
 }
 
 int w_Structure_tostring(lua_State* L) {
+  if (push_if_closed<Structure>(L, kStructureMeta, "Structure")) return 1;
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
     int supports = 0;

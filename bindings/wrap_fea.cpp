@@ -240,6 +240,7 @@ int w_FeaResult_index(lua_State* L) {
 }
 
 int w_FeaResult_tostring(lua_State* L) {
+  if (push_if_closed<FeaRecord>(L, kFeaMeta, "FeaResult")) return 1;
   return guard(L, [&] {
     const FeaResult& r = check_record(L, 1).result;
     lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",

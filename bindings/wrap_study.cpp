@@ -575,16 +575,14 @@ int w_study_len(lua_State* L) {
 }
 
 int w_study_tostring(lua_State* L) {
-  Box<StudyObject>* box = test_boxed<StudyObject>(L, 1, kStudyMetatable);
-  if (box == nullptr || !box->ptr) {
-    lua_pushstring(L, "Study (closed)");
+  if (push_if_closed<StudyObject>(L, kStudyMetatable, "Study")) return 1;
+  return guard(L, [&] {
+    const StudyObject& study = check_study(L, 1);
+    lua_pushfstring(L, "Study '%s' (%d rows, %d finished, %d errors)", study.name.c_str(),
+                    static_cast<int>(study.table.rows.size()), static_cast<int>(study.table.finished_count()),
+                    static_cast<int>(study.table.error_count()));
     return 1;
-  }
-  const StudyObject& study = *box->ptr;
-  lua_pushfstring(L, "Study '%s' (%d rows, %d finished, %d errors)", study.name.c_str(),
-                  static_cast<int>(study.table.rows.size()), static_cast<int>(study.table.finished_count()),
-                  static_cast<int>(study.table.error_count()));
-  return 1;
+  });
 }
 
 int w_study_gc(lua_State* L) { return release_boxed<StudyObject>(L, kStudyMetatable); }
