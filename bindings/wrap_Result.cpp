@@ -77,11 +77,13 @@ int w_analyze(lua_State* L) {
     const AnalysisSettings settings = settings_from(L, 2);
     const AnalysisRecord* warm = nullptr;
     if (lua_type(L, 2) == LUA_TTABLE && lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
-      if (!test_boxed<AnalysisRecord>(L, -1, kResultMeta)) {
+      const Box<AnalysisRecord>* previous = test_boxed<AnalysisRecord>(L, -1, kResultMeta);
+      if (!previous) {
         throw ArgError(2, "warm_start: expected a Result of ashlar.analyze, got " +
                               type_name(L, -1));
       }
-      warm = &check_record(L, -1);
+      if (!previous->ptr) throw ArgError(2, "warm_start: attempt to use a closed Result");
+      warm = previous->ptr.get();
       if (warm->block_count != s.size()) {
         throw ArgError(2, "warm_start: that result is of a structure with " +
                               std::to_string(warm->block_count) + " blocks, this one has " +
