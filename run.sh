@@ -2,7 +2,8 @@
 # Sets up a Debian 12 machine for ashlar, builds it, and runs it.
 #   ./run.sh build              install what is missing, build (Release) into build/
 #   ./run.sh quickstart [dir]   build, then run scripts/quickstart.lua (output in dir, default build/out)
-#   ./run.sh test [args]        build, then run the test suite (args go to ctest)
+#   ./run.sh test [args]        build, run the test suite (args go to ctest), then the sanitizer suite
+#   ./run.sh sanitize [args]    build with ASan+UBSan into build-sanitize/ and run the suite there
 # Re-running is cheap: packages, npm tools and the CMake configuration are
 # only set up when missing. ASHLAR_JOBS sets the build's parallelism.
 set -euo pipefail
@@ -13,19 +14,20 @@ readonly DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libopenblas0-pthread libcgal-dev libgmp-dev libmpfr-dev
   libassimp-dev liblbfgspp-dev libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev coinor-libclp-dev libcairo2-dev
-  googletest libgtest-dev lua-busted
+  googletest libgtest-dev lua-busted valgrind
   nodejs npm gnuplot-nox python3 python3-cvxopt python3-numpy
 )
 # Node.js may come from outside Debian (NodeSource's nodejs bundles npm and
 # conflicts with Debian's npm): for these a working command is enough.
 declare -rA COMMAND_OF_PACKAGE=([nodejs]=node [npm]=npm)
 readonly BUILD_DIR=build
+readonly SANITIZE_DIR=build-sanitize
 
 say() { printf 'run.sh: %s\n' "$*"; }
 
 usage() {
   printf 'usage:\n' >&2
-  sed -n '3,5s/^#//p' "${BASH_SOURCE[0]}" >&2
+  sed -n '3,6s/^#//p' "${BASH_SOURCE[0]}" >&2
   exit 1
 }
 
@@ -66,19 +68,30 @@ install_node_tools() {
   (cd "$tools" && npm ci --no-audit --no-fund)
 }
 
+# build <dir> [cmake options]: configures <dir> once, then builds it.
 build() {
-  if [[ ! -f $BUILD_DIR/build.ninja ]]; then
-    say "configuring $BUILD_DIR/"
-    cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+  local dir=$1
+  shift
+  if [[ ! -f $dir/build.ninja ]]; then
+    say "configuring $dir/"
+    cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
   fi
-  say "building"
-  cmake --build "$BUILD_DIR" -j "${ASHLAR_JOBS:-$(nproc)}"
+  say "building $dir/"
+  cmake --build "$dir" -j "${ASHLAR_JOBS:-$(nproc)}"
 }
 
 set_up_and_build() {
   install_packages
   install_node_tools
-  build
+  build "$BUILD_DIR"
+}
+
+# The whole suite again, built with AddressSanitizer, LeakSanitizer and
+# UndefinedBehaviorSanitizer: ctest sets their options (tests/CMakeLists.txt).
+run_sanitized_tests() {
+  build "$SANITIZE_DIR" -DASHLAR_SANITIZE=ON
+  say "running the tests under the sanitizers"
+  (cd "$SANITIZE_DIR" && ctest --output-on-failure -j2 "$@")
 }
 
 (($# >= 1)) || usage
@@ -97,8 +110,13 @@ case $mode in
   test)
     set_up_and_build
     say "running the tests"
-    cd "$BUILD_DIR"
-    exec ctest --output-on-failure -j2 "$@"
+    (cd "$BUILD_DIR" && ctest --output-on-failure -j2 "$@")
+    run_sanitized_tests "$@"
+    ;;
+  sanitize)
+    install_packages
+    install_node_tools
+    run_sanitized_tests "$@"
     ;;
   *)
     usage

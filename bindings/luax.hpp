@@ -152,15 +152,27 @@ Box<T>* test_boxed(lua_State* L, int idx, const char* metatable) {
   return static_cast<Box<T>*>(luaL_testudata(L, idx, metatable));
 }
 
-// Shared pointer held by the userdata at idx; throws ArgError naming the
-// expected type, or saying the object was closed.
+// A copy of the shared pointer held by the userdata at idx; throws ArgError
+// naming the expected type, or saying the object was closed. A binding keeps
+// the copy for as long as it uses the object: Lua code that runs meanwhile (a
+// callback, an option table's __index, a finalizer during an allocation) may
+// close the userdata.
 template <class T>
-const std::shared_ptr<T>& check_boxed(lua_State* L, int idx, const char* metatable,
-                                      const char* type) {
+std::shared_ptr<T> check_boxed(lua_State* L, int idx, const char* metatable, const char* type) {
   Box<T>* box = test_boxed<T>(L, idx, metatable);
   if (!box) throw ArgError(idx, std::string(type) + " expected, got " + type_name(L, idx));
   if (!box->ptr) throw ArgError(idx, std::string("attempt to use a closed ") + type);
   return box->ptr;
+}
+
+// For __tostring: pushes "Block (closed)" and returns true when the userdata
+// at index 1 was closed, so that printing an object never raises.
+template <class T>
+bool push_if_closed(lua_State* L, const char* metatable, const char* type) {
+  Box<T>* box = test_boxed<T>(L, 1, metatable);
+  if (!box || box->ptr) return false;
+  lua_pushfstring(L, "%s (closed)", type);
+  return true;
 }
 
 template <class T>

@@ -105,7 +105,8 @@ int w_Block_vertices(lua_State* L) {
 
 int w_Block_faces(lua_State* L) {
   return guard(L, [&] {
-    const std::vector<FaceLoop>& faces = luax_checkBlock(L, 1)->faces();
+    const BlockPtr block = luax_checkBlock(L, 1);
+    const std::vector<FaceLoop>& faces = block->faces();
     lua_createtable(L, static_cast<int>(faces.size()), 0);
     for (size_t f = 0; f < faces.size(); ++f) {
       lua_createtable(L, static_cast<int>(faces[f].size()), 0);
@@ -121,7 +122,8 @@ int w_Block_faces(lua_State* L) {
 
 int w_Block_name(lua_State* L) {
   return guard(L, [&] {
-    const std::string& name = luax_checkBlock(L, 1)->name();
+    const BlockPtr block = luax_checkBlock(L, 1);
+    const std::string& name = block->name();
     if (name.empty()) lua_pushnil(L);
     else lua_pushlstring(L, name.data(), name.size());
     return 1;
@@ -137,7 +139,8 @@ int w_Block_density(lua_State* L) {
 
 int w_Block_bounds(lua_State* L) {
   return guard(L, [&] {
-    const Box3& box = luax_checkBlock(L, 1)->bounds();
+    const BlockPtr block = luax_checkBlock(L, 1);
+    const Box3& box = block->bounds();
     push_vec3(L, box.lo);
     push_vec3(L, box.hi);
     return 2;
@@ -153,14 +156,14 @@ int w_Block_is_convex(lua_State* L) {
 
 int w_Block_translated(lua_State* L) {
   return guard(L, [&] {
-    const BlockPtr& block = luax_checkBlock(L, 1);
+    const BlockPtr block = luax_checkBlock(L, 1);
     return push_new_block(L, block->translated(to_vec3(L, 2, 2, "offset")));
   });
 }
 
 int w_Block_rotated(lua_State* L) {
   return guard(L, [&] {
-    const BlockPtr& block = luax_checkBlock(L, 1);
+    const BlockPtr block = luax_checkBlock(L, 1);
     const Vec3 axis = to_vec3(L, 2, 2, "axis");
     const double angle = check_number(L, 3, "angle");
     const Vec3 origin = lua_isnoneornil(L, 4) ? Vec3::Zero() : to_vec3(L, 4, 4, "origin");
@@ -170,7 +173,7 @@ int w_Block_rotated(lua_State* L) {
 
 int w_Block_with(lua_State* L) {
   return guard(L, [&] {
-    const BlockPtr& block = luax_checkBlock(L, 1);
+    const BlockPtr block = luax_checkBlock(L, 1);
     const OptionTable options(L, 2, {"density", "name"});
     Block copy = *block;
     if (const std::optional<std::string> name = options.string("name")) {
@@ -183,7 +186,7 @@ int w_Block_with(lua_State* L) {
 
 int w_Block_split(lua_State* L) {
   return guard(L, [&] {
-    const BlockPtr& block = luax_checkBlock(L, 1);
+    const BlockPtr block = luax_checkBlock(L, 1);
     const Vec3 point = to_vec3(L, 2, 2, "point");
     const Vec3 normal = to_vec3(L, 3, 3, "normal");
     SplitResult parts = split_block(*block, point, normal);
@@ -196,8 +199,9 @@ int w_Block_split(lua_State* L) {
 }
 
 int w_Block_tostring(lua_State* L) {
+  if (push_if_closed<const Block>(L, kBlockMeta, "Block")) return 1;
   return guard(L, [&] {
-    const BlockPtr& block = luax_checkBlock(L, 1);
+    const BlockPtr block = luax_checkBlock(L, 1);
     std::ostringstream text;
     text << "Block";
     if (!block->name().empty()) text << " '" << block->name() << "'";
@@ -212,7 +216,7 @@ int w_Block_gc(lua_State* L) { return release_boxed<const Block>(L, kBlockMeta);
 
 }  // namespace
 
-const BlockPtr& luax_checkBlock(lua_State* L, int idx) {
+BlockPtr luax_checkBlock(lua_State* L, int idx) {
   return check_boxed<const Block>(L, idx, kBlockMeta, "Block");
 }
 

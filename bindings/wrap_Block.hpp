@@ -7,8 +7,9 @@
 
 namespace ashlar::lua {
 
-// The block at stack index idx; throws ArgError unless it is a Block.
-const BlockPtr& luax_checkBlock(lua_State* L, int idx);
+// The block at stack index idx, for the caller to keep while it uses it (see
+// check_boxed); throws ArgError unless it is an open Block.
+BlockPtr luax_checkBlock(lua_State* L, int idx);
 void luax_pushBlock(lua_State* L, BlockPtr block);
 // Registers the metatable; called once when the library opens.
 void register_Block(lua_State* L);

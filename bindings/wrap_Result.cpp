@@ -67,21 +67,24 @@ AnalysisSettings settings_from(lua_State* L, int arg) {
   return analysis_settings(OptionTable(L, arg, {ASHLAR_ANALYSIS_OPTIONS, "warm_start"}));
 }
 
-AnalysisRecord& check_record(lua_State* L, int idx) {
-  return *check_boxed<AnalysisRecord>(L, idx, kResultMeta, "Result");
+std::shared_ptr<AnalysisRecord> check_record(lua_State* L, int idx) {
+  return check_boxed<AnalysisRecord>(L, idx, kResultMeta, "Result");
 }
 
 int w_analyze(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const AnalysisSettings settings = settings_from(L, 2);
-    const AnalysisRecord* warm = nullptr;
+    std::shared_ptr<const AnalysisRecord> warm;
     if (lua_type(L, 2) == LUA_TTABLE && lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
-      if (!test_boxed<AnalysisRecord>(L, -1, kResultMeta)) {
+      const Box<AnalysisRecord>* previous = test_boxed<AnalysisRecord>(L, -1, kResultMeta);
+      if (!previous) {
         throw ArgError(2, "warm_start: expected a Result of ashlar.analyze, got " +
                               type_name(L, -1));
       }
-      warm = &check_record(L, -1);
+      if (!previous->ptr) throw ArgError(2, "warm_start: attempt to use a closed Result");
+      warm = previous->ptr;
       if (warm->block_count != s.size()) {
         throw ArgError(2, "warm_start: that result is of a structure with " +
                               std::to_string(warm->block_count) + " blocks, this one has " +
@@ -101,7 +104,8 @@ int w_analyze(lua_State* L) {
 
 int w_export_qp(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const AnalysisSettings settings = settings_from(L, 3);
     write_equilibrium_qps(build_equilibrium_problem(s, settings.problem), path);
@@ -166,14 +170,15 @@ void push_cables(lua_State* L, const EquilibriumResult& result) {
 // Tables built on first access and kept in the userdata's user value.
 int w_Result_thrust_line(lua_State* L) {
   return guard(L, [&] {
-    push_points(L, check_record(L, 1).thrust);
+    push_points(L, check_record(L, 1)->thrust);
     return 1;
   });
 }
 
 int w_Result_index(lua_State* L) {
   return guard(L, [&] {
-    const EquilibriumResult& r = check_record(L, 1).result;
+    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const EquilibriumResult& r = record->result;
     const char* key = lua_tostring(L, 2);
     if (!key) return 0;
     auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
@@ -210,8 +215,10 @@ int w_Result_index(lua_State* L) {
 }
 
 int w_Result_tostring(lua_State* L) {
+  if (push_if_closed<AnalysisRecord>(L, kResultMeta, "Result")) return 1;
   return guard(L, [&] {
-    const EquilibriumResult& r = check_record(L, 1).result;
+    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const EquilibriumResult& r = record->result;
     lua_pushfstring(L, "Result (%s, infeasibility %f, %s after %d iterations)",
                     r.stable ? "stable" : "unstable", r.infeasibility, status_name(r.status),
                     r.iterations);
@@ -223,9 +230,10 @@ int w_Result_gc(lua_State* L) { return release_boxed<AnalysisRecord>(L, kResultM
 
 }  // namespace
 
-const EquilibriumResult* luax_testResult(lua_State* L, int idx) {
+std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx) {
   Box<AnalysisRecord>* box = test_boxed<AnalysisRecord>(L, idx, kResultMeta);
-  return box && box->ptr ? &box->ptr->result : nullptr;
+  if (!box || !box->ptr) return nullptr;
+  return std::shared_ptr<const EquilibriumResult>(box->ptr, &box->ptr->result);
 }
 
 void register_Result(lua_State* L) {

@@ -17,8 +17,9 @@ class OptionTable;
 // Analysis settings from an option table that allows ASHLAR_ANALYSIS_OPTIONS.
 AnalysisSettings analysis_settings(const OptionTable& options);
 
-// The engine result held by the Result at idx, or nullptr if it is not one.
-const EquilibriumResult* luax_testResult(lua_State* L, int idx);
+// The engine result held by the Result at idx, for the caller to keep while
+// it uses it (see check_boxed), or nullptr if it is not an open Result.
+std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx);
 void register_Result(lua_State* L);
 // ashlar.analyze and ashlar.export_qp: set into the table on top of the stack.
 void set_analysis_functions(lua_State* L);

@@ -52,8 +52,9 @@ int w_load(lua_State* L) {
 
 int w_Structure_add(lua_State* L) {
   return guard(L, [&] {
-    Structure& s = *luax_checkStructure(L, 1);
-    const BlockPtr& block = luax_checkBlock(L, 2);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    Structure& s = *structure;
+    const BlockPtr block = luax_checkBlock(L, 2);
     const OptionTable options(L, 3, {"support", "name"});
     const int index =
         s.add(block, options.boolean("support").value_or(false), options.string("name").value_or(""));
@@ -64,7 +65,8 @@ int w_Structure_add(lua_State* L) {
 
 int w_Structure_add_load(lua_State* L) {
   return guard(L, [&] {
-    Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    Structure& s = *structure;
     const OptionTable options(L, 2, {"block", "force", "at"});
     if (lua_type(L, 2) != LUA_TTABLE) {
       throw ArgError(2, "expected a load table {block = i, force = {fx, fy, fz}, at = {x, y, z}}");
@@ -107,7 +109,8 @@ CableEnd cable_end(lua_State* L, const Structure& s, const OptionTable& options,
 
 int w_Structure_add_cable(lua_State* L) {
   return guard(L, [&] {
-    Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    Structure& s = *structure;
     if (lua_type(L, 2) != LUA_TTABLE) {
       throw ArgError(2, "expected a cable table {from = {block = i, point = {..}}, to = {..}, "
                         "mass_per_length = 0, max_tension = nil}");
@@ -127,7 +130,8 @@ int w_Structure_add_cable(lua_State* L) {
 
 int w_Structure_cables(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     lua_createtable(L, static_cast<int>(s.cables().size()), 0);
     for (size_t c = 0; c < s.cables().size(); ++c) {
       const Cable& cable = s.cables()[c];
@@ -158,7 +162,8 @@ int w_Structure_len(lua_State* L) {
 
 int w_Structure_block(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     luax_pushBlock(L, s.entry(check_block_index(L, s, 2, 2, "block")).block);
     return 1;
   });
@@ -166,7 +171,8 @@ int w_Structure_block(lua_State* L) {
 
 int w_Structure_name(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     lua_pushstring(L, s.name(check_block_index(L, s, 2, 2, "block")).c_str());
     return 1;
   });
@@ -174,7 +180,8 @@ int w_Structure_name(lua_State* L) {
 
 int w_Structure_is_support(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     lua_pushboolean(L, s.is_support(check_block_index(L, s, 2, 2, "block")));
     return 1;
   });
@@ -182,7 +189,8 @@ int w_Structure_is_support(lua_State* L) {
 
 int w_Structure_find(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const int index = s.find(check_string(L, 2, "name"));
     if (index < 0) lua_pushnil(L);
     else lua_pushinteger(L, index + 1);
@@ -192,7 +200,8 @@ int w_Structure_find(lua_State* L) {
 
 int w_Structure_loads(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     lua_createtable(L, static_cast<int>(s.loads().size()), 0);
     for (size_t i = 0; i < s.loads().size(); ++i) {
       const PointLoad& load = s.loads()[i];
@@ -218,7 +227,8 @@ int w_Structure_bounds(lua_State* L) {
 
 int w_Structure_interfaces(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const OptionTable options(L, 2, {"tolerance"});
     ContactOptions contact;
     contact.tolerance = options.positive("tolerance", 0.0, true);
@@ -253,7 +263,8 @@ int w_Structure_overlaps(lua_State* L) {
 
 int w_Structure_set_planar(lua_State* L) {
   return guard(L, [&] {
-    Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    Structure& s = *structure;
     if (!lua_isboolean(L, 2)) {
       throw ArgError(2, "planar: expected true or false, got " + type_name(L, 2));
     }
@@ -271,15 +282,18 @@ int w_Structure_is_planar(lua_State* L) {
 
 int w_Structure_save(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     save_structure(s, sandbox::checked_path(L, 2, "path", sandbox::Access::write));
     return 0;
   });
 }
 
 int w_Structure_tostring(lua_State* L) {
+  if (push_if_closed<Structure>(L, kStructureMeta, "Structure")) return 1;
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     int supports = 0;
     for (const StructureBlock& entry : s.entries()) supports += entry.support ? 1 : 0;
     std::ostringstream text;
@@ -315,7 +329,7 @@ int check_block_index(lua_State* L, const Structure& s, int idx, int arg, const 
   return static_cast<int>(index - 1);
 }
 
-const std::shared_ptr<Structure>& luax_checkStructure(lua_State* L, int idx) {
+std::shared_ptr<Structure> luax_checkStructure(lua_State* L, int idx) {
   return check_boxed<Structure>(L, idx, kStructureMeta, "Structure");
 }
 

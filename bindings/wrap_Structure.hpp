@@ -8,7 +8,9 @@
 
 namespace ashlar::lua {
 
-const std::shared_ptr<Structure>& luax_checkStructure(lua_State* L, int idx);
+// The structure at stack index idx, for the caller to keep while it uses it
+// (see check_boxed); throws ArgError unless it is an open Structure.
+std::shared_ptr<Structure> luax_checkStructure(lua_State* L, int idx);
 void luax_pushStructure(lua_State* L, std::shared_ptr<Structure> structure);
 void register_Structure(lua_State* L);
 // ashlar.structure and ashlar.load: set into the table on top of the stack.

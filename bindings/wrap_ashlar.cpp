@@ -54,7 +54,8 @@ std::vector<std::vector<Vec3>> load_traces(lua_State* L, const OptionTable& opti
 
 int w_export(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"color", "interfaces", "tolerance", "result", "forces",
                                      "thrust", "force_scale", "opacity", "cable_color", "traces",
@@ -63,10 +64,11 @@ int w_export(lua_State* L) {
     exported.block_colors = block_colors(L, options, s.size());
     exported.interfaces = options.boolean("interfaces").value_or(false);
     exported.contact.tolerance = options.positive("tolerance", 0.0, true);
-    // The Result stays pushed, so it cannot be collected during the export.
+    std::shared_ptr<const EquilibriumResult> result;
     if (options.push("result") != LUA_TNIL) {
-      exported.result = luax_testResult(L, -1);
-      if (!exported.result) {
+      result = luax_testResult(L, -1);
+      exported.result = result.get();
+      if (!result) {
         throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " +
                               type_name(L, -1));
       }

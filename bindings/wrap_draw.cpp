@@ -43,17 +43,19 @@ Vec3 view_direction(const OptionTable& options) {
 
 int w_draw(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"result", "thrust", "forces", "force_scale", "view", "width",
                                      "height", "title", "color", "thrust_color", "tolerance"});
     ElevationOptions drawing;
     drawing.block_colors = block_colors(L, options, s.size());
     drawing.contact.tolerance = options.positive("tolerance", 0.0, true);
-    // The Result stays pushed, so it cannot be collected while drawing.
+    std::shared_ptr<const EquilibriumResult> result;
     if (options.push("result") != LUA_TNIL) {
-      drawing.result = luax_testResult(L, -1);
-      if (!drawing.result) {
+      result = luax_testResult(L, -1);
+      drawing.result = result.get();
+      if (!result) {
         throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " +
                               type_name(L, -1));
       }

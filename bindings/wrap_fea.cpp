@@ -24,7 +24,9 @@ struct FeaRecord {
   FeaResult result;
 };
 
-FeaRecord& check_record(lua_State* L, int idx) { return *check_boxed<FeaRecord>(L, idx, kFeaMeta, "FeaResult"); }
+std::shared_ptr<FeaRecord> check_record(lua_State* L, int idx) {
+  return check_boxed<FeaRecord>(L, idx, kFeaMeta, "FeaResult");
+}
 
 FeaSettings fea_settings(const OptionTable& options) {
   FeaSettings settings;
@@ -51,7 +53,8 @@ FeaSettings fea_settings(const OptionTable& options) {
 
 int w_fea(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const OptionTable options(L, 2, {"young", "poisson", "refine", "element_size", "relax",
                                      "max_relax_iterations", "release", "tension_tolerance",
                                      "max_displacement", "stresses", "contact_tolerance"});
@@ -183,7 +186,8 @@ void push_stresses(lua_State* L, const FeaRecord& r) {
 
 int w_FeaResult_export(lua_State* L) {
   return guard(L, [&] {
-    const FeaRecord& r = check_record(L, 1);
+    const std::shared_ptr<FeaRecord> record = check_record(L, 1);
+    const FeaRecord& r = *record;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"scale", "color", "map", "undeformed", "contacts"});
     if (file_extension(path) == "vtu") {
@@ -206,7 +210,8 @@ int w_FeaResult_export(lua_State* L) {
 
 int w_FeaResult_index(lua_State* L) {
   return guard(L, [&] {
-    const FeaRecord& record = check_record(L, 1);
+    const std::shared_ptr<FeaRecord> kept = check_record(L, 1);
+    const FeaRecord& record = *kept;
     const FeaResult& r = record.result;
     const char* key = lua_tostring(L, 2);
     if (!key) return 0;
@@ -240,8 +245,10 @@ int w_FeaResult_index(lua_State* L) {
 }
 
 int w_FeaResult_tostring(lua_State* L) {
+  if (push_if_closed<FeaRecord>(L, kFeaMeta, "FeaResult")) return 1;
   return guard(L, [&] {
-    const FeaResult& r = check_record(L, 1).result;
+    const std::shared_ptr<FeaRecord> record = check_record(L, 1);
+    const FeaResult& r = record->result;
     lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
                     fea_status_name(r.status), r.iterations, r.max_displacement);
     return 1;

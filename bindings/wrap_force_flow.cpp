@@ -73,7 +73,8 @@ void push_force_flow(lua_State* L, const ForceFlow& flow) {
 
 int w_trace_loads(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const int block = check_block_index(L, s, 2, 2, "block");
     const OptionTable options(L, 3, {ASHLAR_ANALYSIS_OPTIONS, "traces", "seed", "start",
                                      "max_steps", "turn_back"});

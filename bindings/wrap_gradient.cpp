@@ -37,7 +37,8 @@ namespace {
 
 int w_gradient(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const AnalysisSettings settings =
         analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
     push_structural_gradient(L, structural_gradient(s, settings));

@@ -29,7 +29,8 @@ const char* mode_name(LimitMode mode) {
 
 int w_load_factor(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const OptionTable options(L, 2, {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load"});
     LoadFactorSettings settings;
     settings.problem = analysis_settings(options).problem;
@@ -82,7 +83,8 @@ int w_load_factor(lua_State* L) {
 
 int w_friction_demand(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance"});
     const EquilibriumOptions problem = analysis_settings(options).problem;
     const double tolerance = options.positive("tolerance", 1e-6);

@@ -88,7 +88,8 @@ std::shared_ptr<Structure> returned_structure(lua_State* L, const std::string& c
 
 int w_tilt(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const double angle = check_number(L, 2, "angle");
     const OptionTable options(L, 3, {"axis", "origin"});
     const Vec3 axis = options.vec3("axis").value_or(Vec3::UnitY());

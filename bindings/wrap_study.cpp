@@ -314,8 +314,8 @@ void set_integer(lua_State* L, const char* key, std::size_t value) {
   lua_setfield(L, -2, key);
 }
 
-StudyObject& check_study(lua_State* L, int idx) {
-  return *check_boxed<StudyObject>(L, idx, kStudyMetatable, "Study");
+std::shared_ptr<StudyObject> check_study(lua_State* L, int idx) {
+  return check_boxed<StudyObject>(L, idx, kStudyMetatable, "Study");
 }
 
 void push_study(lua_State* L, StudyObject study) {
@@ -509,7 +509,8 @@ void push_row(lua_State* L, const study::StudyTable& table, const study::Row& ro
 
 int w_study_rows(lua_State* L) {
   return guard(L, [&] {
-    const StudyObject& study = check_study(L, 1);
+    const std::shared_ptr<StudyObject> kept = check_study(L, 1);
+    const StudyObject& study = *kept;
     lua_createtable(L, static_cast<int>(study.table.rows.size()), 0);
     for (std::size_t r = 0; r < study.table.rows.size(); ++r) {
       push_row(L, study.table, study.table.rows[r]);
@@ -554,7 +555,8 @@ int w_study_chart(lua_State* L) {
 
 int w_study_csv(lua_State* L) {
   return guard(L, [&] {
-    const StudyObject& study = check_study(L, 1);
+    const std::shared_ptr<StudyObject> kept = check_study(L, 1);
+    const StudyObject& study = *kept;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     if (cluster::rank() == 0) write_file_atomically(path, study::csv_text(study.table));  // one writer per MPI job
     lua_pushstring(L, path.c_str());
@@ -564,7 +566,8 @@ int w_study_csv(lua_State* L) {
 
 int w_study_info(lua_State* L) {
   return guard(L, [&] {
-    const StudyObject& study = check_study(L, 1);
+    const std::shared_ptr<StudyObject> kept = check_study(L, 1);
+    const StudyObject& study = *kept;
     const std::size_t finished = study.table.finished_count(), errors = study.table.error_count();
     lua_createtable(L, 0, 12);
     set_string(L, "name", study.name.c_str());
@@ -589,29 +592,28 @@ int w_study_info(lua_State* L) {
 
 int w_study_name(lua_State* L) {
   return guard(L, [&] {
-    lua_pushstring(L, check_study(L, 1).name.c_str());
+    lua_pushstring(L, check_study(L, 1)->name.c_str());
     return 1;
   });
 }
 
 int w_study_len(lua_State* L) {
   return guard(L, [&] {
-    lua_pushinteger(L, static_cast<lua_Integer>(check_study(L, 1).table.rows.size()));
+    lua_pushinteger(L, static_cast<lua_Integer>(check_study(L, 1)->table.rows.size()));
     return 1;
   });
 }
 
 int w_study_tostring(lua_State* L) {
-  Box<StudyObject>* box = test_boxed<StudyObject>(L, 1, kStudyMetatable);
-  if (box == nullptr || !box->ptr) {
-    lua_pushstring(L, "Study (closed)");
+  if (push_if_closed<StudyObject>(L, kStudyMetatable, "Study")) return 1;
+  return guard(L, [&] {
+    const std::shared_ptr<StudyObject> kept = check_study(L, 1);
+    const StudyObject& study = *kept;
+    lua_pushfstring(L, "Study '%s' (%d rows, %d finished, %d errors)", study.name.c_str(),
+                    static_cast<int>(study.table.rows.size()), static_cast<int>(study.table.finished_count()),
+                    static_cast<int>(study.table.error_count()));
     return 1;
-  }
-  const StudyObject& study = *box->ptr;
-  lua_pushfstring(L, "Study '%s' (%d rows, %d finished, %d errors)", study.name.c_str(),
-                  static_cast<int>(study.table.rows.size()), static_cast<int>(study.table.finished_count()),
-                  static_cast<int>(study.table.error_count()));
-  return 1;
+  });
 }
 
 int w_study_gc(lua_State* L) { return release_boxed<StudyObject>(L, kStudyMetatable); }

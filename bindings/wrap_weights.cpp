@@ -25,7 +25,8 @@ void set_list(lua_State* L, const std::vector<double>& values) {
 
 int w_weight_sensitivity(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const int block = check_block_index(L, s, 2, 2, "block");
     const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
     const WeightSensitivity sensitivity = weight_sensitivity(s, block, settings);
@@ -53,7 +54,8 @@ int w_weight_sensitivity(lua_State* L) {
 
 int w_load_capacity(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = static_cast<int>(
@@ -81,7 +83,8 @@ int w_load_capacity(lua_State* L) {
 
 int w_necessary_weights(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const int block = check_block_index(L, s, 2, 2, "block");
     const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
     const NecessaryWeights needed = necessary_weights(s, block, settings);
@@ -98,7 +101,8 @@ int w_necessary_weights(lua_State* L) {
 
 int w_important_weights(lua_State* L) {
   return guard(L, [&] {
-    const Structure& s = *luax_checkStructure(L, 1);
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
     const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
     const ImportantWeights important = important_weights(s, settings);
     lua_createtable(L, s.size(), 3);
