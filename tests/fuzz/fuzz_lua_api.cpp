@@ -132,6 +132,58 @@ const char* const kOptionKeys[] = {
     "value_tolerance", "vertices", "view", "warm_start", "width", "workers", "x", "x_label", "y",
     "y_label", "young", "bogus", "Friction", ""};
 
+// ASHLAR_FUZZ_TRACE=1 prints every call an input makes and how it ended:
+// the way to turn a crashing input into a script.
+const bool kTrace = std::getenv("ASHLAR_FUZZ_TRACE") != nullptr;
+
+// A value as Lua source, near enough to paste into a script; no metamethod
+// runs (they could raise).
+std::string describe(lua_State* L, int idx, int depth = 0) {
+  idx = lua_absindex(L, idx);
+  switch (lua_type(L, idx)) {
+    case LUA_TNUMBER: {
+      if (lua_isinteger(L, idx)) return std::to_string(lua_tointeger(L, idx));
+      const double x = lua_tonumber(L, idx);
+      if (std::isnan(x)) return "(0/0)";
+      if (std::isinf(x)) return x > 0 ? "math.huge" : "-math.huge";
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", x);
+      return text;
+    }
+    case LUA_TSTRING: {
+      std::size_t length = 0;
+      const char* text = lua_tolstring(L, idx, &length);
+      std::string quoted = "\"";
+      for (std::size_t i = 0; i < length; ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c == '"' || c == '\\') quoted += '\\';
+        if (c < 32 || c >= 127) quoted += "\\" + std::to_string(c);
+        else quoted += static_cast<char>(c);
+      }
+      return quoted + "\"";
+    }
+    case LUA_TTABLE: {
+      if (depth > kMaxDepth) return "{...}";
+      std::string text = "{";
+      lua_pushnil(L);
+      while (lua_next(L, idx) != 0) {
+        text += (text.size() > 1 ? ", [" : "[") + describe(L, -2, depth + 1) + "] = " + describe(L, -1, depth + 1);
+        lua_pop(L, 1);
+      }
+      return text + "}";
+    }
+    case LUA_TUSERDATA:
+      if (luaL_getmetafield(L, idx, "__name") == LUA_TSTRING) {
+        std::string name = lua_tostring(L, -1);
+        lua_pop(L, 1);
+        return "<" + name + ">";
+      }
+      return "<userdata>";
+    default:
+      return luaL_typename(L, idx);
+  }
+}
+
 class Input {
 public:
   Input(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
@@ -220,7 +272,7 @@ private:
     const std::string& name = ashlar_functions_[static_cast<std::size_t>(
         in_.below(static_cast<int>(ashlar_functions_.size())))];
     lua_getfield(L_, ashlar_, name.c_str());
-    call(lua_gettop(L_), in_.below(kMaxArguments + 1));
+    call(lua_gettop(L_), in_.below(kMaxArguments + 1), "ashlar." + name);
   }
 
   // obj:method(args...): a method of the object's own type when its
@@ -247,7 +299,7 @@ private:
     }
     const int function = lua_gettop(L_);
     lua_pushvalue(L_, object);
-    call(function, in_.below(kMaxArguments + 1));
+    call(function, in_.below(kMaxArguments + 1), describe(L_, object) + "." + method);
   }
 
   void read_field() {
@@ -269,16 +321,28 @@ private:
     if (lua_getfield(L_, -1, metamethod) != LUA_TFUNCTION) return;
     const int function = lua_gettop(L_);
     lua_pushvalue(L_, object);
-    call(function, in_.below(2));
+    call(function, in_.below(2), std::string("getmetatable(") + describe(L_, object) + ")." + metamethod);
   }
 
   // Calls the function at stack index `function` with the values already
   // above it and `count` new arguments, and keeps what it returns.
-  void call(int function, int count) {
+  // `name` says what the function is, for the trace.
+  void call(int function, int count, const std::string& name) {
     luaL_checkstack(L_, count + 8, "fuzz arguments");
     for (int k = 0; k < count; ++k) push_value(0);
     const int argument_count = lua_gettop(L_) - function;
-    if (lua_pcall(L_, argument_count, LUA_MULTRET, 0) == LUA_OK) keep_results(function - 1);
+    if (kTrace) {
+      std::string arguments;
+      for (int idx = function + 1; idx <= lua_gettop(L_); ++idx) {
+        arguments += (arguments.empty() ? "" : ", ") + describe(L_, idx);
+      }
+      std::fprintf(stderr, "%s(%s)\n", name.c_str(), arguments.c_str());
+    }
+    const int status = lua_pcall(L_, argument_count, LUA_MULTRET, 0);
+    if (kTrace) {
+      std::fprintf(stderr, "  -> %s\n", status == LUA_OK ? "ok" : describe(L_, -1).c_str());
+    }
+    if (status == LUA_OK) keep_results(function - 1);
   }
 
   // Replaces the key on top of the stack by object[key], under pcall since
