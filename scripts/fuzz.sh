@@ -6,8 +6,8 @@
 # Installs clang-14 and libclang-rt-14-dev when missing (the other build
 # dependencies come with ./run.sh build), builds build-fuzz/ (clang,
 # AddressSanitizer, UBSan, libFuzzer), fuzzes each target from its corpus
-# tests/fuzz/corpus/<target>/ and merges the new inputs that add coverage
-# back into it. Crashes, timeouts and leaks go to ASHLAR_FUZZ_ARTIFACTS
+# tests/fuzz/corpus/<target>/ and merges the fewest new inputs that add
+# coverage back into it. Crashes, timeouts and leaks go to ASHLAR_FUZZ_ARTIFACTS
 # (default /tmp/ashlar-fuzz)/<target>/, outside the tree. Exits non-zero when
 # a target found one.
 set -euo pipefail
@@ -73,8 +73,10 @@ fuzz() {
     -artifact_prefix="$artifacts/" "$new_inputs" "$corpus" >"$log" 2>&1 || status=$?
   local before after
   before=$(find "$corpus" -type f | wc -l)
-  "$program" -merge=1 -max_len="${MAX_LENGTH[$target]}" "$corpus" "$new_inputs" \
-    >>"$log" 2>&1 || true
+  # The fewest new inputs that reach every branch the run reached (counting
+  # branches taken, not how often), added to the corpus.
+  "$program" -set_cover_merge=1 -use_counters=0 -max_len="${MAX_LENGTH[$target]}" \
+    "$corpus" "$new_inputs" >>"$log" 2>&1 || true
   after=$(find "$corpus" -type f | wc -l)
   rm -rf "$new_inputs"
   local runs

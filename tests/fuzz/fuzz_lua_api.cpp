@@ -45,7 +45,6 @@ constexpr lua_Integer kMaxResults = 64;  // values kept for later calls; older o
 // a short input reaches the analyses behind the argument checks.
 constexpr const char* kPrelude = R"lua(
 local ashlar = require "ashlar"
-local models = require "ashlar.models"
 local function stack()
   local s = ashlar.structure()
   s:add(ashlar.box{ size = { 2, 2, 0.2 }, center = { 0, 0, -0.1 }, name = "ground" }, { support = true })
@@ -59,7 +58,7 @@ return {
     function() return ashlar.box{ size = { 1, 1, 1 } } end,
     function() return ashlar.hull{ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } } end,
     stack,
-    function() return models.arch{ voussoirs = 6 } end,
+    function() return require("ashlar.models").arch{ voussoirs = 6 } end,  -- loaded only when used
     function() return ashlar.analyze(stack()) end,
     function() return ashlar.fea(stack()) end,
     function() return ashlar.trace_loads(stack(), 2) end,
@@ -450,7 +449,8 @@ private:
     }
   }
 
-  // A number near the ones models use: whole numbers and eighths in [-16, 16).
+  // A number of the size models use: a whole number in [-128, 128) or an
+  // eighth in [-16, 16).
   double small_number() {
     const int value = static_cast<int>(in_.byte()) - 128;
     return in_.below(2) == 0 ? value / 8.0 : value;
