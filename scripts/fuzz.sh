@@ -76,6 +76,7 @@ fuzz() {
   # The fewest new inputs that reach every branch the run reached (counting
   # branches taken, not how often), added to the corpus.
   "$program" -set_cover_merge=1 -use_counters=0 -max_len="${MAX_LENGTH[$target]}" \
+    -artifact_prefix="$artifacts/merge-" \
     "$corpus" "$new_inputs" >>"$log" 2>&1 || true
   after=$(find "$corpus" -type f | wc -l)
   rm -rf "$new_inputs"

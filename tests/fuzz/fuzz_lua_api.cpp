@@ -544,6 +544,10 @@ void enter_scratch_folder() {
 
 }  // namespace
 
+// fontconfig, which cairo uses for the text of drawings and charts, keeps
+// its configuration until the process ends: not a leak of ours.
+extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   enter_scratch_folder();
   Input input(data, size);
