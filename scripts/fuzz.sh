@@ -68,10 +68,11 @@ fuzz() {
   log=$artifacts/fuzz.log
   mkdir -p "$corpus" "$artifacts"
   say "$target: fuzzing for $seconds s (log: $log)"
+  local started=$SECONDS
   "$program" -max_total_time="$seconds" -timeout="$INPUT_TIMEOUT" \
     -max_len="${MAX_LENGTH[$target]}" -print_final_stats=1 \
     -artifact_prefix="$artifacts/" "$new_inputs" "$corpus" >"$log" 2>&1 || status=$?
-  local before after
+  local elapsed=$((SECONDS - started)) before after
   before=$(find "$corpus" -type f | wc -l)
   # The fewest new inputs that reach every branch the run reached (counting
   # branches taken, not how often), added to the corpus.
@@ -82,7 +83,7 @@ fuzz() {
   rm -rf "$new_inputs"
   local runs
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-  say "$target: ${runs:-?} executions in $seconds s; corpus $before -> $after files"
+  say "$target: ${runs:-?} executions in $elapsed s; corpus $before -> $after files"
   if ((status != 0)); then
     say "$target: FOUND A PROBLEM (exit $status); inputs in $artifacts/:" >&2
     grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|Test unit written)' "$log" | head -5 >&2 || true
