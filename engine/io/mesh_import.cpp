@@ -13,6 +13,8 @@
 #include <Eigen/Core>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -111,6 +113,33 @@ void make_names_unique(std::vector<RawObject>& objects) {
   }
 }
 
+bool is_separator(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\0';
+}
+
+// assimp 5.2's PLY reader never returns on a header without an end_header
+// line: at the end of the file it asks for the next line forever. It takes
+// any file that starts with the PLY magic word, whatever its extension, so
+// such files are refused here, before assimp reads them.
+bool is_ply_without_end_header(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  char magic[4] = {};
+  file.read(magic, 4);
+  const bool is_ply = file.gcount() >= 3 &&
+                      (std::strncmp(magic, "ply", 3) == 0 || std::strncmp(magic, "PLY", 3) == 0) &&
+                      (file.gcount() == 3 || is_separator(magic[3]));
+  if (!is_ply) return false;
+  const std::string end_header = "end_header";
+  std::string line;
+  while (std::getline(file, line)) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line.compare(start, end_header.size(), end_header) != 0) continue;
+    const std::size_t after = start + end_header.size();
+    if (after == line.size() || is_separator(line[after])) return false;
+  }
+  return true;
+}
+
 void check_options(const ImportOptions& options) {
   if (!std::isfinite(options.density) || options.density <= 0) {
     std::ostringstream message;
@@ -129,6 +158,9 @@ void check_options(const ImportOptions& options) {
 
 std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOptions& options) {
   check_options(options);
+  if (is_ply_without_end_header(path)) {
+    throw IoError("cannot import '" + path + "': its PLY header has no end_header line");
+  }
   Assimp::Importer importer;
   // No JoinIdenticalVertices and no Triangulate: welding is by position in
   // block_from_mesh, and polygon faces are kept as they are.
