@@ -12,8 +12,8 @@
 
 #include <Eigen/Core>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -119,16 +119,16 @@ bool is_separator(char c) {
 
 // assimp 5.2's PLY reader never returns on a header without an end_header
 // line: at the end of the file it asks for the next line forever. It takes
-// any file that starts with the PLY magic word, whatever its extension, so
-// such files are refused here, before assimp reads them.
+// any file whose first three bytes read "ply" in any case, whatever its
+// extension, so such files are refused here, before assimp reads them.
 bool is_ply_without_end_header(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
-  char magic[4] = {};
-  file.read(magic, 4);
-  const bool is_ply = file.gcount() >= 3 &&
-                      (std::strncmp(magic, "ply", 3) == 0 || std::strncmp(magic, "PLY", 3) == 0) &&
-                      (file.gcount() == 3 || is_separator(magic[3]));
-  if (!is_ply) return false;
+  char magic[3] = {};
+  file.read(magic, 3);
+  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  if (file.gcount() < 3 || lower(magic[0]) != 'p' || lower(magic[1]) != 'l' || lower(magic[2]) != 'y') {
+    return false;
+  }
   const std::string end_header = "end_header";
   std::string line;
   while (std::getline(file, line)) {
