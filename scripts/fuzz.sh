@@ -63,16 +63,19 @@ fuzz() {
   local program=$BUILD_DIR/tests/fuzz/fuzz_$target
   local corpus=tests/fuzz/corpus/$target
   local artifacts=$ARTIFACTS/$target
-  local new_inputs log status=0
+  local new_inputs log
   new_inputs=$(mktemp -d "/tmp/ashlar-fuzz-$target-new-XXXXXX")
   log=$artifacts/fuzz.log
   mkdir -p "$corpus" "$artifacts"
   say "$target: fuzzing for $seconds s (log: $log)"
-  local started=$SECONDS
-  "$program" -max_total_time="$seconds" -timeout="$INPUT_TIMEOUT" \
-    -max_len="${MAX_LENGTH[$target]}" -print_final_stats=1 \
-    -artifact_prefix="$artifacts/" "$new_inputs" "$corpus" >"$log" 2>&1 || status=$?
-  local elapsed=$((SECONDS - started)) before after
+  local found_before started=$SECONDS
+  found_before=$(find "$artifacts" -type f ! -name fuzz.log | wc -l)
+  # One worker process that is restarted after a crash, so that a run finds
+  # every problem it can in its time instead of stopping at the first.
+  "$program" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+    -max_total_time="$seconds" -timeout="$INPUT_TIMEOUT" -max_len="${MAX_LENGTH[$target]}" \
+    -artifact_prefix="$artifacts/" "$new_inputs" "$corpus" >"$log" 2>&1 || true
+  local elapsed=$((SECONDS - started)) before after found
   before=$(find "$corpus" -type f | wc -l)
   # The fewest new inputs that reach every branch the run reached (counting
   # branches taken, not how often), added to the corpus.
@@ -82,11 +85,12 @@ fuzz() {
   after=$(find "$corpus" -type f | wc -l)
   rm -rf "$new_inputs"
   local runs
-  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  runs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -1)
   say "$target: ${runs:-?} executions in $elapsed s; corpus $before -> $after files"
-  if ((status != 0)); then
-    say "$target: FOUND A PROBLEM (exit $status); inputs in $artifacts/:" >&2
-    grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|Test unit written)' "$log" | head -5 >&2 || true
+  found=$(($(find "$artifacts" -type f ! -name fuzz.log | wc -l) - found_before))
+  if ((found > 0)); then
+    say "$target: FOUND $found PROBLEM INPUT(S) in $artifacts/:" >&2
+    grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|.*CHECK failed)' "$log" | sort | uniq -c | head -10 >&2 || true
     return 1
   fi
 }
