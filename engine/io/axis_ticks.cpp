@@ -143,7 +143,11 @@ AxisTicks log_ticks(double lo, double hi, int max_count) {
     message << "log ticks: need a finite range with 0 < lo < hi, got [" << lo << ", " << hi << "]";
     throw InvalidArgument(message.str());
   }
-  const auto [first, last] = decades_inside(lo, hi);
+  // Not a structured binding: the lambda below captures these, which C++17
+  // (and clang before 16) does not allow for bindings.
+  const std::pair<int, int> decades_range = decades_inside(lo, hi);
+  const int first = decades_range.first;
+  const int last = decades_range.second;
   const int decade_count = last - first + 1;
   const auto with_minor_ticks = [&](AxisTicks ticks) {
     for (int k = first - 1; k <= last; ++k) {

@@ -14,7 +14,9 @@
 #include <Eigen/Core>
 #include <assimp/Importer.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -136,6 +138,33 @@ std::string single_precision_note(const std::vector<Vec3>& vertices) {
   return note.str();
 }
 
+bool is_separator(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\0';
+}
+
+// assimp 5.2's PLY reader never returns on a header without an end_header
+// line: at the end of the file it asks for the next line forever. It takes
+// any file whose first three bytes read "ply" in any case, whatever its
+// extension, so such files are refused here, before assimp reads them.
+bool is_ply_without_end_header(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  char magic[3] = {};
+  file.read(magic, 3);
+  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  if (file.gcount() < 3 || lower(magic[0]) != 'p' || lower(magic[1]) != 'l' || lower(magic[2]) != 'y') {
+    return false;
+  }
+  const std::string end_header = "end_header";
+  std::string line;
+  while (std::getline(file, line)) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line.compare(start, end_header.size(), end_header) != 0) continue;
+    const std::size_t after = start + end_header.size();
+    if (after == line.size() || is_separator(line[after])) return false;
+  }
+  return true;
+}
+
 void check_options(const ImportOptions& options) {
   if (!std::isfinite(options.density) || options.density <= 0) {
     std::ostringstream message;
@@ -167,6 +196,9 @@ private:
 
 std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOptions& options) {
   check_options(options);
+  if (is_ply_without_end_header(path)) {
+    throw IoError("cannot import '" + path + "': its PLY header has no end_header line");
+  }
   Assimp::Importer importer;
   if (options.may_open) importer.SetIOHandler(new GuardedFiles(options.may_open));  // the importer owns it
   // No JoinIdenticalVertices and no Triangulate: welding is by position in

@@ -152,6 +152,28 @@ TEST(MeshImport, UnreadableFilesAreIoErrorsNamingThePath) {
   EXPECT_THROW(import_blocks(dir.file("empty.obj"), {}), IoError);
 }
 
+// assimp's PLY reader would never return on these: the import refuses them.
+TEST(MeshImport, PlyHeaderWithoutEndHeaderIsAnIoError) {
+  TempDir dir;
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n";
+  for (const std::string& name : {"open.ply", "open.obj.txt"}) {
+    write_file_atomically(dir.file(name), header + "end_headerx\n0\n1\n2\n");
+    const std::string message = error_of([&] { import_blocks(dir.file(name), {}); });
+    EXPECT_TRUE(contains(message, "'" + dir.file(name) + "': its PLY header has no end_header line"))
+        << message;
+  }
+  for (const std::string& magic : {"PLY", "pLyYYY"}) {
+    const std::string name = magic + ".ply";
+    write_file_atomically(dir.file(name), magic + header.substr(3));
+    const std::string message = error_of([&] { import_blocks(dir.file(name), {}); });
+    EXPECT_TRUE(contains(message, "'" + dir.file(name) + "': its PLY header has no end_header line"))
+        << message;
+  }
+  write_file_atomically(dir.file("closed.ply"), header + "  end_header\r\n0\n1\n2\n");
+  const std::string message = error_of([&] { import_blocks(dir.file("closed.ply"), {}); });
+  EXPECT_FALSE(contains(message, "end_header")) << message;  // assimp reads it, and finds no faces
+}
+
 TEST(MeshImport, RejectsBadOptions) {
   ImportOptions options;
   options.density = -1;
