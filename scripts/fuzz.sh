@@ -17,7 +17,8 @@ cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")/.."
 readonly BUILD_DIR=build-fuzz
 readonly CLANG_PACKAGES=(clang-14 libclang-rt-14-dev)
 readonly ALL_TARGETS=(mesh_import structure_json lua_api)
-readonly ARTIFACTS=${ASHLAR_FUZZ_ARTIFACTS:-/tmp/ashlar-fuzz}
+ARTIFACTS=$(realpath -m "${ASHLAR_FUZZ_ARTIFACTS:-/tmp/ashlar-fuzz}")
+readonly ARTIFACTS
 # Longest input per target: enough for a small mesh or structure file or a
 # couple of dozen API calls, and small enough to keep the corpus small.
 declare -rA MAX_LENGTH=([mesh_import]=4096 [structure_json]=4096 [lua_api]=512)
