@@ -17,10 +17,15 @@ cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")/.."
 readonly BUILD_DIR=build-fuzz
 readonly CLANG_PACKAGES=(clang-14 libclang-rt-14-dev)
 readonly ALL_TARGETS=(mesh_import structure_json lua_api)
-readonly ARTIFACTS=${ASHLAR_FUZZ_ARTIFACTS:-/tmp/ashlar-fuzz}
+ARTIFACTS=$(realpath -m "${ASHLAR_FUZZ_ARTIFACTS:-/tmp/ashlar-fuzz}")
+readonly ARTIFACTS
 # Longest input per target: enough for a small mesh or structure file or a
 # couple of dozen API calls, and small enough to keep the corpus small.
-declare -rA MAX_LENGTH=([mesh_import]=4096 [structure_json]=4096 [lua_api]=1024)
+declare -rA MAX_LENGTH=([mesh_import]=4096 [structure_json]=4096 [lua_api]=512)
+# An input of the Lua target is a program of up to 24 calls: at full length
+# from the start (not grown slowly from a few bytes), each input makes many
+# calls and the corpus needs fewer inputs.
+declare -rA LENGTH_CONTROL=([mesh_import]=100 [structure_json]=100 [lua_api]=0)
 # Seconds one input may take before it counts as a hang.
 readonly INPUT_TIMEOUT=20
 
@@ -74,6 +79,7 @@ fuzz() {
   # every problem it can in its time instead of stopping at the first.
   "$program" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
     -max_total_time="$seconds" -timeout="$INPUT_TIMEOUT" -max_len="${MAX_LENGTH[$target]}" \
+    -len_control="${LENGTH_CONTROL[$target]}" \
     -artifact_prefix="$artifacts/" "$new_inputs" "$corpus" >"$log" 2>&1 || true
   local elapsed=$((SECONDS - started)) before after found
   before=$(find "$corpus" -type f | wc -l)

@@ -12,8 +12,9 @@
 // so any byte string is a valid program, and mutating one byte changes one
 // choice. Sizes are bounded so that an input runs in milliseconds. Files
 // the calls write (exports, saves, drawings, study databases) go to a
-// temporary folder that is the working directory: paths in the pool are
-// relative and strings made from input bytes have no '/'.
+// temporary folder that is the working directory while an input runs: paths
+// in the pool are relative and strings made from input bytes have no '/'.
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -534,13 +535,26 @@ private:
   std::vector<std::string> ashlar_functions_;
 };
 
-// Calls write their files into a folder of their own, the working directory
-// from the first input on.
-void enter_scratch_folder() {
-  static const ashlar::fuzz::ScratchFolder folder("ashlar-fuzz-lua");
-  static const bool entered = chdir(folder.path().c_str()) == 0;
-  if (!entered) std::abort();
-}
+// The calls of one input run in a folder of their own, so that the files
+// they write (relative paths) land there. The working directory is restored
+// after each input: libFuzzer and the corpus driver name their files by
+// paths that may be relative.
+class InScratchFolder {
+public:
+  InScratchFolder() : previous_(open(".", O_RDONLY | O_DIRECTORY)) {
+    static const ashlar::fuzz::ScratchFolder folder("ashlar-fuzz-lua");
+    if (previous_ < 0 || chdir(folder.path().c_str()) != 0) std::abort();
+  }
+  ~InScratchFolder() {
+    if (fchdir(previous_) != 0) std::abort();
+    close(previous_);
+  }
+  InScratchFolder(const InScratchFolder&) = delete;
+  InScratchFolder& operator=(const InScratchFolder&) = delete;
+
+private:
+  int previous_;
+};
 
 }  // namespace
 
@@ -549,7 +563,7 @@ void enter_scratch_folder() {
 extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  enter_scratch_folder();
+  const InScratchFolder in_scratch_folder;
   Input input(data, size);
   Session(input).run();
   return 0;
