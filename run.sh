@@ -4,6 +4,7 @@
 #   ./run.sh quickstart [dir]   build, then run scripts/quickstart.lua (output in dir, default build/out)
 #   ./run.sh test [args]        build, run the test suite (args go to ctest), then the sanitizer suite
 #   ./run.sh sanitize [args]    build with ASan+UBSan into build-sanitize/ and run the suite there
+#   ./run.sh install PACKAGE... install the Debian packages that are missing (for scripts/fuzz.sh)
 # Re-running is cheap: packages, npm tools and the CMake configuration are
 # only set up when missing. ASHLAR_JOBS sets the build's parallelism.
 set -euo pipefail
@@ -27,13 +28,14 @@ say() { printf 'run.sh: %s\n' "$*"; }
 
 usage() {
   printf 'usage:\n' >&2
-  sed -n '3,6s/^#//p' "${BASH_SOURCE[0]}" >&2
+  sed -n '3,7s/^#//p' "${BASH_SOURCE[0]}" >&2
   exit 1
 }
 
+# The packages given (default: ashlar's) that are not installed.
 missing_packages() {
   local package status command
-  for package in "${DEBIAN_PACKAGES[@]}"; do
+  for package in "${@:-${DEBIAN_PACKAGES[@]}}"; do
     command=${COMMAND_OF_PACKAGE[$package]:-}
     [[ -n $command ]] && command -v "$command" >/dev/null && continue
     status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
@@ -47,7 +49,7 @@ install_packages() {
     return
   fi
   local missing
-  mapfile -t missing < <(missing_packages)
+  mapfile -t missing < <(missing_packages "$@")
   ((${#missing[@]} == 0)) && return
   say "installing ${missing[*]}"
   local as_root=()
@@ -112,6 +114,9 @@ case $mode in
     say "running the tests"
     (cd "$BUILD_DIR" && ctest --output-on-failure -j2 "$@")
     run_sanitized_tests "$@"
+    ;;
+  install)
+    install_packages "$@"
     ;;
   sanitize)
     install_packages

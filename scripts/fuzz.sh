@@ -31,23 +31,8 @@ readonly INPUT_TIMEOUT=20
 
 say() { printf 'fuzz.sh: %s\n' "$*"; }
 
-install_clang() {
-  local missing=() package status
-  for package in "${CLANG_PACKAGES[@]}"; do
-    status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
-    [[ $status == installed ]] || missing+=("$package")
-  done
-  ((${#missing[@]} == 0)) && return
-  say "installing ${missing[*]}"
-  local as_root=()
-  if ((EUID != 0)); then
-    command -v sudo >/dev/null || { say "not root and no sudo: install ${missing[*]} by hand" >&2; exit 1; }
-    as_root=(sudo)
-  fi
-  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
-  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
-    apt-get install -y -q --no-install-recommends "${missing[@]}"
-}
+# run.sh knows how to install Debian packages (as root or through sudo).
+install_clang() { ./run.sh install "${CLANG_PACKAGES[@]}"; }
 
 build() {
   if [[ ! -f $BUILD_DIR/build.ninja ]]; then
