@@ -49,6 +49,17 @@ function support.threshold(stands, failing, standing, tolerance)
   return (failing + standing) / 2
 end
 
+-- Checks that the threshold of stands (as in support.threshold) lies within
+-- `relative` of `reference`: it fails just below the band and stands just
+-- above it, two calls instead of a bisection (stability only grows with the
+-- value). On failure it bisects from [failing, standing] to report the value.
+function support.threshold_within(stands, reference, relative, what, failing, standing)
+  if not stands((1 - relative) * reference) and stands((1 + relative) * reference) then return end
+  local value = support.threshold(stands, failing, standing, 1e-4 * reference)
+  error(("%s: threshold %.6g is %+.2f%% from %.6g (allowed %g%%)"):format(what, value,
+    100 * (value - reference) / reference, reference, 100 * relative), 2)
+end
+
 -- Total volume of a structure's free blocks (supports left out).
 -- Asserts that s's interfaces are exactly `contacts`, a list of
 -- { name_a, name_b, area } (either order), each area to 1e-12.
