@@ -24,7 +24,9 @@ declare -rA COMMAND_OF_PACKAGE=([nodejs]=node [npm]=npm)
 readonly BUILD_DIR=build
 readonly SANITIZE_DIR=build-sanitize
 
-say() { printf 'run.sh: %s\n' "$*"; }
+# Each line carries the time since run.sh started, so a CI log shows what
+# each step took.
+say() { printf 'run.sh [%d:%02d]: %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"; }
 
 usage() {
   printf 'usage:\n' >&2
@@ -114,6 +116,7 @@ case $mode in
     say "running the tests"
     (cd "$BUILD_DIR" && ctest --output-on-failure -j2 "$@")
     run_sanitized_tests "$@"
+    say "all tests passed"
     ;;
   install)
     install_packages "$@"
