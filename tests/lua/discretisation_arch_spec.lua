@@ -21,10 +21,10 @@ local function stands_at(options, n)
   end
 end
 
--- Brackets of the minimum thickness: it lies below `standing` (default 0.8;
--- a fine pointed arch needs a tighter one, as its thick voussoirs next to
--- the apex degenerate).
-local FAILING = 0.02
+-- Brackets of the minimum thickness: it lies below STANDING (a fine pointed
+-- arch needs a tighter one, as its thick voussoirs next to the apex
+-- degenerate).
+local FAILING, STANDING = 0.02, 0.8
 
 describe("arch default discretisations", function()
   it("semicircular: the default count and the next three within 1% of t/R = 0.1075", function()
@@ -33,7 +33,7 @@ describe("arch default discretisations", function()
     -- radius 5: t = 0.1075 × 5
     local limit = 0.1075 * 5
     for n = default, default + 3 do
-      support.threshold_within(stands_at({}, n), limit, 0.01, n .. " voussoirs", FAILING, 0.8)
+      support.threshold_within(stands_at({}, n), limit, 0.01, n .. " voussoirs", FAILING, STANDING)
     end
     -- The coarser 23 is not: a joint falls far from the hinge, and it stands
     -- 1% below the limit.
@@ -44,7 +44,7 @@ describe("arch default discretisations", function()
                           { shape = "elliptical", fine = 512, step = 1 } } do
     it(case.shape .. ": the default count and the next ones within 1% of a fine arch", function()
       local options = { shape = case.shape }
-      local standing = case.standing or 0.8
+      local standing = case.standing or STANDING
       local default = #models.arch(options) - 2
       local reference = support.threshold(stands_at(options, case.fine), FAILING, standing, 1e-5)
       for n = default, default + 2 * case.step, case.step do

@@ -7,10 +7,13 @@ local mpiexec = assert(arg[1], "usage: ashlar study_mpi.lua <mpiexec>")
 local ashlar_bin = assert(arg[-1], "run by the ashlar host")
 local folder = support.temp_folder()
 
--- The example sweep with 31 thicknesses (186 analyses, enough for every rank
--- to run rows; the full 726 take minutes under the sanitizers, whose slow
--- unwinding the ranks need): arguments db, workers, csv, thicknesses.
+-- The example sweep with 31 thicknesses (× 3 voussoir counts × 2 frictions:
+-- 186 analyses, enough for every rank to run rows; the full 726 take minutes
+-- under the sanitizers, whose slow unwinding the ranks need): arguments db,
+-- workers, csv, thicknesses.
 local sweep = quote(support.script_folder(1) .. "/../../scripts/arch_sweep.lua")
+local THICKNESSES = 31
+local ROWS = THICKNESSES * 3 * 2
 
 local function run(command)
   local output, code = support.run("cd " .. quote(folder) .. " && " .. command)
@@ -18,10 +21,10 @@ local function run(command)
   return output
 end
 
-run(quote(ashlar_bin) .. " " .. sweep .. " local.sqlite 1 local.csv 31")
-local output = run(quote(mpiexec) .. " --oversubscribe -np 3 " .. quote(ashlar_bin) .. " " .. sweep .. " mpi.sqlite 1 mpi.csv 31")
+run(quote(ashlar_bin) .. " " .. sweep .. " local.sqlite 1 local.csv " .. THICKNESSES)
+local output = run(quote(mpiexec) .. " --oversubscribe -np 3 " .. quote(ashlar_bin) .. " " .. sweep .. " mpi.sqlite 1 mpi.csv " .. THICKNESSES)
 -- Rank 0 alone reports, and ran every row (in its thread or on the other ranks).
-assert(output:find("runs 186 seconds [%d.]+ runs_per_second [%d.]+ workers 3 errors 0"), output)
+assert(output:find("runs " .. ROWS .. " seconds [%d.]+ runs_per_second [%d.]+ workers 3 errors 0"), output)
 
 local function lines(path)
   local list = {}
@@ -29,7 +32,8 @@ local function lines(path)
   return list
 end
 local expected, got = lines("local.csv"), lines("mpi.csv")
-assert(#expected == 187 and #got == 187, "expected 187 lines, got " .. #expected .. " and " .. #got)
+-- a header and a line per row
+assert(#expected == ROWS + 1 and #got == ROWS + 1, "expected " .. ROWS + 1 .. " lines, got " .. #expected .. " and " .. #got)
 local workers = {}
 for i = 1, #expected do
   -- every column but run_seconds and run_worker
@@ -40,4 +44,4 @@ end
 -- Rank 0's worker thread is worker 1; ranks 1 and 2 are 1001 and 2001.
 assert(workers["1001"] and workers["2001"], "ranks 1 and 2 ran no rows")
 support.remove_folder(folder)
-print("MPI study with 3 ranks: 186 rows, identical to the local run")
+print("MPI study with 3 ranks: " .. ROWS .. " rows, identical to the local run")
