@@ -171,16 +171,21 @@ Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions&
   if (options.friction_model == FrictionModel::box) {
     rows.resize(4, 3);
     rows << mu, -1, 0, mu, 1, 0, mu, 0, -1, mu, 0, 1;
-    return rows;
+  } else {
+    // Inscribed pyramid: edges on the cone at angles 2 pi j / m (one along
+    // u); side j faces the direction (2j + 1) pi / m at distance
+    // mu c cos(pi / m).
+    const int m = options.friction_sides;
+    rows.resize(m, 3);
+    for (int j = 0; j < m; ++j) {
+      const double facing = (2 * j + 1) * kPi / m;
+      rows.row(j) << mu * std::cos(kPi / m), -std::cos(facing), -std::sin(facing);
+    }
   }
-  // Inscribed pyramid: edges on the cone at angles 2 pi j / m (one along u);
-  // side j faces the direction (2j + 1) pi / m at distance mu c cos(pi / m).
-  const int m = options.friction_sides;
-  rows.resize(m, 3);
-  for (int j = 0; j < m; ++j) {
-    const double facing = (2 * j + 1) * kPi / m;
-    rows.row(j) << mu * std::cos(kPi / m), -std::cos(facing), -std::sin(facing);
-  }
+  // Unit rows: the same cone, but with mu = 100 or 1e4 the rows' scale
+  // would otherwise spread the slacks and multipliers over mu^2 and stall
+  // the interior point (a large mu then behaves like an infinite one).
+  rows.rowwise().normalize();
   return rows;
 }
 

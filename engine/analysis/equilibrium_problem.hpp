@@ -191,7 +191,8 @@ Eigen::Matrix<double, 6, 1> applied_force_rhs(const Vec3& force, const Vec3& at,
                                               const Vec3* centroid, double weight_unit,
                                               double length_unit);
 
-// The friction rows (over c, f_u, f_v) for the options; empty for mu = inf.
+// The friction rows (over c, f_u, f_v) for the options, each of unit length
+// (rows . (c, f_u, f_v) >= 0); empty for mu = inf.
 Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options);
 
 }  // namespace ashlar

@@ -1,6 +1,5 @@
 #include "analysis/interior_point.hpp"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -35,6 +34,59 @@ double step_to_boundary(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
     if (dv(i) < 0.0) step = std::min(step, -v(i) / dv(i));
   }
   return step;
+}
+
+// Phi = diag(hessian) + G^T diag(scaling) G, a group's 4 x 4 block of the
+// Newton system after eliminating its slacks, as R^T R with R upper
+// triangular, by Givens rotations that add one row sqrt(scaling_i) g_i at a
+// time to R = diag(sqrt(hessian)). Forming Phi itself would not do: near
+// the optimum scaling spreads from 1e-13 to 1e13, and adding 1e13 g g^T
+// rounds away the regularisation (1e-6) in the directions that stay free,
+// which are the very directions Phi^-1 is about; rotations keep them.
+Matrix4 factor_phi(const Vector4& hessian, const RowsMatrix& rows,
+                   const Eigen::Ref<const Eigen::VectorXd>& scaling) {
+  Matrix4 r = Matrix4::Zero();
+  r.diagonal() = hessian.cwiseSqrt();
+  for (Eigen::Index i = 0; i < rows.rows(); ++i) {
+    Vector4 v = std::sqrt(scaling(i)) * rows.row(i).transpose();
+    for (int j = 0; j < 4; ++j) {
+      if (v(j) == 0.0) continue;
+      const double diagonal = std::hypot(r(j, j), v(j));
+      const double c = r(j, j) / diagonal, s = v(j) / diagonal;
+      r(j, j) = diagonal;
+      for (int l = j + 1; l < 4; ++l) {
+        const double t = r(j, l);
+        r(j, l) = c * t + s * v(l);
+        v(l) = c * v(l) - s * t;
+      }
+    }
+  }
+  return r;
+}
+
+// Phi^-1 v for Phi = R^T R: two triangular solves, never Phi^-1 itself
+// (whose product with v would round the stiff directions' tiny components
+// to the size of the free ones).
+Vector4 solve_phi(const Matrix4& r, Vector4 v) {
+  for (int j = 0; j < 4; ++j) {  // R^T t = v
+    for (int l = 0; l < j; ++l) v(j) -= r(l, j) * v(l);
+    v(j) /= r(j, j);
+  }
+  for (int j = 3; j >= 0; --j) {  // R u = t
+    for (int l = j + 1; l < 4; ++l) v(j) -= r(j, l) * v(l);
+    v(j) /= r(j, j);
+  }
+  return v;
+}
+
+// A R^-1 for a d x 4 matrix A: A Phi^-1 A^T = (A R^-1)(A R^-1)^T.
+BlockByVertex divide_by_factor(const BlockByVertex& a, const Matrix4& r) {
+  BlockByVertex out = a;
+  for (int j = 0; j < 4; ++j) {
+    for (int l = 0; l < j; ++l) out.col(j) -= r(l, j) * out.col(l);
+    out.col(j) /= r(j, j);
+  }
+  return out;
 }
 
 }  // namespace
@@ -109,20 +161,17 @@ EquilibriumSolver::~EquilibriumSolver() = default;
 void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem,
                                                const std::vector<int>& first_row,
                                                const Eigen::VectorXd& scaling,
-                                               std::vector<Eigen::Matrix4d>& inverse_phi) {
+                                               std::vector<Eigen::Matrix4d>& phi_factors) {
   const int d = block_rows_;
   const int nv = static_cast<int>(problem.groups.size());
   double* values = cholesky_->values();
   std::fill_n(values, cholesky_->nonzeros(), 0.0);
-  inverse_phi.resize(nv);
+  phi_factors.resize(nv);
   for (int k = 0; k < nv; ++k) {
     const ForceGroup& v = problem.groups[k];
     const GroupRules& rules = problem.rules_of(v);
-    Matrix4 phi = rules.hessian.asDiagonal();
-    for (int i = 0; i < rules.rows.rows(); ++i) {
-      phi.noalias() += scaling(first_row[k] + i) * rules.rows.row(i).transpose() * rules.rows.row(i);
-    }
-    inverse_phi[k] = phi.llt().solve(Matrix4::Identity());
+    phi_factors[k] = factor_phi(rules.hessian, rules.rows,
+                                scaling.segment(first_row[k], rules.rows.rows()));
     const VertexSlots& slot = slots_[k];
     // Adds a d x d block to block column col_block at its rank-th block row.
     auto add_block = [&](int col_block, int rank, const BlockByBlock& block, bool diagonal) {
@@ -132,17 +181,18 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
         for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
       }
     };
-    BlockByVertex a_phi, b_phi;
+    // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
+    BlockByVertex a_part, b_part;
     if (v.row_a >= 0) {
-      a_phi = v.on_a.topRows(d) * inverse_phi[k];
-      add_block(v.row_a / d, slot.aa, a_phi * v.on_a.topRows(d).transpose(), true);
+      a_part = divide_by_factor(v.on_a.topRows(d), phi_factors[k]);
+      add_block(v.row_a / d, slot.aa, a_part * a_part.transpose(), true);
     }
     if (v.row_b >= 0) {
-      b_phi = v.on_b.topRows(d) * inverse_phi[k];
-      add_block(v.row_b / d, slot.bb, b_phi * v.on_b.topRows(d).transpose(), true);
+      b_part = divide_by_factor(v.on_b.topRows(d), phi_factors[k]);
+      add_block(v.row_b / d, slot.bb, b_part * b_part.transpose(), true);
     }
     if (slot.ab >= 0) {
-      const BlockByBlock ab = a_phi * v.on_b.topRows(d).transpose();  // rows of a, columns of b
+      const BlockByBlock ab = a_part * b_part.transpose();  // rows of a, columns of b
       if (slot.ab_transposed) add_block(v.row_a / d, slot.ab, ab.transpose(), false);
       else add_block(v.row_b / d, slot.ab, ab, false);
     }
@@ -191,7 +241,7 @@ Eigen::VectorXd EquilibriumSolver::multiplier_response(const Eigen::VectorXd& de
 
 Eigen::Vector4d EquilibriumSolver::group_response(const EquilibriumProblem& problem, int group,
                                                   const Eigen::VectorXd& multipliers) const {
-  return response_phi_[group] * problem.reaction(problem.groups[group], multipliers);
+  return solve_phi(response_phi_[group], problem.reaction(problem.groups[group], multipliers));
 }
 
 InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
@@ -210,7 +260,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
         problem.lower_bounds(problem.groups[k]);
   }
   auto rows_of = [&](int k) -> const RowsMatrix& { return problem.rules_of(problem.groups[k]).rows; };
-  auto ineq = [&](Eigen::VectorXd& v, int k) {
+  auto ineq = [&](auto& v, int k) {
     return v.segment(first_row[k], first_row[k + 1] - first_row[k]);
   };
 
@@ -220,7 +270,8 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   Eigen::VectorXd& z = solution.z;
   const bool sizes_match = x.size() == 4 * nv && y.size() == size_ && w.size() == m_total &&
                            z.size() == m_total;
-  if (warm_start && sizes_match) {
+  const bool cold_start = !(warm_start && sizes_match);
+  if (!cold_start) {
     // Interior-point iterates must start strictly inside the cone.
     constexpr double kMargin = 1e-2;
     for (int k = 0; k < nv; ++k) {
@@ -249,33 +300,89 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   }
   const double dual_scale = 1.0 + largest_linear;
 
-  Eigen::VectorXd r_p(size_), r_d(4 * nv), r_g(m_total), r_c(m_total);
-  std::vector<Matrix4> inverse_phi(nv);
-  Eigen::VectorXd dx(4 * nv), dy(size_), dw(m_total), dz(m_total);
-  Eigen::VectorXd dx_aff, dw_aff, dz_aff, rhs(size_);
+  // The Newton system's four blocks of equations, for residuals (r) and
+  // right-hand sides alike:
+  //   H dx - A^T dy - G^T dz = -d,   A dx = -p,   G dx - dw = -g,   Z dw + W dz = -c.
+  struct KktVectors {
+    Eigen::VectorXd d, p, g, c;
+  };
+  // A direction (dx, dy, dw, dz).
+  struct Direction {
+    Eigen::VectorXd x, y, w, z;
+  };
+  KktVectors r{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
+               Eigen::VectorXd(m_total)};
+  KktVectors error = r;
+  std::vector<Matrix4> phi_factors(nv);
+  Direction step_direction{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
+                           Eigen::VectorXd(m_total)};
+  Direction correction = step_direction;
+  Eigen::VectorXd row_terms(m_total), rhs(size_), dw_aff, dz_aff;
   const int factorizations_before = cholesky_->factorizations();
 
-
-  // Solves the Newton system for complementarity residual r_c (uses the
-  // current factorisation and inverse_phi); fills dx, dy, dw, dz.
-  auto newton_direction = [&](const Eigen::VectorXd& complementarity) {
-    const auto start = Clock::now();
-    // Per inequality row: (r_c + D r_g) / w, combined below as G^T (...).
-    Eigen::VectorXd row_terms = (complementarity + z.cwiseProduct(r_g)).cwiseQuotient(w);
-    rhs = -r_p;
+  // Solves the Newton system for right-hand sides `e` with the current
+  // factorisation and phi_factors: eliminating dz and dw row by row, then
+  // each group's dx, leaves the normal equations in dy.
+  auto solve_newton = [&](const KktVectors& e, Direction& out) {
+    row_terms = (e.c + z.cwiseProduct(e.g)).cwiseQuotient(w);
+    rhs = -e.p;
+    for (int k = 0; k < nv; ++k) {
+      const Vector4 reduced = -e.d.segment<4>(4 * k) - rows_of(k).transpose() * ineq(row_terms, k);
+      const Vector4 t = solve_phi(phi_factors[k], reduced);
+      out.x.segment<4>(4 * k) = t;  // completed below with the A^T dy part
+      problem.add_effect(problem.groups[k], -t, rhs);
+    }
+    out.y = cholesky_->solve(rhs);
+    for (int k = 0; k < nv; ++k) {
+      out.x.segment<4>(4 * k) += solve_phi(phi_factors[k], problem.reaction(problem.groups[k], out.y));
+      ineq(out.w, k) = rows_of(k) * out.x.segment<4>(4 * k) + ineq(e.g, k);
+    }
+    out.z = -(e.c + z.cwiseProduct(out.w)).cwiseQuotient(w);
+  };
+  // How far `dir` is from solving the Newton system for `e`: the residual of
+  // each block, computed from the problem's data (not from phi_factors), so
+  // that solving for it corrects the rounding of the elimination.
+  auto newton_residual = [&](const KktVectors& e, const Direction& dir, KktVectors& out) {
+    out.p = e.p;
     for (int k = 0; k < nv; ++k) {
       const ForceGroup& v = problem.groups[k];
-      const Vector4 reduced = -r_d.segment<4>(4 * k) - rows_of(k).transpose() * ineq(row_terms, k);
-      const Vector4 t = inverse_phi[k] * reduced;
-      dx.segment<4>(4 * k) = t;  // completed below with the A^T dy part
-      problem.add_effect(v, -t, rhs);
+      const GroupRules& rules = problem.rules_of(v);
+      const Vector4 dxk = dir.x.segment<4>(4 * k);
+      problem.add_effect(v, dxk, out.p);
+      out.d.segment<4>(4 * k) = e.d.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
+                                problem.reaction(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
+      ineq(out.g, k) = ineq(e.g, k) + rules.rows * dxk - ineq(dir.w, k);
     }
-    dy = cholesky_->solve(rhs);
-    for (int k = 0; k < nv; ++k) {
-      dx.segment<4>(4 * k) += inverse_phi[k] * problem.reaction(problem.groups[k], dy);
-      ineq(dw, k) = rows_of(k) * dx.segment<4>(4 * k) + ineq(r_g, k);
+    out.c = e.c + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
+  };
+  auto largest = [](const KktVectors& v) {
+    double m = 0.0;
+    for (const Eigen::VectorXd* part : {&v.d, &v.p, &v.g, &v.c}) {
+      if (part->size()) m = std::max(m, part->lpNorm<Eigen::Infinity>());
     }
-    dz = -(complementarity + z.cwiseProduct(dw)).cwiseQuotient(w);
+    return m;
+  };
+  // Newton direction with iterative refinement: near the optimum z / w
+  // spreads over twenty orders of magnitude and the elimination loses
+  // digits; without refinement the dual residual grows again once the
+  // primal one is small and the iterations stall.
+  constexpr int kRefinements = 3;
+  auto newton_direction = [&](const KktVectors& e, Direction& out) {
+    const auto start = Clock::now();
+    solve_newton(e, out);
+    const double target = 1e-14 * std::max(largest(e), 1.0);
+    double previous = std::numeric_limits<double>::infinity();
+    for (int refinement = 0; refinement < kRefinements; ++refinement) {
+      newton_residual(e, out, error);
+      const double size = largest(error);
+      if (size <= target || size >= 0.5 * previous) break;
+      previous = size;
+      solve_newton(error, correction);
+      out.x += correction.x;
+      out.y += correction.y;
+      out.w += correction.w;
+      out.z += correction.z;
+    }
     info.solve_seconds += seconds_since(start);
   };
 
@@ -299,40 +406,41 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     InteriorPointInfo info;
   } best;
 
+  bool starting = cold_start;
   for (int iteration = 0;; ++iteration) {
     auto start = Clock::now();
     // Residuals.
-    r_p = -b;
+    r.p = -b;
     for (int k = 0; k < nv; ++k) {
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
-      problem.add_effect(v, xk, r_p);
-      r_d.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
+      problem.add_effect(v, xk, r.p);
+      r.d.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
                               problem.reaction(v, y) - rules.rows.transpose() * ineq(z, k);
-      ineq(r_g, k) = rules.rows * xk - ineq(lower, k) - ineq(w, k);
+      ineq(r.g, k) = rules.rows * xk - ineq(lower, k) - ineq(w, k);
     }
     // The total gap, not its mean, bounds the objective's error.
     const double duality_gap = w.dot(z);
     const double mu = m_total > 0 ? duality_gap / m_total : 0.0;
     info.iterations = iteration;
-    info.primal_residual = std::max(r_p.size() ? r_p.lpNorm<Eigen::Infinity>() : 0.0,
-                                    r_g.size() ? r_g.lpNorm<Eigen::Infinity>() : 0.0);
-    info.dual_residual = r_d.size() ? r_d.lpNorm<Eigen::Infinity>() : 0.0;
+    info.primal_residual = std::max(r.p.size() ? r.p.lpNorm<Eigen::Infinity>() : 0.0,
+                                    r.g.size() ? r.g.lpNorm<Eigen::Infinity>() : 0.0);
+    info.dual_residual = r.d.size() ? r.d.lpNorm<Eigen::Infinity>() : 0.0;
     info.complementarity = mu;
     if (!std::isfinite(mu) || !std::isfinite(info.primal_residual) ||
         !std::isfinite(info.dual_residual)) {
       info.status = SolverStatus::numerical_error;
       break;
     }
-    const double error = std::max({info.primal_residual / rhs_scale,
-                                   info.dual_residual / dual_scale,
-                                   duality_gap / (1.0 + std::abs(objective_value()))});
-    if (error <= settings.tolerance) {
+    const double error_now = std::max({info.primal_residual / rhs_scale,
+                                       info.dual_residual / dual_scale,
+                                       duality_gap / (1.0 + std::abs(objective_value()))});
+    if (error_now <= settings.tolerance) {
       info.status = SolverStatus::converged;
       break;
     }
-    if (error < best.error) best = {error, iteration, x, y, w, z, info};
+    if (!starting && error_now < best.error) best = {error_now, iteration, x, y, w, z, info};
     const int stalled = iteration - best.iteration;
     if ((best.error <= settings.inaccurate_tolerance && stalled > kStallIterations) ||
         stalled > kHopelessIterations) {
@@ -349,7 +457,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     }
 
     // Eliminate each vertex's unknowns and assemble the normal matrix.
-    assemble_normal_matrix(problem, first_row, z.cwiseQuotient(w), inverse_phi);
+    assemble_normal_matrix(problem, first_row, z.cwiseQuotient(w), phi_factors);
     info.assembly_seconds += seconds_since(start);
     start = Clock::now();
     const bool factored = factorize_shifted();
@@ -360,38 +468,55 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     }
 
     // Predictor: the affine-scaling direction.
-    r_c = w.cwiseProduct(z);
-    newton_direction(r_c);
-    const double affine_step = std::min(step_to_boundary(w, dw), step_to_boundary(z, dz));
-    const double mu_affine =
-        (w + affine_step * dw).dot(z + affine_step * dz) / static_cast<double>(m_total);
+    r.c = w.cwiseProduct(z);
+    newton_direction(r, step_direction);
+    if (starting) {
+      // Mehrotra's starting point (Nocedal & Wright, 16.60 for QPs): the
+      // full affine step from x = 0, w = z = 1, with slacks and multipliers
+      // moved back to at least 1. It balances the loads from the first
+      // iteration on, where the plain start spends several iterations
+      // reaching feasibility.
+      starting = false;
+      x += step_direction.x;
+      y += step_direction.y;
+      w = (w + step_direction.w).cwiseAbs().cwiseMax(1.0);
+      z = (z + step_direction.z).cwiseAbs().cwiseMax(1.0);
+      continue;
+    }
+    const double affine_step =
+        std::min(step_to_boundary(w, step_direction.w), step_to_boundary(z, step_direction.z));
+    const double mu_affine = (w + affine_step * step_direction.w).dot(z + affine_step * step_direction.z) /
+                             static_cast<double>(m_total);
     const double centering = std::pow(mu_affine / mu, 3);
-    dw_aff = dw;
-    dz_aff = dz;
+    dw_aff = step_direction.w;
+    dz_aff = step_direction.z;
     // Corrector: second-order term and centring, same factorisation.
-    r_c = w.cwiseProduct(z) + dw_aff.cwiseProduct(dz_aff) -
+    r.c = w.cwiseProduct(z) + dw_aff.cwiseProduct(dz_aff) -
           Eigen::VectorXd::Constant(m_total, centering * mu);
-    newton_direction(r_c);
-    const double step =
-        std::min(1.0, settings.step_fraction *
-                          std::min(step_to_boundary(w, dw), step_to_boundary(z, dz)));
+    newton_direction(r, step_direction);
+    const double step = std::min(
+        1.0, settings.step_fraction * std::min(step_to_boundary(w, step_direction.w),
+                                               step_to_boundary(z, step_direction.z)));
     if (!(step > 1e-12)) {
       info.status = SolverStatus::numerical_error;
       break;
     }
-    x += step * dx;
-    y += step * dy;
-    w += step * dw;
-    z += step * dz;
+    x += step * step_direction.x;
+    y += step * step_direction.y;
+    w += step * step_direction.w;
+    z += step * step_direction.z;
   }
   // Short of convergence the most accurate iterate is the answer: within
-  // the inaccurate tolerance it says so, else the status stays.
+  // the inaccurate tolerance it says so, else the status stays. An
+  // interrupted solve stays interrupted: it carries no verdict.
   if (info.status != SolverStatus::converged && std::isfinite(best.error)) {
     const int iterations = info.iterations;
     const SolverStatus status = info.status;
     info = best.info;
     info.iterations = iterations;
-    info.status = best.error <= settings.inaccurate_tolerance ? SolverStatus::inaccurate : status;
+    info.status = status == SolverStatus::interrupted || best.error > settings.inaccurate_tolerance
+                      ? status
+                      : SolverStatus::inaccurate;
     x = std::move(best.x);
     y = std::move(best.y);
     w = std::move(best.w);

@@ -94,10 +94,10 @@ public:
 private:
   // Fills the normal matrix A Phi^-1 A^T for barrier scaling z/w (one entry
   // per inequality row, rows of group k from first_row[k]) and each group's
-  // Phi^-1.
+  // factor R of Phi = R^T R (upper triangular).
   void assemble_normal_matrix(const EquilibriumProblem& problem, const std::vector<int>& first_row,
                               const Eigen::VectorXd& scaling,
-                              std::vector<Eigen::Matrix4d>& inverse_phi);
+                              std::vector<Eigen::Matrix4d>& phi_factors);
   bool factorize_shifted();
 
   struct VertexSlots {
@@ -109,7 +109,7 @@ private:
   std::unique_ptr<SparseCholesky> cholesky_;
   int size_ = 0;
   int block_rows_ = 6;
-  std::vector<Eigen::Matrix4d> response_phi_;  // Phi^-1 per group at prepare_response
+  std::vector<Eigen::Matrix4d> response_phi_;  // factor R of Phi per group at prepare_response
   bool response_ready_ = false;
 };
 
