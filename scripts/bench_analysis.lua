@@ -8,8 +8,12 @@
 -- peak memory is its own. cvxopt (Debian's python3-cvxopt, through
 -- tests/tools/solve_qps.py) solves the exported QP for the smaller sizes;
 -- only its solve is timed, not reading the file.
--- Both run with single-threaded BLAS (OPENBLAS_NUM_THREADS=1): the figures
--- are per core, and a shared machine's other work does not stall BLAS threads.
+-- ashlar chooses its own threads (one for the factorisation and its BLAS,
+-- see engine/analysis/sparse_cholesky.cpp); cvxopt runs with
+-- single-threaded BLAS (OPENBLAS_NUM_THREADS=1), so its figures are per core.
+-- "whole / factor" is the analysis time over the time of one factorisation
+-- of its normal matrix: how close to the cost floor of an interior point
+-- (one factorisation per iteration) the method runs.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
@@ -62,7 +66,7 @@ local CSV_HEADER = "structure,blocks,interfaces,vertices,status,stable,iteration
 local function solve_with_cvxopt(s)
   local path = os.tmpname()
   ashlar.export_qp(s, path, { friction = FRICTION })
-  local command = ("timeout %d %s %s %s 2>&1"):format(CVXOPT_TIMEOUT, PYTHON, quote(SOLVE_QPS),
+  local command = ("OPENBLAS_NUM_THREADS=1 timeout %d %s %s %s 2>&1"):format(CVXOPT_TIMEOUT, PYTHON, quote(SOLVE_QPS),
     quote(path))
   local pipe = assert(io.popen(command))
   local output = pipe:read("a")
@@ -183,15 +187,15 @@ if load_file then
   print("load average before the run: " .. load_file:read("l"):match("^(%S+ %S+ %S+)"))
   load_file:close()
 end
-print(("%-6s %7s %10s %9s %5s %5s %9s %9s %9s %9s %9s %8s %9s %8s %10s"):format("", "blocks",
+print(("%-6s %7s %10s %9s %5s %5s %9s %9s %9s %9s %9s %8s %8s %9s %8s %10s"):format("", "blocks",
   "interfaces", "vertices", "iter", "fact", "setup s", "assemb s", "factor s", "solve s", "total s",
-  "peak MiB", "cvxopt s", "speedup", "rel. diff"))
+  "whole/f", "peak MiB", "cvxopt s", "speedup", "rel. diff"))
 for _, kind in ipairs{ "wall", "vault" } do
   local cvxopt_stopped_at
   for size_index in ipairs(SIZES[kind]) do
     local size = SIZES[kind][size_index]
     local with_cvxopt = not cvxopt_stopped_at and size[1] * size[2] <= CVXOPT_MAX_BLOCKS
-    local command = ("OPENBLAS_NUM_THREADS=1 %s %s --measure %s %d %s"):format(quote(interpreter),
+    local command = ("%s %s --measure %s %d %s"):format(quote(interpreter),
       quote(arg[0]), kind, size_index, with_cvxopt and "cvxopt" or "ashlar")
     local pipe = assert(io.popen(command))
     local line = pipe:read("l")
@@ -211,9 +215,11 @@ for _, kind in ipairs{ "wall", "vault" } do
     elseif with_cvxopt then
       cvxopt_stopped_at = tonumber(row.blocks)
     end
-    print(("%-6s %7d %10d %9d %5d %5d %9.3f %9.3f %9.3f %9.3f %9.3f %8.1f %9s %8s %10s%s"):format(kind,
+    local one_factorization = tonumber(row.factorization_s) / math.max(tonumber(row.factorizations), 1)
+    print(("%-6s %7d %10d %9d %5d %5d %9.3f %9.3f %9.3f %9.3f %9.3f %8.1f %8.1f %9s %8s %10s%s"):format(kind,
       row.blocks, row.interfaces, row.vertices, row.iterations, row.factorizations, row.setup_s,
-      row.assembly_s, row.factorization_s, row.solve_s, row.analysis_s, row.peak_mb,
+      row.assembly_s, row.factorization_s, row.solve_s, row.analysis_s,
+      tonumber(row.analysis_s) / one_factorization, row.peak_mb,
       cvxopt_seconds and ("%.3f"):format(cvxopt_seconds) or "-", speedup, difference,
       row.status == "converged" and "" or "  (" .. row.status .. ")"))
   end

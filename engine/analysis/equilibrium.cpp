@@ -110,7 +110,10 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   for (size_t k = 0; k < problem.groups.size(); ++k) {
     const ForceGroup& v = problem.groups[k];
     const Eigen::Vector4d scaled = x.segment<4>(4 * static_cast<Eigen::Index>(k));
-    penalised += problem.rules_of(v).linear.dot(scaled);
+    // The penalised unknowns are bounded below by 0; an iterate short of
+    // convergence may still sit a little outside, which must not make the
+    // infeasibility negative.
+    penalised += problem.rules_of(v).linear.dot(scaled.cwiseMax(0.0));
     if (v.kind == GroupKind::cable || v.kind == GroupKind::bounded_cable) {
       result.cables[v.source].tension = (scaled(0) - scaled(1)) * wu;
       result.cables[v.source].compression = scaled(1) * wu;
