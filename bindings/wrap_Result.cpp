@@ -62,7 +62,7 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
 
 namespace {
 
-// Options table of ashlar.analyze / ashlar.export_qp at stack index arg.
+// Options table of ashlar.export_qp at stack index arg.
 AnalysisSettings settings_from(lua_State* L, int arg) {
   return analysis_settings(OptionTable(L, arg, {ASHLAR_ANALYSIS_OPTIONS, "warm_start"}));
 }
@@ -75,7 +75,9 @@ int w_analyze(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const AnalysisSettings settings = settings_from(L, 2);
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only"});
+    AnalysisSettings settings = analysis_settings(options);
+    settings.verdict_only = options.boolean("verdict_only").value_or(false);
     std::shared_ptr<const AnalysisRecord> warm;
     if (lua_type(L, 2) == LUA_TTABLE && lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
       const Box<AnalysisRecord>* previous = test_boxed<AnalysisRecord>(L, -1, kResultMeta);

@@ -50,27 +50,6 @@ void check_analysed_block(const EquilibriumProblem& problem, const Structure& st
   }
 }
 
-double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
-  Eigen::VectorXd imbalance = -problem.rhs;
-  double worst = 0.0;
-  for (size_t k = 0; k < problem.groups.size(); ++k) {
-    const ForceGroup& v = problem.groups[k];
-    const GroupRules& rules = problem.rules_of(v);
-    // Without the penalised unknowns (tension, cable compression, virtual
-    // torques and forces).
-    const Eigen::Vector4d forces = (rules.linear.array() > 0.0)
-                                       .select(0.0, x.segment<4>(4 * static_cast<Eigen::Index>(k)));
-    problem.add_effect(v, forces, imbalance);
-    worst = std::max(worst, -(rules.rows * forces - problem.lower_bounds(v)).minCoeff());
-  }
-  const int d = problem.block_rows;
-  for (int row = 0; row < problem.row_count; row += d) {
-    const double load = std::max(1.0, problem.rhs.segment(row, d).lpNorm<Eigen::Infinity>());
-    worst = std::max(worst, imbalance.segment(row, d).lpNorm<Eigen::Infinity>() / load);
-  }
-  return worst;
-}
-
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start,
                                       EquilibriumProblem* problem_out) {
@@ -81,8 +60,10 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   EquilibriumResult result;
   result.timings.setup = seconds_since(start);
   if (warm_start) result.solution = warm_start->solution;
+  InteriorPointSettings solver_settings = settings.solver;
+  if (settings.verdict_only) solver_settings.certify_below = settings.stable_tolerance;
   const InteriorPointInfo info =
-      solver.solve(problem, settings.solver, result.solution, warm_start != nullptr);
+      solver.solve(problem, solver_settings, result.solution, warm_start != nullptr);
   result.status = info.status;
   result.iterations = info.iterations;
   result.factorizations = info.factorizations;

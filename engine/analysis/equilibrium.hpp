@@ -19,6 +19,12 @@ struct AnalysisSettings {
   // block's size) and break no compression or friction bound by more than
   // this fraction of the mean block weight.
   double stable_tolerance = 1e-6;
+  // Stop as soon as forces without tension are proven to balance (status
+  // certified): the verdict "stable" without the optimum, so the forces are
+  // a compression-only equilibrium but not the most even one, and
+  // penalty / objective are theirs. Unstable structures still solve to the
+  // optimum, whose tension is what proves them unstable.
+  bool verdict_only = false;
 };
 
 // A verdict is borderline when imbalance_without_tension lies between these
@@ -104,15 +110,6 @@ struct EquilibriumResult {
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start = nullptr,
                                       EquilibriumProblem* problem = nullptr);
-
-// How far the scaled unknowns x, with every penalised unknown (tension,
-// cable compression, virtual torques) set to zero, are from a
-// compression-only equilibrium that respects friction: the largest
-// imbalance of a body relative to its own load (or the mean body weight
-// when larger), or of a bound relative to the mean body weight. Small (below
-// AnalysisSettings::stable_tolerance) means x certifies stability, whatever
-// the solver's status.
-double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x);
 
 // Throws InvalidArgument unless `block` (0-based) is a free block of the
 // structure: in range and not a support. `caller`, when not empty, begins

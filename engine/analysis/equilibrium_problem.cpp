@@ -415,6 +415,30 @@ Eigen::Matrix<double, 6, 1> applied_force_rhs(const Vec3& force, const Vec3& at,
   return rhs;
 }
 
+double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
+  Eigen::VectorXd imbalance = -problem.rhs;
+  double worst = 0.0;
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& v = problem.groups[k];
+    const GroupRules& rules = problem.rules_of(v);
+    // Without the penalised unknowns (tension, cable compression, virtual
+    // torques and forces).
+    const Eigen::Vector4d forces = (rules.linear.array() > 0.0)
+                                       .select(0.0, x.segment<4>(4 * static_cast<Eigen::Index>(k)));
+    problem.add_effect(v, forces, imbalance);
+    for (Eigen::Index i = 0; i < rules.rows.rows(); ++i) {
+      const double lower = i == rules.bounded_row ? -v.bound : 0.0;
+      worst = std::max(worst, lower - rules.rows.row(i).dot(forces));
+    }
+  }
+  const int d = problem.block_rows;
+  for (int row = 0; row < problem.row_count; row += d) {
+    const double load = std::max(1.0, problem.rhs.segment(row, d).lpNorm<Eigen::Infinity>());
+    worst = std::max(worst, imbalance.segment(row, d).lpNorm<Eigen::Infinity>() / load);
+  }
+  return worst;
+}
+
 int EquilibriumProblem::vertical_row() const {
   const std::array<int, 6>& rows = balance_rows(block_rows == 3);
   return static_cast<int>(std::find(rows.begin(), rows.end(), 2) - rows.begin());

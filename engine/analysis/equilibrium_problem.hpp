@@ -166,6 +166,15 @@ struct EquilibriumProblem {
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options);
 
+// How far the scaled unknowns x, with every penalised unknown (tension,
+// cable compression, virtual torques) set to zero, are from a
+// compression-only equilibrium that respects friction: the largest
+// imbalance of a body relative to its own load (or the mean body weight
+// when larger), or of a bound (unit rows: a force) relative to the mean body
+// weight. Small (below AnalysisSettings::stable_tolerance, equilibrium.hpp)
+// means x certifies stability, whatever the solver's status.
+double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x);
+
 // A block's size for the unit of length (m): twice the root mean square
 // distance of its vertices from their mean, which is a box's diagonal but,
 // unlike the bounding box, smooth in the vertices (the gradient needs that).

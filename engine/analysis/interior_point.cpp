@@ -15,9 +15,6 @@ namespace {
 
 using Matrix4 = Eigen::Matrix4d;
 using Vector4 = Eigen::Vector4d;
-// A block's balance rows: 6, or 3 for planar problems (no heap either way).
-using BlockByVertex = Eigen::Matrix<double, Eigen::Dynamic, 4, 0, 6, 4>;
-using BlockByBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 
 // Iterations without a more accurate iterate, once one is within the
@@ -81,9 +78,39 @@ Vector4 solve_phi(const Matrix4& r, Vector4 v) {
   return v;
 }
 
-// A R^-1 for a d x 4 matrix A: A Phi^-1 A^T = (A R^-1)(A R^-1)^T.
-BlockByVertex divide_by_factor(const BlockByVertex& a, const Matrix4& r) {
-  BlockByVertex out = a;
+// The Newton system's four blocks of equations, for residuals (r) and
+// right-hand sides alike:
+//   H dx - A^T dy - G^T dz = -d,   A dx = -p,   G dx - dw = -g,   Z dw + W dz = -c.
+struct KktVectors {
+  Eigen::VectorXd d, p, g, c;
+};
+
+// A direction (dx, dy, dw, dz).
+struct Direction {
+  Eigen::VectorXd x, y, w, z;
+};
+
+// A group's effect on its bodies' D balance rows (D = 6, or 3 for planar
+// problems), as EquilibriumProblem::add_effect and reaction but with sizes
+// known at compile time: the solver's loops run these a million times.
+template <int D>
+void add_effect(const ForceGroup& v, const Vector4& forces, Eigen::VectorXd& rows) {
+  if (v.row_a >= 0) rows.segment<D>(v.row_a).noalias() += v.on_a.topRows<D>() * forces;
+  if (v.row_b >= 0) rows.segment<D>(v.row_b).noalias() += v.on_b.topRows<D>() * forces;
+}
+
+template <int D>
+Vector4 reaction(const ForceGroup& v, const Eigen::VectorXd& multipliers) {
+  Vector4 out = Vector4::Zero();
+  if (v.row_a >= 0) out.noalias() += v.on_a.topRows<D>().transpose() * multipliers.segment<D>(v.row_a);
+  if (v.row_b >= 0) out.noalias() += v.on_b.topRows<D>().transpose() * multipliers.segment<D>(v.row_b);
+  return out;
+}
+
+// A R^-1 for a D x 4 matrix A: A Phi^-1 A^T = (A R^-1)(A R^-1)^T.
+template <int D>
+Eigen::Matrix<double, D, 4> divide_by_factor(const Eigen::Matrix<double, D, 4>& a, const Matrix4& r) {
+  Eigen::Matrix<double, D, 4> out = a;
   for (int j = 0; j < 4; ++j) {
     for (int l = 0; l < j; ++l) out.col(j) -= r(l, j) * out.col(l);
     out.col(j) *= r(j, j);
@@ -105,6 +132,8 @@ const char* status_name(SolverStatus status) {
       return "numerical_error";
     case SolverStatus::interrupted:
       return "interrupted";
+    case SolverStatus::certified:
+      return "certified";
   }
   return "numerical_error";
 }
@@ -160,45 +189,54 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
 
 EquilibriumSolver::~EquilibriumSolver() = default;
 
+template <int D>
 void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem,
                                                const std::vector<int>& first_row,
                                                const Eigen::VectorXd& scaling,
                                                std::vector<Eigen::Matrix4d>& phi_factors) {
-  const int d = block_rows_;
+  using BlockByVertexD = Eigen::Matrix<double, D, 4>;
+  using BlockByBlockD = Eigen::Matrix<double, D, D>;
   const int nv = static_cast<int>(problem.groups.size());
   double* values = cholesky_->values();
   std::fill_n(values, cholesky_->nonzeros(), 0.0);
   phi_factors.resize(nv);
+  // Adds a D x D block to block column col_block at its rank-th block row.
+  auto add_block = [&](int col_block, int rank, const BlockByBlockD& block, bool diagonal) {
+    for (int cj = 0; cj < D; ++cj) {
+      double* column = values + column_starts_[D * col_block + cj] + D * rank;
+      const int last = diagonal ? cj : D - 1;
+      for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
+    }
+  };
   for (int k = 0; k < nv; ++k) {
     const ForceGroup& v = problem.groups[k];
     const GroupRules& rules = problem.rules_of(v);
     phi_factors[k] = factor_phi(rules.hessian, rules.rows,
                                 scaling.segment(first_row[k], rules.rows.rows()));
     const VertexSlots& slot = slots_[k];
-    // Adds a d x d block to block column col_block at its rank-th block row.
-    auto add_block = [&](int col_block, int rank, const BlockByBlock& block, bool diagonal) {
-      for (int cj = 0; cj < d; ++cj) {
-        double* column = values + column_starts_[d * col_block + cj] + d * rank;
-        const int last = diagonal ? cj : d - 1;
-        for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
-      }
-    };
     // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
-    BlockByVertex a_part, b_part;
+    BlockByVertexD a_part, b_part;
     if (v.row_a >= 0) {
-      a_part = divide_by_factor(v.on_a.topRows(d), phi_factors[k]);
-      add_block(v.row_a / d, slot.aa, a_part * a_part.transpose(), true);
+      a_part = divide_by_factor<D>(v.on_a.topRows<D>(), phi_factors[k]);
+      add_block(v.row_a / D, slot.aa, a_part * a_part.transpose(), true);
     }
     if (v.row_b >= 0) {
-      b_part = divide_by_factor(v.on_b.topRows(d), phi_factors[k]);
-      add_block(v.row_b / d, slot.bb, b_part * b_part.transpose(), true);
+      b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
+      add_block(v.row_b / D, slot.bb, b_part * b_part.transpose(), true);
     }
     if (slot.ab >= 0) {
-      const BlockByBlock ab = a_part * b_part.transpose();  // rows of a, columns of b
-      if (slot.ab_transposed) add_block(v.row_a / d, slot.ab, ab.transpose(), false);
-      else add_block(v.row_b / d, slot.ab, ab, false);
+      const BlockByBlockD ab = a_part * b_part.transpose();  // rows of a, columns of b
+      if (slot.ab_transposed) add_block(v.row_a / D, slot.ab, ab.transpose(), false);
+      else add_block(v.row_b / D, slot.ab, ab, false);
     }
   }
+}
+
+void EquilibriumSolver::assemble(const EquilibriumProblem& problem, const std::vector<int>& first_row,
+                                 const Eigen::VectorXd& scaling,
+                                 std::vector<Eigen::Matrix4d>& phi_factors) {
+  if (block_rows_ == 3) assemble_normal_matrix<3>(problem, first_row, scaling, phi_factors);
+  else assemble_normal_matrix<6>(problem, first_row, scaling, phi_factors);
 }
 
 bool EquilibriumSolver::factorize_shifted() {
@@ -231,7 +269,7 @@ bool EquilibriumSolver::prepare_response(const EquilibriumProblem& problem,
   // Slacks of active rows are near zero; keep the ratio finite.
   const Eigen::VectorXd scaling =
       solution.z.cwiseQuotient(solution.w.cwiseMax(std::numeric_limits<double>::min()));
-  assemble_normal_matrix(problem, first_row, scaling, response_phi_);
+  assemble(problem, first_row, scaling, response_phi_);
   response_ready_ = factorize_shifted();
   return response_ready_;
 }
@@ -243,12 +281,22 @@ Eigen::VectorXd EquilibriumSolver::multiplier_response(const Eigen::VectorXd& de
 
 Eigen::Vector4d EquilibriumSolver::group_response(const EquilibriumProblem& problem, int group,
                                                   const Eigen::VectorXd& multipliers) const {
-  return solve_phi(response_phi_[group], problem.reaction(problem.groups[group], multipliers));
+  const ForceGroup& v = problem.groups[group];
+  return solve_phi(response_phi_[group],
+                   block_rows_ == 3 ? reaction<3>(v, multipliers) : reaction<6>(v, multipliers));
 }
 
 InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
                                            const InteriorPointSettings& settings,
                                            InteriorPointSolution& solution, bool warm_start) {
+  return block_rows_ == 3 ? solve_rows<3>(problem, settings, solution, warm_start)
+                          : solve_rows<6>(problem, settings, solution, warm_start);
+}
+
+template <int D>
+InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& problem,
+                                                const InteriorPointSettings& settings,
+                                                InteriorPointSolution& solution, bool warm_start) {
   InteriorPointInfo info;
   const int nv = static_cast<int>(problem.groups.size());
   const Eigen::VectorXd& b = problem.rhs;
@@ -302,16 +350,6 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
   }
   const double dual_scale = 1.0 + largest_linear;
 
-  // The Newton system's four blocks of equations, for residuals (r) and
-  // right-hand sides alike:
-  //   H dx - A^T dy - G^T dz = -d,   A dx = -p,   G dx - dw = -g,   Z dw + W dz = -c.
-  struct KktVectors {
-    Eigen::VectorXd d, p, g, c;
-  };
-  // A direction (dx, dy, dw, dz).
-  struct Direction {
-    Eigen::VectorXd x, y, w, z;
-  };
   KktVectors r{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
                Eigen::VectorXd(m_total)};
   KktVectors error = r;
@@ -332,11 +370,11 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       const Vector4 reduced = -e.d.segment<4>(4 * k) - rows_of(k).transpose() * ineq(row_terms, k);
       const Vector4 t = solve_phi(phi_factors[k], reduced);
       out.x.segment<4>(4 * k) = t;  // completed below with the A^T dy part
-      problem.add_effect(problem.groups[k], -t, rhs);
+      add_effect<D>(problem.groups[k], -t, rhs);
     }
     out.y = cholesky_->solve(rhs);
     for (int k = 0; k < nv; ++k) {
-      out.x.segment<4>(4 * k) += solve_phi(phi_factors[k], problem.reaction(problem.groups[k], out.y));
+      out.x.segment<4>(4 * k) += solve_phi(phi_factors[k], reaction<D>(problem.groups[k], out.y));
       ineq(out.w, k) = rows_of(k) * out.x.segment<4>(4 * k) + ineq(e.g, k);
     }
     out.z = -(e.c + z.cwiseProduct(out.w)).cwiseQuotient(w);
@@ -350,9 +388,9 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 dxk = dir.x.segment<4>(4 * k);
-      problem.add_effect(v, dxk, out.p);
+      add_effect<D>(v, dxk, out.p);
       out.d.segment<4>(4 * k) = e.d.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
-                                problem.reaction(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
+                                reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
       ineq(out.g, k) = ineq(e.g, k) + rules.rows * dxk - ineq(dir.w, k);
     }
     out.c = e.c + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
@@ -421,9 +459,9 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
-      problem.add_effect(v, xk, r.p);
+      add_effect<D>(v, xk, r.p);
       r.d.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
-                              problem.reaction(v, y) - rules.rows.transpose() * ineq(z, k);
+                              reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
       ineq(r.g, k) = rules.rows * xk - ineq(lower, k) - ineq(w, k);
     }
     // The total gap, not its mean, bounds the objective's error.
@@ -446,6 +484,11 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
       info.status = SolverStatus::converged;
       break;
     }
+    if (settings.certify_below > 0.0 && !starting &&
+        compression_only_imbalance(problem, x) <= settings.certify_below) {
+      info.status = SolverStatus::certified;
+      break;
+    }
     if (!starting && error_now < best.error) best = {error_now, iteration, x, y, w, z, info};
     const int stalled = iteration - best.iteration;
     if ((best.error <= settings.inaccurate_tolerance && stalled > kStallIterations) ||
@@ -463,7 +506,7 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     }
 
     // Eliminate each vertex's unknowns and assemble the normal matrix.
-    assemble_normal_matrix(problem, first_row, z.cwiseQuotient(w), phi_factors);
+    assemble_normal_matrix<D>(problem, first_row, z.cwiseQuotient(w), phi_factors);
     info.assembly_seconds += seconds_since(start);
     start = Clock::now();
     const bool factored = factorize_shifted();
@@ -512,10 +555,12 @@ InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
     w += step * step_direction.w;
     z += step * step_direction.z;
   }
-  // Short of convergence the most accurate iterate is the answer: within
-  // the inaccurate tolerance it says so, else the status stays. An
-  // interrupted solve stays interrupted: it carries no verdict.
-  if (info.status != SolverStatus::converged && std::isfinite(best.error)) {
+  // Short of convergence (or of a certificate, which is the iterate it
+  // stopped at) the most accurate iterate is the answer: within the
+  // inaccurate tolerance it says so, else the status stays. An interrupted
+  // solve stays interrupted: it carries no verdict.
+  if (info.status != SolverStatus::converged && info.status != SolverStatus::certified &&
+      std::isfinite(best.error)) {
     const int iterations = info.iterations;
     const SolverStatus status = info.status;
     info = best.info;

@@ -28,6 +28,11 @@ struct InteriorPointSettings {
   // iteration limit), the best iterate is still returned, with status
   // inaccurate, if its residuals and gap are within this.
   double inaccurate_tolerance = 1e-5;
+  // When > 0, the solve stops (status certified) at the first iterate whose
+  // forces, tension dropped, balance every body to this tolerance
+  // (compression_only_imbalance): stability is proven, the optimum is not
+  // needed. 0: always solve to the optimum.
+  double certify_below = 0.0;
 };
 
 enum class SolverStatus {
@@ -36,9 +41,11 @@ enum class SolverStatus {
   max_iterations,   // stopped at max_iterations, or after 20 iterations without progress
   numerical_error,  // a factorisation or step failed (e.g. loss of positive definiteness)
   interrupted,      // Ctrl-C or a sandboxed script's deadline (ashlar::stop_requested)
+  certified,        // stopped at forces that prove stability (InteriorPointSettings::certify_below)
 };
 
-// "converged", "inaccurate", "max_iterations", "numerical_error" or "interrupted".
+// "converged", "inaccurate", "max_iterations", "numerical_error", "interrupted"
+// or "certified".
 const char* status_name(SolverStatus status);
 
 // Whether the solve ended without an equilibrium one may use.
@@ -95,9 +102,17 @@ private:
   // Fills the normal matrix A Phi^-1 A^T for barrier scaling z/w (one entry
   // per inequality row, rows of group k from first_row[k]) and each group's
   // factor R of Phi = R^T R (upper triangular).
+  // D = block_rows_ (3 or 6) at compile time; assemble() picks it.
+  template <int D>
   void assemble_normal_matrix(const EquilibriumProblem& problem, const std::vector<int>& first_row,
                               const Eigen::VectorXd& scaling,
                               std::vector<Eigen::Matrix4d>& phi_factors);
+  void assemble(const EquilibriumProblem& problem, const std::vector<int>& first_row,
+                const Eigen::VectorXd& scaling, std::vector<Eigen::Matrix4d>& phi_factors);
+  // solve() for D = block_rows_ balance rows per body.
+  template <int D>
+  InteriorPointInfo solve_rows(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
+                               InteriorPointSolution& solution, bool warm_start);
   bool factorize_shifted();
 
   struct VertexSlots {
