@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "analysis/equilibrium_analysis.hpp"
 #include "analysis/structural_gradient.hpp"
 #include "core/error.hpp"
 #include "luax.hpp"
@@ -339,8 +340,15 @@ int optimize_structure(lua_State* L) {
   Progress progress;
   progress.print = wants_progress(options);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
+  // One analysis object for every step: the steps move vertices, not
+  // contacts, so its symbolic factorisation serves them all.
+  std::shared_ptr<Structure> current;
+  std::unique_ptr<EquilibriumAnalysis> reused;
   const DesignObjective objective = [&](const DesignPoint& design) {
-    const StructuralGradient g = structural_gradient(*with_design(s, design), analysis);
+    current = with_design(s, design);
+    if (reused) reused->update(*current, analysis);
+    else reused = std::make_unique<EquilibriumAnalysis>(*current, analysis);
+    const StructuralGradient g = structural_gradient(*reused, *current);
     if (!g.valid) {
       throw Error("the structure has no equilibrium at all (" +
                   std::string(status_name(g.analysis.status)) + ")");
@@ -461,9 +469,15 @@ int optimize_parameters_of(lua_State* L) {
   Progress progress;
   progress.print = wants_progress(options);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
+  // One analysis object for every evaluation: its symbolic factorisation
+  // is kept while the generated structures keep their contacts.
+  std::shared_ptr<Structure> base;
+  std::unique_ptr<EquilibriumAnalysis> reused;
   const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
-    const std::shared_ptr<Structure> base = generate(L, generator, sorted_names, values);
-    const StructuralGradient g = structural_gradient(*base, analysis);
+    base = generate(L, generator, sorted_names, values);
+    if (reused) reused->update(*base, analysis);
+    else reused = std::make_unique<EquilibriumAnalysis>(*base, analysis);
+    const StructuralGradient g = structural_gradient(*reused, *base);
     if (!g.valid) {
       throw Error("the structure has no equilibrium at all (" +
                   std::string(status_name(g.analysis.status)) + ")");

@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/equilibrium_analysis.hpp"
 #include "analysis/parameter_search.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
@@ -178,8 +178,10 @@ int w_geometric_factor(lua_State* L) {
     // itself starts cold when the unknowns' sizes differ (another number of
     // contact vertices, cables or analysed blocks); a result of a structure
     // with another number of blocks is not offered at all, as
-    // ashlar.analyze would refuse it.
-    std::optional<EquilibriumResult> previous;
+    // ashlar.analyze would refuse it. One analysis object serves every
+    // model: its symbolic factorisation is kept while the contacts are.
+    std::unique_ptr<EquilibriumAnalysis> analysis;
+    bool warm_ready = false;  // the last solve ended with an optimum to start from
     int previous_blocks = -1;
     const auto stands = [&](double v) {
       const std::string call = "geometric_factor: model_fn(" + number_text(v) + ")";
@@ -200,15 +202,15 @@ int w_geometric_factor(lua_State* L) {
         verdict.stands = lua_toboolean(L, -1);
         lua_pop(L, 1);
       } else {
-        const bool warm = previous && previous_blocks == s->size();
-        EquilibriumResult result = analyze_equilibrium(*s, settings, warm ? &*previous : nullptr);
+        const bool warm = warm_ready && previous_blocks == s->size();
+        if (analysis) analysis->update(*s, settings);
+        else analysis = std::make_unique<EquilibriumAnalysis>(*s, settings);
+        const EquilibriumResult result = analysis->solve(warm);
         verdict.stands = result.stable;
         verdict.analysis = VerdictAnalysis{result.infeasibility, result.iterations, result.status};
         // A failed solve is no starting point.
-        if (result.status == SolverStatus::converged || result.status == SolverStatus::inaccurate) {
-          previous = std::move(result);
-          previous_blocks = s->size();
-        }
+        warm_ready = result.status == SolverStatus::converged || result.status == SolverStatus::inaccurate;
+        previous_blocks = s->size();
       }
       lua_pop(L, 1);  // the structure
       return verdict;

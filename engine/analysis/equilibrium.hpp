@@ -106,10 +106,16 @@ struct EquilibriumResult {
 // Runs the analysis. Throws InvalidArgument for bad settings; every outcome
 // (unstable, not converged, floating blocks) is reported in the result.
 // `warm_start`, if given, must come from the same structure. `problem`, if
-// given, receives the QP that was solved (for its derivatives).
+// given, receives the QP that was solved (for its derivatives). One
+// EquilibriumAnalysis (equilibrium_analysis.hpp) set up and solved once;
+// keep that object instead to solve the same pattern again.
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start = nullptr,
                                       EquilibriumProblem* problem = nullptr);
+
+// Throws InvalidArgument, naming the setting, unless the solver settings
+// and stable_tolerance are in range.
+void check_analysis_settings(const AnalysisSettings& settings);
 
 // Throws InvalidArgument unless `block` (0-based) is a free block of the
 // structure: in range and not a support. `caller`, when not empty, begins

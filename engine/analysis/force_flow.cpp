@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "analysis/equilibrium_analysis.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 
@@ -322,15 +323,16 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
   check_free_block(structure, block, "trace_loads");
   check_options(options);
   ForceFlow flow;
-  EquilibriumProblem problem;
-  flow.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
+  EquilibriumAnalysis analysis(structure, settings);
+  flow.analysis = analysis.solve();
+  const EquilibriumProblem& problem = analysis.problem();
   check_analysed_block(problem, structure, block, "trace_loads");
   flow.stable = flow.analysis.stable;
   flow.support_interface.assign(options.traces, -1);
   flow.lost = options.traces;
-  EquilibriumSolver solver(problem);
-  if (has_no_answer(flow.analysis.status) ||
-      !solver.prepare_response(problem, flow.analysis.solution)) {
+  // The response reuses the analysis's factorisation pattern.
+  const EquilibriumSolver& solver = analysis.solver();
+  if (!analysis.prepare_response()) {
     flow.seconds = seconds_since(start);
     return flow;
   }

@@ -174,6 +174,8 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   for (size_t k = 0; k < problem.groups.size(); ++k) {
     const ForceGroup& v = problem.groups[k];
     VertexSlots& slot = slots_[k];
+    slot.row_a = v.row_a;
+    slot.row_b = v.row_b;
     if (v.row_a >= 0) slot.aa = rank(v.row_a / d, v.row_a / d);
     if (v.row_b >= 0) slot.bb = rank(v.row_b / d, v.row_b / d);
     if (v.row_a >= 0 && v.row_b >= 0) {
@@ -188,6 +190,19 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
 }
 
 EquilibriumSolver::~EquilibriumSolver() = default;
+
+bool EquilibriumSolver::fits(const EquilibriumProblem& problem) const {
+  if (problem.row_count != size_ || problem.block_rows != block_rows_ ||
+      problem.groups.size() != slots_.size()) {
+    return false;
+  }
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    if (problem.groups[k].row_a != slots_[k].row_a || problem.groups[k].row_b != slots_[k].row_b) {
+      return false;
+    }
+  }
+  return true;
+}
 
 template <int D>
 void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem,

@@ -78,7 +78,11 @@ public:
   explicit EquilibriumSolver(const EquilibriumProblem& problem);
   ~EquilibriumSolver();
 
-  // Solves `problem` (same contacts as at construction). When `warm_start`
+  // Whether `problem` has the pattern this solver analysed: the same
+  // balance rows, and every force group acting on the same bodies' rows.
+  bool fits(const EquilibriumProblem& problem) const;
+
+  // Solves `problem` (same contacts as at construction: fits(problem)). When `warm_start`
   // is set and `solution` has matching sizes it is the starting point.
   InteriorPointInfo solve(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
                           InteriorPointSolution& solution, bool warm_start = false);
@@ -116,6 +120,7 @@ private:
   bool factorize_shifted();
 
   struct VertexSlots {
+    int row_a = -1, row_b = -1;     // the group's bodies' first balance rows
     int aa = -1, bb = -1, ab = -1;  // pattern slots of the 6 x 6 blocks, -1 if absent
     bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
   };

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "analysis/equilibrium_analysis.hpp"
 #include "analysis/equilibrium_sensitivity.hpp"
 #include "core/clock.hpp"
 #include "geometry/block.hpp"
@@ -30,9 +31,17 @@ void add_size_gradient(const Block& block, double scale, std::vector<Vec3>& grad
 StructuralGradient structural_gradient(const Structure& structure,
                                        const AnalysisSettings& settings,
                                        const EquilibriumResult* warm_start) {
+  EquilibriumAnalysis analysis(structure, settings);
+  if (warm_start) analysis.set_starting_point(warm_start->solution);
+  return structural_gradient(analysis, structure, warm_start != nullptr);
+}
+
+StructuralGradient structural_gradient(EquilibriumAnalysis& analysis, const Structure& structure,
+                                       bool warm_start) {
   StructuralGradient out;
-  EquilibriumProblem problem;
-  out.analysis = analyze_equilibrium(structure, settings, warm_start, &problem);
+  out.analysis = analysis.solve(warm_start);
+  const EquilibriumProblem& problem = analysis.problem();
+  const AnalysisSettings& settings = analysis.settings();
   const auto start = Clock::now();
   const int n = structure.size();
   const std::vector<Cable>& cables = structure.cables();
@@ -44,7 +53,7 @@ StructuralGradient structural_gradient(const Structure& structure,
   if (!out.valid) return out;
 
   const EquilibriumSensitivity sensitivity =
-      equilibrium_sensitivity(structure, problem, out.analysis.solution);
+      equilibrium_sensitivity(structure, problem, analysis.solution());
 
   // Contact polygons and frames.
   const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);

@@ -39,4 +39,11 @@ StructuralGradient structural_gradient(const Structure& structure,
                                        const AnalysisSettings& settings,
                                        const EquilibriumResult* warm_start = nullptr);
 
+class EquilibriumAnalysis;
+// The same on an analysis object (after its setup or update() with
+// `structure`, the structure it was given): solved again, warm from its last
+// solution when `warm_start`, reusing its symbolic factorisation.
+StructuralGradient structural_gradient(EquilibriumAnalysis& analysis, const Structure& structure,
+                                       bool warm_start = false);
+
 }  // namespace ashlar

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "analysis/equilibrium_analysis.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 
@@ -101,13 +102,14 @@ WeightSensitivity weight_sensitivity(const Structure& structure, int block,
                                      const AnalysisSettings& settings) {
   check_free_block(structure, block, "");
   WeightSensitivity result;
-  EquilibriumProblem problem;
-  result.analysis = analyze_equilibrium(structure, settings, nullptr, &problem);
+  EquilibriumAnalysis analysis(structure, settings);
+  result.analysis = analysis.solve();
+  const EquilibriumProblem& problem = analysis.problem();
   check_analysed_block(problem, structure, block, "");
   const auto start = Clock::now();
-  if (has_no_answer(result.analysis.status)) return result;
-  EquilibriumSolver solver(problem);
-  if (!solver.prepare_response(problem, result.analysis.solution)) return result;
+  // The response reuses the analysis's factorisation pattern.
+  if (!analysis.prepare_response()) return result;
+  const EquilibriumSolver& solver = analysis.solver();
 
   // One newton more on the block is 1 / weight_unit on its vertical row;
   // the scaled force change is then in weight units per weight unit: N/N.

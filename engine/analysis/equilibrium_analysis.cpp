@@ -1,0 +1,134 @@
+#include "analysis/equilibrium_analysis.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/clock.hpp"
+
+namespace ashlar {
+
+EquilibriumAnalysis::EquilibriumAnalysis(const Structure& structure, const AnalysisSettings& settings) {
+  update(structure, settings);
+}
+
+EquilibriumAnalysis::~EquilibriumAnalysis() = default;
+
+void EquilibriumAnalysis::update(const Structure& structure, const AnalysisSettings& settings) {
+  const auto start = Clock::now();
+  check_analysis_settings(settings);
+  problem_ = build_equilibrium_problem(structure, settings.problem);
+  structure_ = &structure;
+  settings_ = settings;
+  if (!solver_ || !solver_->fits(problem_)) {
+    solver_ = std::make_unique<EquilibriumSolver>(problem_);
+    ++symbolic_analyses_;
+  }
+  setup_seconds_ = seconds_since(start);
+}
+
+bool EquilibriumAnalysis::prepare_response() {
+  return !has_no_answer(last_status_) && solver_->prepare_response(problem_, solution_);
+}
+
+EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
+  const auto start = Clock::now();
+  EquilibriumResult result;
+  result.timings.setup = setup_seconds_;
+  InteriorPointSettings solver_settings = settings_.solver;
+  if (settings_.verdict_only) solver_settings.certify_below = settings_.stable_tolerance;
+  const InteriorPointInfo info = solver_->solve(problem_, solver_settings, solution_, warm_start);
+  last_status_ = info.status;
+  result.solution = solution_;
+  result.status = info.status;
+  result.iterations = info.iterations;
+  result.factorizations = info.factorizations;
+  result.objective = info.objective;
+  result.timings.assembly = info.assembly_seconds;
+  result.timings.factorization = info.factorization_seconds;
+  result.timings.solve = info.solve_seconds;
+  result.floating_blocks = problem_.floating_blocks;
+
+  const std::vector<Interface>& interfaces = structure_->interfaces(settings_.problem.contact);
+  result.interfaces.resize(interfaces.size());
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.interfaces[i].a = interfaces[i].a;
+    result.interfaces[i].b = interfaces[i].b;
+  }
+  std::vector<double> pressure_weight(interfaces.size(), 0.0);
+  std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
+  result.block_tension.assign(structure_->size(), 0.0);
+  const Eigen::VectorXd& x = solution_.x;
+  const double wu = problem_.weight_unit;
+  result.cables.resize(structure_->cables().size());
+  result.virtual_torques.assign(structure_->size(), Vec3::Zero());
+  const std::array<int, 6>& rows = balance_rows(problem_.block_rows == 3);
+  double penalised = 0.0;  // scaled
+  for (size_t k = 0; k < problem_.groups.size(); ++k) {
+    const ForceGroup& v = problem_.groups[k];
+    const Eigen::Vector4d scaled = x.segment<4>(4 * static_cast<Eigen::Index>(k));
+    // The penalised unknowns are bounded below by 0; an iterate short of
+    // convergence may still sit a little outside, which must not make the
+    // infeasibility negative.
+    penalised += problem_.rules_of(v).linear.dot(scaled.cwiseMax(0.0));
+    if (v.kind == GroupKind::cable || v.kind == GroupKind::bounded_cable) {
+      result.cables[v.source].tension = (scaled(0) - scaled(1)) * wu;
+      result.cables[v.source].compression = scaled(1) * wu;
+      continue;
+    }
+    if (v.kind == GroupKind::slack) {
+      if (v.block_a >= 0) {
+        result.virtual_torques[v.block_a](rows[v.component] - 3) =
+            (scaled(0) - scaled(1)) * wu * problem_.length_unit;
+      }
+      continue;
+    }
+    const Eigen::Vector4d forces = scaled * wu;
+    const Interface& contact = interfaces[v.source];
+    InterfaceForces& through = result.interfaces[v.source];
+    const double normal = forces(0) - forces(1);
+    through.compression += forces(0);
+    through.tension += forces(1);
+    through.normal_force += normal;
+    through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
+    pressure_weight[v.source] += normal;
+    pressure_moment[v.source] += normal * v.position;
+    result.block_tension[v.block_a] += forces(1);
+    result.block_tension[v.block_b] += forces(1);
+    result.vertex_forces.push_back(forces);
+    result.vertex_positions.push_back(v.position);
+    result.vertex_interface.push_back(v.source);
+  }
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.interfaces[i].center_of_pressure = pressure_weight[i] > 0.0
+                                                  ? Vec3(pressure_moment[i] / pressure_weight[i])
+                                                  : interfaces[i].center;
+  }
+
+  result.imbalance_without_tension = compression_only_imbalance(problem_, x);
+  // Stability is a question of feasibility: forces that balance every block
+  // without tension prove it, converged or not. Without such forces only a
+  // converged optimum (whose tension is then needed) proves instability.
+  const bool floating = problem_.has_floating_bodies();
+  result.stable = !floating && result.status != SolverStatus::interrupted &&
+                  result.imbalance_without_tension <= settings_.stable_tolerance;
+  result.borderline = !floating &&
+                      result.imbalance_without_tension > settings_.stable_tolerance * kBorderlineBelow &&
+                      result.imbalance_without_tension <= settings_.stable_tolerance * kBorderlineAbove;
+  // Floating blocks cannot be balanced at all; a numerical failure (also what
+  // a problem with no equilibrium even with tension, e.g. no friction under
+  // a sideways load, ends in) leaves no usable equilibrium either.
+  const int bodies = std::max(problem_.body_count, 1);
+  if (floating || has_no_answer(result.status)) {
+    result.infeasibility = std::numeric_limits<double>::infinity();
+    result.penalty = std::numeric_limits<double>::infinity();
+  } else {
+    result.infeasibility = result.stable ? 0.0 : penalised / bodies;
+    result.penalty = info.objective / bodies;
+  }
+  result.seconds = setup_seconds_ + seconds_since(start);
+  setup_seconds_ = 0.0;  // counted once, by the first solve after it
+  return result;
+}
+
+}  // namespace ashlar

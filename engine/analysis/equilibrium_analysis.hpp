@@ -1,0 +1,69 @@
+// One equilibrium analysis of a structure, as an object: it owns the QP
+// (EquilibriumProblem), the solver with its symbolic factorisation of the
+// normal matrix's pattern, and the last solution, split as
+//   setup  (constructor: check settings, build the QP, analyse the pattern),
+//   update (new loads, friction or geometry: rebuild the QP, keep the
+//           symbolic analysis when the contact pattern is unchanged),
+//   solve  (any number of times; warm from the last solution on request).
+// Parametric searches, gradients, weight sensitivity, force flow and the
+// optimiser re-solve one object instead of analysing the pattern again.
+#pragma once
+
+#include <memory>
+
+#include "analysis/equilibrium.hpp"
+#include "analysis/equilibrium_problem.hpp"
+#include "analysis/interior_point.hpp"
+
+namespace ashlar {
+
+class EquilibriumAnalysis {
+public:
+  // Throws InvalidArgument for bad settings or a structure the analysis
+  // refuses (as analyze_equilibrium). `structure` must outlive the object,
+  // or the next update().
+  EquilibriumAnalysis(const Structure& structure, const AnalysisSettings& settings);
+  ~EquilibriumAnalysis();
+  EquilibriumAnalysis(const EquilibriumAnalysis&) = delete;
+  EquilibriumAnalysis& operator=(const EquilibriumAnalysis&) = delete;
+
+  // The QP of `structure` under `settings`. The symbolic factorisation is
+  // kept when every force group acts on the same bodies' rows as before
+  // (same contacts; loads, friction and vertex positions may change), else
+  // redone. The last solution stays, as a warm start for solve(true).
+  void update(const Structure& structure, const AnalysisSettings& settings);
+  // Starts the next solve(true) from `solution` (e.g. a Result of the same
+  // structure); ignored by the solver when its sizes do not fit.
+  void set_starting_point(const InteriorPointSolution& solution) { solution_ = solution; }
+  // Solves the current QP: cold, or from the last solution when warm_start.
+  EquilibriumResult solve(bool warm_start = false);
+
+  const EquilibriumProblem& problem() const { return problem_; }
+  const AnalysisSettings& settings() const { return settings_; }
+  // The last solution (scaled; see InteriorPointSolution).
+  const InteriorPointSolution& solution() const { return solution_; }
+  // How often the normal matrix's pattern was analysed: 1, plus one for
+  // each update() that changed the contact pattern.
+  int symbolic_analyses() const { return symbolic_analyses_; }
+
+  // The response of the last optimum to changed loads (Shin 2014 eq. 7):
+  // see EquilibriumSolver::prepare_response. Reuses this object's
+  // factorisation pattern; false when the last solve gave no answer.
+  bool prepare_response();
+  const EquilibriumSolver& solver() const { return *solver_; }
+
+  // Moves the QP out (the object then needs an update() before solving).
+  EquilibriumProblem take_problem() { return std::move(problem_); }
+
+private:
+  const Structure* structure_;
+  AnalysisSettings settings_;
+  EquilibriumProblem problem_;
+  std::unique_ptr<EquilibriumSolver> solver_;
+  InteriorPointSolution solution_;
+  SolverStatus last_status_ = SolverStatus::numerical_error;
+  double setup_seconds_ = 0.0;  // of the last constructor or update()
+  int symbolic_analyses_ = 0;
+};
+
+}  // namespace ashlar
