@@ -145,13 +145,6 @@ struct EquilibriumProblem {
     }
     return starts;
   }
-  // The constant side of group k's inequality rows: rows . x_k >= lower.
-  Eigen::VectorXd lower_bounds(const ForceGroup& v) const {
-    const GroupRules& r = rules_of(v);
-    Eigen::VectorXd lower = Eigen::VectorXd::Zero(r.rows.rows());
-    if (r.bounded_row >= 0) lower(r.bounded_row) = -v.bound;
-    return lower;
-  }
   // Position of the vertical force (Fz) among a body's balance rows, where
   // its weight enters: 2, or 1 for planar problems.
   int vertical_row() const;

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
 #include "analysis/sparse_cholesky.hpp"
 #include "core/clock.hpp"
 #include "core/interrupt.hpp"
+#include "core/parallel_loop.hpp"
 
 namespace ashlar {
 
@@ -212,38 +214,59 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
   using BlockByVertexD = Eigen::Matrix<double, D, 4>;
   using BlockByBlockD = Eigen::Matrix<double, D, D>;
   const int nv = static_cast<int>(problem.groups.size());
-  double* values = cholesky_->values();
-  std::fill_n(values, cholesky_->nonzeros(), 0.0);
+  const int nonzeros = cholesky_->nonzeros();
   phi_factors.resize(nv);
-  // Adds a D x D block to block column col_block at its rank-th block row.
-  auto add_block = [&](int col_block, int rank, const BlockByBlockD& block, bool diagonal) {
-    for (int cj = 0; cj < D; ++cj) {
-      double* column = values + column_starts_[D * col_block + cj] + D * rank;
-      const int last = diagonal ? cj : D - 1;
-      for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
+  // Groups of different parts may add to the same entries: the first part
+  // adds into the matrix, each other part into a values array of its own,
+  // summed into the matrix afterwards.
+  const int parts = loop_.parts_for(nv);
+  value_parts_.resize(parts - 1);
+  loop_.run(nv, [&](int begin, int end, int part) {
+    double* values = cholesky_->values();
+    if (part > 0) {
+      value_parts_[part - 1].assign(nonzeros, 0.0);
+      values = value_parts_[part - 1].data();
+    } else {
+      std::fill_n(values, nonzeros, 0.0);
     }
-  };
-  for (int k = 0; k < nv; ++k) {
-    const ForceGroup& v = problem.groups[k];
-    const GroupRules& rules = problem.rules_of(v);
-    phi_factors[k] = factor_phi(rules.hessian, rules.rows,
-                                scaling.segment(first_row[k], rules.rows.rows()));
-    const VertexSlots& slot = slots_[k];
-    // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
-    BlockByVertexD a_part, b_part;
-    if (v.row_a >= 0) {
-      a_part = divide_by_factor<D>(v.on_a.topRows<D>(), phi_factors[k]);
-      add_block(v.row_a / D, slot.aa, a_part * a_part.transpose(), true);
+    // Adds a D x D block to block column col_block at its rank-th block row.
+    auto add_block = [&](int col_block, int rank, const BlockByBlockD& block, bool diagonal) {
+      for (int cj = 0; cj < D; ++cj) {
+        double* column = values + column_starts_[D * col_block + cj] + D * rank;
+        const int last = diagonal ? cj : D - 1;
+        for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
+      }
+    };
+    for (int k = begin; k < end; ++k) {
+      const ForceGroup& v = problem.groups[k];
+      const GroupRules& rules = problem.rules_of(v);
+      phi_factors[k] = factor_phi(rules.hessian, rules.rows,
+                                  scaling.segment(first_row[k], rules.rows.rows()));
+      const VertexSlots& slot = slots_[k];
+      // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
+      BlockByVertexD a_part, b_part;
+      if (v.row_a >= 0) {
+        a_part = divide_by_factor<D>(v.on_a.topRows<D>(), phi_factors[k]);
+        add_block(v.row_a / D, slot.aa, a_part * a_part.transpose(), true);
+      }
+      if (v.row_b >= 0) {
+        b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
+        add_block(v.row_b / D, slot.bb, b_part * b_part.transpose(), true);
+      }
+      if (slot.ab >= 0) {
+        const BlockByBlockD ab = a_part * b_part.transpose();  // rows of a, columns of b
+        if (slot.ab_transposed) add_block(v.row_a / D, slot.ab, ab.transpose(), false);
+        else add_block(v.row_b / D, slot.ab, ab, false);
+      }
     }
-    if (v.row_b >= 0) {
-      b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
-      add_block(v.row_b / D, slot.bb, b_part * b_part.transpose(), true);
-    }
-    if (slot.ab >= 0) {
-      const BlockByBlockD ab = a_part * b_part.transpose();  // rows of a, columns of b
-      if (slot.ab_transposed) add_block(v.row_a / D, slot.ab, ab.transpose(), false);
-      else add_block(v.row_b / D, slot.ab, ab, false);
-    }
+  });
+  if (parts > 1) {
+    loop_.run(nonzeros, [&](int begin, int end, int) {
+      double* values = cholesky_->values();
+      for (const std::vector<double>& part_values : value_parts_) {
+        for (int i = begin; i < end; ++i) values[i] += part_values[i];
+      }
+    });
   }
 }
 
@@ -315,15 +338,15 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   InteriorPointInfo info;
   const int nv = static_cast<int>(problem.groups.size());
   const Eigen::VectorXd& b = problem.rhs;
-  // Each group's inequality rows start at first_row[k] in w and z; `lower`
-  // holds their constant sides (G x_k >= lower).
+  // Each group's inequality rows start at first_row[k] in w and z. Their
+  // constant sides (G x_k >= lower) are 0 but for a bounded cable's row,
+  // -bound: add_bound turns G x_k into G x_k - lower.
   const std::vector<int> first_row = problem.inequality_starts();
   const int m_total = first_row[nv];
-  Eigen::VectorXd lower(m_total);
-  for (int k = 0; k < nv; ++k) {
-    lower.segment(first_row[k], first_row[k + 1] - first_row[k]) =
-        problem.lower_bounds(problem.groups[k]);
-  }
+  auto add_bound = [&](int k, auto&& rows) {
+    const GroupRules& rules = problem.rules_of(problem.groups[k]);
+    if (rules.bounded_row >= 0) rows(rules.bounded_row) += problem.groups[k].bound;
+  };
   auto rows_of = [&](int k) -> const RowsMatrix& { return problem.rules_of(problem.groups[k]).rows; };
   auto ineq = [&](auto& v, int k) {
     return v.segment(first_row[k], first_row[k + 1] - first_row[k]);
@@ -340,7 +363,9 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     // Interior-point iterates must start strictly inside the cone.
     constexpr double kMargin = 1e-2;
     for (int k = 0; k < nv; ++k) {
-      ineq(w, k) = (rows_of(k) * x.segment<4>(4 * k) - ineq(lower, k)).cwiseMax(kMargin);
+      ineq(w, k) = rows_of(k) * x.segment<4>(4 * k);
+      add_bound(k, ineq(w, k));
+      ineq(w, k) = ineq(w, k).cwiseMax(kMargin);
     }
     z = z.cwiseMax(kMargin);
   } else {
@@ -372,8 +397,28 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   Direction step_direction{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
                            Eigen::VectorXd(m_total)};
   Direction correction = step_direction;
-  Eigen::VectorXd row_terms(m_total), rhs(size_), dw_aff, dz_aff;
+  Eigen::VectorXd row_terms(m_total), rhs(size_), scaling(m_total);
   const int factorizations_before = cholesky_->factorizations();
+
+  // Passes over the groups, split over loop_'s threads. A pass that adds
+  // into balance rows (which groups of two parts may share) gives each part
+  // after the first a rows vector of its own, summed in at the end.
+  std::vector<Eigen::VectorXd> row_parts(loop_.parts() - 1);
+  auto for_groups = [&](const std::function<void(int)>& per_group) {
+    loop_.run(nv, [&](int begin, int end, int) {
+      for (int k = begin; k < end; ++k) per_group(k);
+    });
+  };
+  auto for_groups_into = [&](Eigen::VectorXd& rows,
+                             const std::function<void(int, Eigen::VectorXd&)>& per_group) {
+    const int parts = loop_.parts_for(nv);
+    loop_.run(nv, [&](int begin, int end, int part) {
+      Eigen::VectorXd& target = part == 0 ? rows : row_parts[part - 1];
+      if (part > 0) target.setZero(size_);
+      for (int k = begin; k < end; ++k) per_group(k, target);
+    });
+    for (int part = 1; part < parts; ++part) rows += row_parts[part - 1];
+  };
 
   // Solves the Newton system for right-hand sides `e` with the current
   // factorisation and phi_factors: eliminating dz and dw row by row, then
@@ -381,17 +426,17 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   auto solve_newton = [&](const KktVectors& e, Direction& out) {
     row_terms = (e.c + z.cwiseProduct(e.g)).cwiseQuotient(w);
     rhs = -e.p;
-    for (int k = 0; k < nv; ++k) {
+    for_groups_into(rhs, [&](int k, Eigen::VectorXd& rows) {
       const Vector4 reduced = -e.d.segment<4>(4 * k) - rows_of(k).transpose() * ineq(row_terms, k);
       const Vector4 t = solve_phi(phi_factors[k], reduced);
       out.x.segment<4>(4 * k) = t;  // completed below with the A^T dy part
-      add_effect<D>(problem.groups[k], -t, rhs);
-    }
-    out.y = cholesky_->solve(rhs);
-    for (int k = 0; k < nv; ++k) {
+      add_effect<D>(problem.groups[k], -t, rows);
+    });
+    cholesky_->solve(rhs, out.y);
+    for_groups([&](int k) {
       out.x.segment<4>(4 * k) += solve_phi(phi_factors[k], reaction<D>(problem.groups[k], out.y));
       ineq(out.w, k) = rows_of(k) * out.x.segment<4>(4 * k) + ineq(e.g, k);
-    }
+    });
     out.z = -(e.c + z.cwiseProduct(out.w)).cwiseQuotient(w);
   };
   // How far `dir` is from solving the Newton system for `e`: the residual of
@@ -399,15 +444,15 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   // that solving for it corrects the rounding of the elimination.
   auto newton_residual = [&](const KktVectors& e, const Direction& dir, KktVectors& out) {
     out.p = e.p;
-    for (int k = 0; k < nv; ++k) {
+    for_groups_into(out.p, [&](int k, Eigen::VectorXd& rows) {
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 dxk = dir.x.segment<4>(4 * k);
-      add_effect<D>(v, dxk, out.p);
+      add_effect<D>(v, dxk, rows);
       out.d.segment<4>(4 * k) = e.d.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
                                 reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
       ineq(out.g, k) = ineq(e.g, k) + rules.rows * dxk - ineq(dir.w, k);
-    }
+    });
     out.c = e.c + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
   };
   auto largest = [](const KktVectors& v) {
@@ -470,15 +515,16 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     auto start = Clock::now();
     // Residuals.
     r.p = -b;
-    for (int k = 0; k < nv; ++k) {
+    for_groups_into(r.p, [&](int k, Eigen::VectorXd& rows) {
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
-      add_effect<D>(v, xk, r.p);
+      add_effect<D>(v, xk, rows);
       r.d.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
                               reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
-      ineq(r.g, k) = rules.rows * xk - ineq(lower, k) - ineq(w, k);
-    }
+      ineq(r.g, k) = rules.rows * xk - ineq(w, k);
+      add_bound(k, ineq(r.g, k));
+    });
     // The total gap, not its mean, bounds the objective's error.
     const double duality_gap = w.dot(z);
     const double mu = m_total > 0 ? duality_gap / m_total : 0.0;
@@ -504,7 +550,16 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       info.status = SolverStatus::certified;
       break;
     }
-    if (!starting && error_now < best.error) best = {error_now, iteration, x, y, w, z, info};
+    if (!starting && error_now < best.error) {
+      // Assigned member by member: same sizes, so no reallocation.
+      best.error = error_now;
+      best.iteration = iteration;
+      best.x = x;
+      best.y = y;
+      best.w = w;
+      best.z = z;
+      best.info = info;
+    }
     const int stalled = iteration - best.iteration;
     if ((best.error <= settings.inaccurate_tolerance && stalled > kStallIterations) ||
         stalled > kHopelessIterations) {
@@ -521,7 +576,8 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     }
 
     // Eliminate each vertex's unknowns and assemble the normal matrix.
-    assemble_normal_matrix<D>(problem, first_row, z.cwiseQuotient(w), phi_factors);
+    scaling = z.cwiseQuotient(w);
+    assemble_normal_matrix<D>(problem, first_row, scaling, phi_factors);
     info.assembly_seconds += seconds_since(start);
     start = Clock::now();
     const bool factored = factorize_shifted();
@@ -552,10 +608,8 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     const double mu_affine = (w + affine_step * step_direction.w).dot(z + affine_step * step_direction.z) /
                              static_cast<double>(m_total);
     const double centering = std::pow(mu_affine / mu, 3);
-    dw_aff = step_direction.w;
-    dz_aff = step_direction.z;
     // Corrector: second-order term and centring, same factorisation.
-    r.c = w.cwiseProduct(z) + dw_aff.cwiseProduct(dz_aff) -
+    r.c = w.cwiseProduct(z) + step_direction.w.cwiseProduct(step_direction.z) -
           Eigen::VectorXd::Constant(m_total, centering * mu);
     newton_direction(r, step_direction, error_now);
     const double step = std::min(

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "analysis/equilibrium_problem.hpp"
+#include "core/parallel_loop.hpp"
 
 namespace ashlar {
 
@@ -125,6 +126,8 @@ private:
     bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
   };
   std::vector<VertexSlots> slots_;
+  ParallelLoop loop_;  // passes over the groups, on one thread per core
+  std::vector<std::vector<double>> value_parts_;  // normal-matrix values of loop_'s parts after the first
   std::vector<int> column_starts_;
   std::unique_ptr<SparseCholesky> cholesky_;
   int size_ = 0;

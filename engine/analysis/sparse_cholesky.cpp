@@ -31,8 +31,10 @@ Function* loaded_function(const char* library, const char* name) {
 // (Debian builds them with num_threads(4): on 2 cores, 10-17 s and as much
 // system time as user time); OpenBLAS on 2 threads 2.85 s, but its idle
 // thread yields the core in a loop between calls (6.2 s of system time).
-// The factorisation's supernodes are too small for a second thread to pay;
-// the solver's own loops are where two cores help. Set on every calling
+// On a 100,052-block vault (5.4e10 flops per factorisation) two OpenBLAS
+// threads cut the factorisations from 46.6 s to 37.3 s, but the idle one
+// yielded for 32 s of system time (40 % of user time), so one thread there
+// too. The solver's own loops are where two cores help (ParallelLoop). Set on every calling
 // thread (max-active-levels is a per-thread OpenMP setting), so that a
 // user never needs OMP_* or OPENBLAS_* variables for speed.
 void use_one_thread_in_factorisations() {
@@ -57,6 +59,9 @@ struct SparseCholesky::Impl {
   cholmod_common common;
   cholmod_sparse* matrix = nullptr;
   cholmod_factor* factor = nullptr;
+  cholmod_dense* solution = nullptr;  // cholmod_solve2's, kept between solves
+  cholmod_dense* workspace_y = nullptr;
+  cholmod_dense* workspace_e = nullptr;
 
   Impl() {
     cholmod_start(&common);
@@ -64,6 +69,9 @@ struct SparseCholesky::Impl {
     common.error_handler = nullptr;
   }
   ~Impl() {
+    for (cholmod_dense** dense : {&solution, &workspace_y, &workspace_e}) {
+      if (*dense) cholmod_free_dense(dense, &common);
+    }
     if (factor) cholmod_free_factor(&factor, &common);
     if (matrix) cholmod_free_sparse(&matrix, &common);
     cholmod_finish(&common);
@@ -103,6 +111,12 @@ bool SparseCholesky::factorize() {
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
+  Eigen::VectorXd out;
+  solve(rhs, out);
+  return out;
+}
+
+void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) const {
   cholmod_dense b;
   b.nrow = static_cast<size_t>(rhs.size());
   b.ncol = 1;
@@ -112,11 +126,13 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   b.z = nullptr;
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->factor, &b, &impl_->common);
-  if (!x) throw Error("CHOLMOD solve failed");
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), rhs.size());
-  cholmod_free_dense(&x, &impl_->common);
-  return out;
+  // cholmod_solve2 keeps its solution and workspace between calls: a large
+  // model's solves then allocate (and page-fault) nothing.
+  if (!cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr,
+                      &impl_->workspace_y, &impl_->workspace_e, &impl_->common)) {
+    throw Error("CHOLMOD solve failed");
+  }
+  out = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(impl_->solution->x), rhs.size());
 }
 
 }  // namespace ashlar

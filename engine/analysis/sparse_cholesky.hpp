@@ -27,6 +27,9 @@ public:
   bool factorize();
   // Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  // The same into `out`, reusing its storage and CHOLMOD's workspace (not
+  // thread-safe: one solve at a time per object).
+  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) const;
   int factorizations() const { return factorizations_; }
   // Nonzeros of the Cholesky factor, from the symbolic analysis (memory is
   // about 8 bytes each, plus the supernodes' row indices).

@@ -1,0 +1,90 @@
+#include "core/parallel_loop.hpp"
+
+#include <algorithm>
+
+namespace ashlar {
+
+namespace {
+
+// The first item of part `part` of `parts` over n items.
+int part_begin(int n, int parts, int part) {
+  return static_cast<int>(static_cast<long long>(n) * part / parts);
+}
+
+}  // namespace
+
+ParallelLoop::ParallelLoop(int threads, int grain) : grain_(std::max(grain, 1)) {
+  if (threads <= 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  parts_ = std::clamp(threads, 1, kMaxThreads);
+}
+
+ParallelLoop::~ParallelLoop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  work_ready_.notify_all();
+  for (std::thread& t : helpers_) t.join();
+}
+
+void ParallelLoop::run(int n, const Body& body) {
+  const int parts = parts_for(n);
+  if (parts == 1) {
+    body(0, n, 0);
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    while (static_cast<int>(helpers_.size()) < parts - 1) {
+      const int part = static_cast<int>(helpers_.size()) + 1;
+      helpers_.emplace_back([this, part] { helper(part); });
+    }
+    body_ = &body;
+    items_ = n;
+    pending_ = parts - 1;
+    failure_ = nullptr;
+    ++generation_;
+  }
+  work_ready_.notify_all();
+  std::exception_ptr own_failure;
+  try {
+    body(0, part_begin(n, parts, 1), 0);
+  } catch (...) {
+    own_failure = std::current_exception();
+  }
+  std::unique_lock<std::mutex> lock(mutex_);
+  work_done_.wait(lock, [this] { return pending_ == 0; });
+  body_ = nullptr;
+  if (own_failure) std::rethrow_exception(own_failure);
+  if (failure_) std::rethrow_exception(failure_);
+}
+
+void ParallelLoop::helper(int part) {
+  unsigned seen = 0;
+  for (;;) {
+    const Body* body;
+    int n;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      work_ready_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+      if (stopping_) return;
+      seen = generation_;
+      body = body_;
+      n = items_;
+    }
+    std::exception_ptr failure;
+    try {
+      (*body)(part_begin(n, parts_, part), part_begin(n, parts_, part + 1), part);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (failure && !failure_) failure_ = failure;
+      --pending_;
+    }
+    work_done_.notify_one();
+  }
+}
+
+}  // namespace ashlar

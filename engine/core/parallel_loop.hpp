@@ -1,0 +1,54 @@
+// A loop split over a few threads, for the solver's passes over force
+// groups: the caller runs the first part, helper threads the others, and
+// the helpers sleep on a condition variable between calls (no thread spins
+// while another works). Small loops run on the caller alone.
+#pragma once
+
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace ashlar {
+
+class ParallelLoop {
+public:
+  // body(begin, end, part): the items [begin, end) of part `part`.
+  using Body = std::function<void(int begin, int end, int part)>;
+
+  // `threads` parts at most (0: one per core, at most kMaxThreads), used
+  // only for loops of at least `grain` items; helpers start on first use.
+  explicit ParallelLoop(int threads = 0, int grain = 20000);
+  ~ParallelLoop();
+  ParallelLoop(const ParallelLoop&) = delete;
+  ParallelLoop& operator=(const ParallelLoop&) = delete;
+
+  // How many parts run() may use: sizes per-part buffers.
+  int parts() const { return parts_; }
+  // How many parts run(n, ...) uses for n items.
+  int parts_for(int n) const { return n >= grain_ ? parts_ : 1; }
+  // Runs body over [0, n) in parts_for(n) contiguous parts and returns when
+  // all are done; an exception in any part is rethrown here.
+  void run(int n, const Body& body);
+
+  static constexpr int kMaxThreads = 8;
+
+private:
+  void helper(int part);
+
+  int parts_ = 1;
+  int grain_ = 20000;
+  std::vector<std::thread> helpers_;
+  std::mutex mutex_;
+  std::condition_variable work_ready_, work_done_;
+  const Body* body_ = nullptr;
+  int items_ = 0;
+  unsigned generation_ = 0;
+  int pending_ = 0;
+  bool stopping_ = false;
+  std::exception_ptr failure_;
+};
+
+}  // namespace ashlar
