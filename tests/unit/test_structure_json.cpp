@@ -44,7 +44,8 @@ Structure awkward_structure() {
   s.add(std::make_shared<const Block>(base.translated({0.1, 0.2, 0.3})), true, "ground");
   for (int i = 0; i < 4; ++i) {
     const Vec3 offset(jitter(random) * 1e3, jitter(random) * 1e-3, 1.0 + i * M_PI / 7.0);
-    const Block moved = base.rotated({jitter(random), jitter(random), 1.0}, jitter(random), {})
+    const Block moved = base.rotated({jitter(random), jitter(random), 1.0}, jitter(random),
+                                     Vec3::Zero())
                             .translated(offset)
                             .with_density(2000.0 + jitter(random));
     s.add(std::make_shared<const Block>(moved), false, "voussoir " + std::to_string(i + 1));
