@@ -471,6 +471,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   // current iterate's scaled error.
   constexpr int kRefinements = 3;
   constexpr double kRefineBelow = 1e-4;
+  constexpr double kNoRefinement = std::numeric_limits<double>::infinity();
   auto newton_direction = [&](const KktVectors& e, Direction& out, double iterate_error) {
     const auto start = Clock::now();
     solve_newton(e, out);
@@ -587,9 +588,12 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       break;
     }
 
-    // Predictor: the affine-scaling direction.
+    // Predictor: the affine-scaling direction. It only sets the centring
+    // and the second-order term (and, at a cold start, the heuristic
+    // starting point), so it is not refined: the corrector, the step taken,
+    // is.
     r.c = w.cwiseProduct(z);
-    newton_direction(r, step_direction, error_now);
+    newton_direction(r, step_direction, kNoRefinement);
     if (starting) {
       // Mehrotra's starting point (Nocedal & Wright, 16.60 for QPs): the
       // full affine step from x = 0, w = z = 1, with slacks and multipliers
