@@ -23,6 +23,11 @@ using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 // inaccurate tolerance, after which the solve stops; and at any accuracy,
 // after which more iterations are not going to help.
 constexpr int kStallIterations = 8;
+// The least slack or multiplier of the starting point, in scaled units (a
+// mean block weight). Measured: N & W's 1 takes 25 iterations on a
+// 10,027-block vault, 0.1 takes 22 (the robustness sweep 2 % fewer); 3
+// takes 36.
+constexpr double kStartFloor = 0.1;
 constexpr int kHopelessIterations = 20;
 
 
@@ -597,14 +602,14 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     if (starting) {
       // Mehrotra's starting point (Nocedal & Wright, 16.60 for QPs): the
       // full affine step from x = 0, w = z = 1, with slacks and multipliers
-      // moved back to at least 1. It balances the loads from the first
-      // iteration on, where the plain start spends several iterations
+      // moved back to at least kStartFloor. It balances the loads from the
+      // first iteration on, where the plain start spends several iterations
       // reaching feasibility.
       starting = false;
       x += step_direction.x;
       y += step_direction.y;
-      w = (w + step_direction.w).cwiseAbs().cwiseMax(1.0);
-      z = (z + step_direction.z).cwiseAbs().cwiseMax(1.0);
+      w = (w + step_direction.w).cwiseAbs().cwiseMax(kStartFloor);
+      z = (z + step_direction.z).cwiseAbs().cwiseMax(kStartFloor);
       continue;
     }
     const double affine_step =
