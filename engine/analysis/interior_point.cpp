@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <limits>
 #include <stdexcept>
 
@@ -18,6 +19,9 @@ namespace {
 using Matrix4 = Eigen::Matrix4d;
 using Vector4 = Eigen::Vector4d;
 using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
+// Inequality rows of one group at most: compression, tension and a
+// friction pyramid of up to 1024 sides.
+constexpr int kMaxGroupRows = 2 + 1024;
 
 // Iterations without a more accurate iterate, once one is within the
 // inaccurate tolerance, after which the solve stops; and at any accuracy,
@@ -194,6 +198,48 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   if (problem.row_count > 0) {
     cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices);
   }
+  partition_columns(blocks);
+}
+
+void EquilibriumSolver::partition_columns(int blocks) {
+  const int nv = static_cast<int>(slots_.size());
+  const int parts = std::min(loop_.parts_for(nv), std::max(blocks, 1));
+  const int d = block_rows_;
+  // The blocks each group adds: C_a C_a^T in column a, C_b C_b^T in column
+  // b, C_a C_b^T in column max(a, b).
+  std::vector<long long> adds(blocks + 1, 0);
+  for (const VertexSlots& slot : slots_) {
+    if (slot.row_a >= 0) ++adds[slot.row_a / d];
+    if (slot.row_b >= 0) ++adds[slot.row_b / d];
+    if (slot.ab >= 0) ++adds[std::max(slot.row_a, slot.row_b) / d];
+  }
+  long long total = 0;
+  for (long long& a : adds) total += std::exchange(a, total);  // now: adds before column j
+  part_first_column_.assign(parts + 1, blocks);
+  part_first_column_[0] = 0;
+  for (int p = 1, j = 0; p < parts; ++p) {
+    while (j < blocks && adds[j] * parts < total * p) ++j;
+    part_first_column_[p] = j;
+  }
+  part_groups_.assign(parts, {});
+  if (parts == 1) return;  // the one part takes every group in order
+  auto part_of = [&](int column) {
+    return static_cast<int>(std::upper_bound(part_first_column_.begin(), part_first_column_.end(),
+                                             column) -
+                            part_first_column_.begin()) -
+           1;
+  };
+  for (int k = 0; k < nv; ++k) {
+    const VertexSlots& slot = slots_[k];
+    int touched[3] = {-1, -1, -1};
+    if (slot.row_a >= 0) touched[0] = part_of(slot.row_a / d);
+    if (slot.row_b >= 0) touched[1] = part_of(slot.row_b / d);
+    if (slot.ab >= 0) touched[2] = part_of(std::max(slot.row_a, slot.row_b) / d);
+    std::sort(std::begin(touched), std::end(touched));
+    for (int i = 0; i < 3; ++i) {
+      if (touched[i] >= 0 && (i == 0 || touched[i] != touched[i - 1])) part_groups_[touched[i]].push_back(k);
+    }
+  }
 }
 
 EquilibriumSolver::~EquilibriumSolver() = default;
@@ -214,72 +260,74 @@ bool EquilibriumSolver::fits(const EquilibriumProblem& problem) const {
 template <int D>
 void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem,
                                                const std::vector<int>& first_row,
-                                               const Eigen::VectorXd& scaling,
+                                               const Eigen::VectorXd& w, const Eigen::VectorXd& z,
                                                std::vector<Eigen::Matrix4d>& phi_factors) {
   using BlockByVertexD = Eigen::Matrix<double, D, 4>;
   using BlockByBlockD = Eigen::Matrix<double, D, D>;
   const int nv = static_cast<int>(problem.groups.size());
-  const int nonzeros = cholesky_->nonzeros();
   phi_factors.resize(nv);
-  // Groups of different parts may add to the same entries: the first part
-  // adds into the matrix, each other part into a values array of its own,
-  // summed into the matrix afterwards.
-  const int parts = loop_.parts_for(nv);
-  value_parts_.resize(parts - 1);
-  loop_.run(nv, [&](int begin, int end, int part) {
-    double* values = cholesky_->values();
-    if (part > 0) {
-      value_parts_[part - 1].assign(nonzeros, 0.0);
-      values = value_parts_[part - 1].data();
-    } else {
-      std::fill_n(values, nonzeros, 0.0);
+  // Slacks of active rows may be (near) zero; keep z / w finite.
+  constexpr double kLeastSlack = std::numeric_limits<double>::min();
+  loop_.run(nv, [&](int begin, int end, int) {
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxGroupRows, 1> scaling;
+    for (int k = begin; k < end; ++k) {
+      const GroupRules& rules = problem.rules_of(problem.groups[k]);
+      const int rows = static_cast<int>(rules.rows.rows());
+      scaling = z.segment(first_row[k], rows).cwiseQuotient(
+          w.segment(first_row[k], rows).cwiseMax(kLeastSlack));
+      phi_factors[k] = factor_phi(rules.hessian, rules.rows, scaling);
     }
+  });
+  // Each part adds only into its own range of block columns (so no entry
+  // has two writers), taking the groups that add there.
+  double* values = cholesky_->values();
+  const int parts = static_cast<int>(part_groups_.size());
+  loop_.run_parts(parts, [&](int part) {
+    const int first = part_first_column_[part], last = part_first_column_[part + 1];
+    std::fill(values + column_starts_[D * first], values + column_starts_[D * last], 0.0);
+    auto owned = [&](int column) { return column >= first && column < last; };
     // Adds a D x D block to block column col_block at its rank-th block row.
     auto add_block = [&](int col_block, int rank, const BlockByBlockD& block, bool diagonal) {
       for (int cj = 0; cj < D; ++cj) {
         double* column = values + column_starts_[D * col_block + cj] + D * rank;
-        const int last = diagonal ? cj : D - 1;
-        for (int ri = 0; ri <= last; ++ri) column[ri] += block(ri, cj);
+        const int rows = diagonal ? cj + 1 : D;
+        for (int ri = 0; ri < rows; ++ri) column[ri] += block(ri, cj);
       }
     };
-    for (int k = begin; k < end; ++k) {
+    auto add_group = [&](int k) {
       const ForceGroup& v = problem.groups[k];
-      const GroupRules& rules = problem.rules_of(v);
-      phi_factors[k] = factor_phi(rules.hessian, rules.rows,
-                                  scaling.segment(first_row[k], rules.rows.rows()));
       const VertexSlots& slot = slots_[k];
+      const int a = v.row_a / D, b = v.row_b / D;
+      const bool ab = slot.ab >= 0 && owned(std::max(a, b));
       // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
       BlockByVertexD a_part, b_part;
-      if (v.row_a >= 0) {
+      if (v.row_a >= 0 && (owned(a) || ab)) {
         a_part = divide_by_factor<D>(v.on_a.topRows<D>(), phi_factors[k]);
-        add_block(v.row_a / D, slot.aa, a_part * a_part.transpose(), true);
+        if (owned(a)) add_block(a, slot.aa, a_part * a_part.transpose(), true);
       }
-      if (v.row_b >= 0) {
+      if (v.row_b >= 0 && (owned(b) || ab)) {
         b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
-        add_block(v.row_b / D, slot.bb, b_part * b_part.transpose(), true);
+        if (owned(b)) add_block(b, slot.bb, b_part * b_part.transpose(), true);
       }
-      if (slot.ab >= 0) {
-        const BlockByBlockD ab = a_part * b_part.transpose();  // rows of a, columns of b
-        if (slot.ab_transposed) add_block(v.row_a / D, slot.ab, ab.transpose(), false);
-        else add_block(v.row_b / D, slot.ab, ab, false);
+      if (ab) {
+        const BlockByBlockD block = a_part * b_part.transpose();  // rows of a, columns of b
+        if (slot.ab_transposed) add_block(a, slot.ab, block.transpose(), false);
+        else add_block(b, slot.ab, block, false);
       }
+    };
+    if (parts == 1) {
+      for (int k = 0; k < nv; ++k) add_group(k);
+    } else {
+      for (int k : part_groups_[part]) add_group(k);
     }
   });
-  if (parts > 1) {
-    loop_.run(nonzeros, [&](int begin, int end, int) {
-      double* values = cholesky_->values();
-      for (const std::vector<double>& part_values : value_parts_) {
-        for (int i = begin; i < end; ++i) values[i] += part_values[i];
-      }
-    });
-  }
 }
 
 void EquilibriumSolver::assemble(const EquilibriumProblem& problem, const std::vector<int>& first_row,
-                                 const Eigen::VectorXd& scaling,
+                                 const Eigen::VectorXd& w, const Eigen::VectorXd& z,
                                  std::vector<Eigen::Matrix4d>& phi_factors) {
-  if (block_rows_ == 3) assemble_normal_matrix<3>(problem, first_row, scaling, phi_factors);
-  else assemble_normal_matrix<6>(problem, first_row, scaling, phi_factors);
+  if (block_rows_ == 3) assemble_normal_matrix<3>(problem, first_row, w, z, phi_factors);
+  else assemble_normal_matrix<6>(problem, first_row, w, z, phi_factors);
 }
 
 bool EquilibriumSolver::factorize_shifted() {
@@ -309,10 +357,7 @@ bool EquilibriumSolver::prepare_response(const EquilibriumProblem& problem,
   const std::vector<int> first_row = problem.inequality_starts();
   const int m_total = first_row.back();
   if (solution.w.size() != m_total || solution.z.size() != m_total) return false;
-  // Slacks of active rows are near zero; keep the ratio finite.
-  const Eigen::VectorXd scaling =
-      solution.z.cwiseQuotient(solution.w.cwiseMax(std::numeric_limits<double>::min()));
-  assemble(problem, first_row, scaling, response_phi_);
+  assemble(problem, first_row, solution.w, solution.z, response_phi_);
   response_ready_ = factorize_shifted();
   return response_ready_;
 }
@@ -402,7 +447,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   Direction step_direction{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
                            Eigen::VectorXd(m_total)};
   Direction correction = step_direction;
-  Eigen::VectorXd row_terms(m_total), rhs(size_), scaling(m_total);
+  Eigen::VectorXd row_terms(m_total), rhs(size_);
   const int factorizations_before = cholesky_->factorizations();
 
   // Passes over the groups, split over loop_'s threads. A pass that adds
@@ -582,8 +627,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     }
 
     // Eliminate each vertex's unknowns and assemble the normal matrix.
-    scaling = z.cwiseQuotient(w);
-    assemble_normal_matrix<D>(problem, first_row, scaling, phi_factors);
+    assemble_normal_matrix<D>(problem, first_row, w, z, phi_factors);
     info.assembly_seconds += seconds_since(start);
     start = Clock::now();
     const bool factored = factorize_shifted();

@@ -104,16 +104,22 @@ public:
                                  const Eigen::VectorXd& multipliers) const;
 
 private:
-  // Fills the normal matrix A Phi^-1 A^T for barrier scaling z/w (one entry
-  // per inequality row, rows of group k from first_row[k]) and each group's
-  // factor R of Phi = R^T R (upper triangular).
-  // D = block_rows_ (3 or 6) at compile time; assemble() picks it.
+  // Fills the normal matrix A Phi^-1 A^T for barrier scaling z/w (slacks w
+  // and multipliers z, one per inequality row, rows of group k from
+  // first_row[k]) and each group's factor R of Phi = R^T R (upper
+  // triangular). D = block_rows_ (3 or 6) at compile time; assemble()
+  // picks it.
   template <int D>
   void assemble_normal_matrix(const EquilibriumProblem& problem, const std::vector<int>& first_row,
-                              const Eigen::VectorXd& scaling,
+                              const Eigen::VectorXd& w, const Eigen::VectorXd& z,
                               std::vector<Eigen::Matrix4d>& phi_factors);
   void assemble(const EquilibriumProblem& problem, const std::vector<int>& first_row,
-                const Eigen::VectorXd& scaling, std::vector<Eigen::Matrix4d>& phi_factors);
+                const Eigen::VectorXd& w, const Eigen::VectorXd& z,
+                std::vector<Eigen::Matrix4d>& phi_factors);
+  // Splits the normal matrix's block columns among loop_'s parts
+  // (part_first_column_, part_groups_) so that each adds about as many
+  // blocks.
+  void partition_columns(int blocks);
   // solve() for D = block_rows_ balance rows per body.
   template <int D>
   InteriorPointInfo solve_rows(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
@@ -127,7 +133,11 @@ private:
   };
   std::vector<VertexSlots> slots_;
   ParallelLoop loop_;  // passes over the groups, on one thread per core
-  std::vector<std::vector<double>> value_parts_;  // normal-matrix values of loop_'s parts after the first
+  // The assembly's parts: part p adds into block columns
+  // [part_first_column_[p], part_first_column_[p + 1]), for the groups
+  // part_groups_[p] (empty lists for a single part: every group).
+  std::vector<int> part_first_column_;
+  std::vector<std::vector<int>> part_groups_;
   std::vector<int> column_starts_;
   std::unique_ptr<SparseCholesky> cholesky_;
   int size_ = 0;

@@ -33,6 +33,20 @@ void ParallelLoop::run(int n, const Body& body) {
     body(0, n, 0);
     return;
   }
+  dispatch(n, parts, body);
+}
+
+void ParallelLoop::run_parts(int parts, const std::function<void(int part)>& task) {
+  parts = std::clamp(parts, 1, parts_);
+  if (parts == 1) {
+    task(0);
+    return;
+  }
+  // One item per part: part p gets exactly item p.
+  dispatch(parts, parts, [&](int, int, int part) { task(part); });
+}
+
+void ParallelLoop::dispatch(int n, int parts, const Body& body) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     while (static_cast<int>(helpers_.size()) < parts - 1) {
@@ -41,6 +55,7 @@ void ParallelLoop::run(int n, const Body& body) {
     }
     body_ = &body;
     items_ = n;
+    parts_in_use_ = parts;
     pending_ = parts - 1;
     failure_ = nullptr;
     ++generation_;
@@ -63,7 +78,7 @@ void ParallelLoop::helper(int part) {
   unsigned seen = 0;
   for (;;) {
     const Body* body;
-    int n;
+    int n, parts;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       work_ready_.wait(lock, [&] { return stopping_ || generation_ != seen; });
@@ -71,10 +86,12 @@ void ParallelLoop::helper(int part) {
       seen = generation_;
       body = body_;
       n = items_;
+      parts = parts_in_use_;
     }
+    if (part >= parts) continue;  // this call uses fewer parts
     std::exception_ptr failure;
     try {
-      (*body)(part_begin(n, parts_, part), part_begin(n, parts_, part + 1), part);
+      (*body)(part_begin(n, parts, part), part_begin(n, parts, part + 1), part);
     } catch (...) {
       failure = std::current_exception();
     }

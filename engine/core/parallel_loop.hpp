@@ -32,10 +32,15 @@ public:
   // Runs body over [0, n) in parts_for(n) contiguous parts and returns when
   // all are done; an exception in any part is rethrown here.
   void run(int n, const Body& body);
+  // Runs task(part) for every part in [0, parts) (parts <= parts()), each
+  // on its own thread, and returns when all are done; errors as run().
+  void run_parts(int parts, const std::function<void(int part)>& task);
 
   static constexpr int kMaxThreads = 8;
 
 private:
+  // body over [0, n) in `parts` parts (1 < parts <= parts_).
+  void dispatch(int n, int parts, const Body& body);
   void helper(int part);
 
   int parts_ = 1;
@@ -45,6 +50,7 @@ private:
   std::condition_variable work_ready_, work_done_;
   const Body* body_ = nullptr;
   int items_ = 0;
+  int parts_in_use_ = 1;  // of the current call
   unsigned generation_ = 0;
   int pending_ = 0;
   bool stopping_ = false;
