@@ -89,15 +89,15 @@ Vector4 solve_phi(const Matrix4& r, Vector4 v) {
   return v;
 }
 
-// The Newton system's four blocks of equations, for residuals (r) and
-// right-hand sides alike:
-//   H dx - A^T dy - G^T dz = -d,   A dx = -p,   G dx - dw = -g,   Z dw + W dz = -c.
-struct KktVectors {
-  Eigen::VectorXd d, p, g, c;
-};
-
-// A direction (dx, dy, dw, dz).
-struct Direction {
+// Four vectors shaped like the unknowns: x (4 per group), y (one per balance
+// row), w and z (one per inequality row). As a direction: (dx, dy, dw, dz).
+// As the right-hand side or the residual of the Newton system, in the same
+// shape:
+//   H dx - A^T dy - G^T dz = -x,   A dx = -y,   G dx - dw = -w,   Z dw + W dz = -z
+// (x: the dual residual, y: the balance rows', w: the slacks', z: the
+// complementarity). One shape for both lets a solve overwrite its
+// right-hand side with its direction.
+struct NewtonVectors {
   Eigen::VectorXd x, y, w, z;
 };
 
@@ -440,14 +440,13 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   }
   const double dual_scale = 1.0 + largest_linear;
 
-  KktVectors r{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
-               Eigen::VectorXd(m_total)};
-  KktVectors error = r;
+  // The residuals at the iterate, a Newton direction, and the residual of
+  // that direction (turned into its correction by an in-place solve).
+  NewtonVectors r{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
+                  Eigen::VectorXd(m_total)};
+  NewtonVectors step_direction = r, error = r;
   std::vector<Matrix4> phi_factors(nv);
-  Direction step_direction{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
-                           Eigen::VectorXd(m_total)};
-  Direction correction = step_direction;
-  Eigen::VectorXd row_terms(m_total), rhs(size_);
+  Eigen::VectorXd rhs(size_);
   const int factorizations_before = cholesky_->factorizations();
 
   // Passes over the groups, split over loop_'s threads. A pass that adds
@@ -470,44 +469,48 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     for (int part = 1; part < parts; ++part) rows += row_parts[part - 1];
   };
 
-  // Solves the Newton system for right-hand sides `e` with the current
-  // factorisation and phi_factors: eliminating dz and dw row by row, then
-  // each group's dx, leaves the normal equations in dy.
-  auto solve_newton = [&](const KktVectors& e, Direction& out) {
-    row_terms = (e.c + z.cwiseProduct(e.g)).cwiseQuotient(w);
-    rhs = -e.p;
+  // Solves the Newton system in place: `v` holds the right-hand sides on
+  // entry and the direction on return. With the current factorisation and
+  // phi_factors: eliminating dz and dw row by row, then each group's dx,
+  // leaves the normal equations in dy.
+  auto solve_newton = [&](NewtonVectors& v) {
+    rhs = -v.y;
     for_groups_into(rhs, [&](int k, Eigen::VectorXd& rows) {
-      const Vector4 reduced = -e.d.segment<4>(4 * k) - rows_of(k).transpose() * ineq(row_terms, k);
+      // Per inequality row (c + Z g) / W, combined as G^T (...).
+      const Vector4 reduced =
+          -v.x.segment<4>(4 * k) -
+          rows_of(k).transpose() *
+              (ineq(v.z, k) + ineq(z, k).cwiseProduct(ineq(v.w, k))).cwiseQuotient(ineq(w, k));
       const Vector4 t = solve_phi(phi_factors[k], reduced);
-      out.x.segment<4>(4 * k) = t;  // completed below with the A^T dy part
+      v.x.segment<4>(4 * k) = t;  // dx, completed below with the A^T dy part
       add_effect<D>(problem.groups[k], -t, rows);
     });
-    cholesky_->solve(rhs, out.y);
+    cholesky_->solve(rhs, v.y);
     for_groups([&](int k) {
-      out.x.segment<4>(4 * k) += solve_phi(phi_factors[k], reaction<D>(problem.groups[k], out.y));
-      ineq(out.w, k) = rows_of(k) * out.x.segment<4>(4 * k) + ineq(e.g, k);
+      v.x.segment<4>(4 * k) += solve_phi(phi_factors[k], reaction<D>(problem.groups[k], v.y));
+      ineq(v.w, k) = rows_of(k) * v.x.segment<4>(4 * k) + ineq(v.w, k);  // dw = G dx + g
     });
-    out.z = -(e.c + z.cwiseProduct(out.w)).cwiseQuotient(w);
+    v.z = -(v.z + z.cwiseProduct(v.w)).cwiseQuotient(w);
   };
   // How far `dir` is from solving the Newton system for `e`: the residual of
   // each block, computed from the problem's data (not from phi_factors), so
   // that solving for it corrects the rounding of the elimination.
-  auto newton_residual = [&](const KktVectors& e, const Direction& dir, KktVectors& out) {
-    out.p = e.p;
-    for_groups_into(out.p, [&](int k, Eigen::VectorXd& rows) {
+  auto newton_residual = [&](const NewtonVectors& e, const NewtonVectors& dir, NewtonVectors& out) {
+    out.y = e.y;
+    for_groups_into(out.y, [&](int k, Eigen::VectorXd& rows) {
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 dxk = dir.x.segment<4>(4 * k);
       add_effect<D>(v, dxk, rows);
-      out.d.segment<4>(4 * k) = e.d.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
+      out.x.segment<4>(4 * k) = e.x.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
                                 reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
-      ineq(out.g, k) = ineq(e.g, k) + rules.rows * dxk - ineq(dir.w, k);
+      ineq(out.w, k) = ineq(e.w, k) + rules.rows * dxk - ineq(dir.w, k);
     });
-    out.c = e.c + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
+    out.z = e.z + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
   };
-  auto largest = [](const KktVectors& v) {
+  auto largest = [](const NewtonVectors& v) {
     double m = 0.0;
-    for (const Eigen::VectorXd* part : {&v.d, &v.p, &v.g, &v.c}) {
+    for (const Eigen::VectorXd* part : {&v.x, &v.y, &v.w, &v.z}) {
       if (part->size()) m = std::max(m, part->lpNorm<Eigen::Infinity>());
     }
     return m;
@@ -522,9 +525,10 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   constexpr int kRefinements = 3;
   constexpr double kRefineBelow = 1e-4;
   constexpr double kNoRefinement = std::numeric_limits<double>::infinity();
-  auto newton_direction = [&](const KktVectors& e, Direction& out, double iterate_error) {
+  auto newton_direction = [&](const NewtonVectors& e, NewtonVectors& out, double iterate_error) {
     const auto start = Clock::now();
-    solve_newton(e, out);
+    out = e;  // same sizes: no allocation
+    solve_newton(out);
     const double target = std::max(1e-14 * largest(e), 1e-2 * iterate_error);
     double previous = std::numeric_limits<double>::infinity();
     for (int refinement = 0; refinement < kRefinements && iterate_error <= kRefineBelow; ++refinement) {
@@ -532,11 +536,11 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       const double size = largest(error);
       if (size <= target || size >= 0.5 * previous) break;
       previous = size;
-      solve_newton(error, correction);
-      out.x += correction.x;
-      out.y += correction.y;
-      out.w += correction.w;
-      out.z += correction.z;
+      solve_newton(error);  // now the correction
+      out.x += error.x;
+      out.y += error.y;
+      out.w += error.w;
+      out.z += error.z;
     }
     info.solve_seconds += seconds_since(start);
   };
@@ -565,24 +569,24 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   for (int iteration = 0;; ++iteration) {
     auto start = Clock::now();
     // Residuals.
-    r.p = -b;
-    for_groups_into(r.p, [&](int k, Eigen::VectorXd& rows) {
+    r.y = -b;
+    for_groups_into(r.y, [&](int k, Eigen::VectorXd& rows) {
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
       add_effect<D>(v, xk, rows);
-      r.d.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
+      r.x.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
                               reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
-      ineq(r.g, k) = rules.rows * xk - ineq(w, k);
-      add_bound(k, ineq(r.g, k));
+      ineq(r.w, k) = rules.rows * xk - ineq(w, k);
+      add_bound(k, ineq(r.w, k));
     });
     // The total gap, not its mean, bounds the objective's error.
     const double duality_gap = w.dot(z);
     const double mu = m_total > 0 ? duality_gap / m_total : 0.0;
     info.iterations = iteration;
-    info.primal_residual = std::max(r.p.size() ? r.p.lpNorm<Eigen::Infinity>() : 0.0,
-                                    r.g.size() ? r.g.lpNorm<Eigen::Infinity>() : 0.0);
-    info.dual_residual = r.d.size() ? r.d.lpNorm<Eigen::Infinity>() : 0.0;
+    info.primal_residual = std::max(r.y.size() ? r.y.lpNorm<Eigen::Infinity>() : 0.0,
+                                    r.w.size() ? r.w.lpNorm<Eigen::Infinity>() : 0.0);
+    info.dual_residual = r.x.size() ? r.x.lpNorm<Eigen::Infinity>() : 0.0;
     info.complementarity = mu;
     if (!std::isfinite(mu) || !std::isfinite(info.primal_residual) ||
         !std::isfinite(info.dual_residual)) {
@@ -641,7 +645,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     // and the second-order term (and, at a cold start, the heuristic
     // starting point), so it is not refined: the corrector, the step taken,
     // is.
-    r.c = w.cwiseProduct(z);
+    r.z = w.cwiseProduct(z);
     newton_direction(r, step_direction, kNoRefinement);
     if (starting) {
       // Mehrotra's starting point (Nocedal & Wright, 16.60 for QPs): the
@@ -662,7 +666,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
                              static_cast<double>(m_total);
     const double centering = std::pow(mu_affine / mu, 3);
     // Corrector: second-order term and centring, same factorisation.
-    r.c = w.cwiseProduct(z) + step_direction.w.cwiseProduct(step_direction.z) -
+    r.z = w.cwiseProduct(z) + step_direction.w.cwiseProduct(step_direction.z) -
           Eigen::VectorXd::Constant(m_total, centering * mu);
     newton_direction(r, step_direction, error_now);
     // Primal (x, w) and dual (y, z) steps of their own lengths, as LP
