@@ -97,6 +97,27 @@ struct ForceGroup {
   Eigen::Matrix<double, 6, 4> on_a = Eigen::Matrix<double, 6, 4>::Zero();
 };
 
+// add_effect and reaction of EquilibriumProblem for D = block_rows balance
+// rows known at compile time (the solver's loops run them millions of
+// times).
+template <int D>
+void add_group_effect(const ForceGroup& v, const Eigen::Vector4d& forces, Eigen::VectorXd& rows) {
+  if (v.row_a >= 0) rows.segment<D>(v.row_a).noalias() += v.on_a.topRows<D>() * forces;
+  if (v.row_b >= 0) rows.segment<D>(v.row_b).noalias() += v.on_b.topRows<D>() * forces;
+}
+
+template <int D>
+Eigen::Vector4d group_reaction(const ForceGroup& v, const Eigen::VectorXd& multipliers) {
+  Eigen::Vector4d out = Eigen::Vector4d::Zero();
+  if (v.row_a >= 0) {
+    out.noalias() += v.on_a.topRows<D>().transpose() * multipliers.segment<D>(v.row_a);
+  }
+  if (v.row_b >= 0) {
+    out.noalias() += v.on_b.topRows<D>().transpose() * multipliers.segment<D>(v.row_b);
+  }
+  return out;
+}
+
 struct EquilibriumProblem {
   // Contact vertices first (in interface order), then cables, then slacks.
   std::vector<ForceGroup> groups;
@@ -124,17 +145,12 @@ struct EquilibriumProblem {
   // rows += A_k forces: the effect of group k's unknowns on the balance rows.
   void add_effect(const ForceGroup& v, const Eigen::Vector4d& forces,
                   Eigen::VectorXd& rows) const {
-    const int d = block_rows;
-    if (v.row_a >= 0) rows.segment(v.row_a, d).noalias() += v.on_a.topRows(d) * forces;
-    if (v.row_b >= 0) rows.segment(v.row_b, d).noalias() += v.on_b.topRows(d) * forces;
+    if (block_rows == 3) add_group_effect<3>(v, forces, rows);
+    else add_group_effect<6>(v, forces, rows);
   }
   // A_k^T multipliers: what the balance rows' multipliers say to group k.
   Eigen::Vector4d reaction(const ForceGroup& v, const Eigen::VectorXd& multipliers) const {
-    const int d = block_rows;
-    Eigen::Vector4d out = Eigen::Vector4d::Zero();
-    if (v.row_a >= 0) out.noalias() += v.on_a.topRows(d).transpose() * multipliers.segment(v.row_a, d);
-    if (v.row_b >= 0) out.noalias() += v.on_b.topRows(d).transpose() * multipliers.segment(v.row_b, d);
-    return out;
+    return block_rows == 3 ? group_reaction<3>(v, multipliers) : group_reaction<6>(v, multipliers);
   }
   // Where each group's inequality rows start in the stacked inequalities
   // (the solver's slacks w and multipliers z); one more entry: the total.

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <utility>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "analysis/sparse_cholesky.hpp"
 #include "core/clock.hpp"
@@ -27,13 +27,12 @@ constexpr int kMaxGroupRows = 2 + 1024;
 // inaccurate tolerance, after which the solve stops; and at any accuracy,
 // after which more iterations are not going to help.
 constexpr int kStallIterations = 8;
+constexpr int kHopelessIterations = 20;
 // The least slack or multiplier of the starting point, in scaled units (a
 // mean block weight). Measured: N & W's 1 takes 25 iterations on a
 // 10,027-block vault, 0.1 takes 22 (the robustness sweep 2 % fewer); 3
 // takes 36.
 constexpr double kStartFloor = 0.1;
-constexpr int kHopelessIterations = 20;
-
 
 // Largest step in (0, 1] keeping v + step * dv >= 0.
 double step_to_boundary(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
@@ -100,23 +99,6 @@ Vector4 solve_phi(const Matrix4& r, Vector4 v) {
 struct NewtonVectors {
   Eigen::VectorXd x, y, w, z;
 };
-
-// A group's effect on its bodies' D balance rows (D = 6, or 3 for planar
-// problems), as EquilibriumProblem::add_effect and reaction but with sizes
-// known at compile time: the solver's loops run these a million times.
-template <int D>
-void add_effect(const ForceGroup& v, const Vector4& forces, Eigen::VectorXd& rows) {
-  if (v.row_a >= 0) rows.segment<D>(v.row_a).noalias() += v.on_a.topRows<D>() * forces;
-  if (v.row_b >= 0) rows.segment<D>(v.row_b).noalias() += v.on_b.topRows<D>() * forces;
-}
-
-template <int D>
-Vector4 reaction(const ForceGroup& v, const Eigen::VectorXd& multipliers) {
-  Vector4 out = Vector4::Zero();
-  if (v.row_a >= 0) out.noalias() += v.on_a.topRows<D>().transpose() * multipliers.segment<D>(v.row_a);
-  if (v.row_b >= 0) out.noalias() += v.on_b.topRows<D>().transpose() * multipliers.segment<D>(v.row_b);
-  return out;
-}
 
 // A R^-1 for a D x 4 matrix A: A Phi^-1 A^T = (A R^-1)(A R^-1)^T.
 template <int D>
@@ -369,9 +351,7 @@ Eigen::VectorXd EquilibriumSolver::multiplier_response(const Eigen::VectorXd& de
 
 Eigen::Vector4d EquilibriumSolver::group_response(const EquilibriumProblem& problem, int group,
                                                   const Eigen::VectorXd& multipliers) const {
-  const ForceGroup& v = problem.groups[group];
-  return solve_phi(response_phi_[group],
-                   block_rows_ == 3 ? reaction<3>(v, multipliers) : reaction<6>(v, multipliers));
+  return solve_phi(response_phi_[group], problem.reaction(problem.groups[group], multipliers));
 }
 
 InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
@@ -483,11 +463,11 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
               (ineq(v.z, k) + ineq(z, k).cwiseProduct(ineq(v.w, k))).cwiseQuotient(ineq(w, k));
       const Vector4 t = solve_phi(phi_factors[k], reduced);
       v.x.segment<4>(4 * k) = t;  // dx, completed below with the A^T dy part
-      add_effect<D>(problem.groups[k], -t, rows);
+      add_group_effect<D>(problem.groups[k], -t, rows);
     });
     cholesky_->solve(rhs, v.y);
     for_groups([&](int k) {
-      v.x.segment<4>(4 * k) += solve_phi(phi_factors[k], reaction<D>(problem.groups[k], v.y));
+      v.x.segment<4>(4 * k) += solve_phi(phi_factors[k], group_reaction<D>(problem.groups[k], v.y));
       ineq(v.w, k) = rows_of(k) * v.x.segment<4>(4 * k) + ineq(v.w, k);  // dw = G dx + g
     });
     v.z = -(v.z + z.cwiseProduct(v.w)).cwiseQuotient(w);
@@ -501,9 +481,9 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 dxk = dir.x.segment<4>(4 * k);
-      add_effect<D>(v, dxk, rows);
+      add_group_effect<D>(v, dxk, rows);
       out.x.segment<4>(4 * k) = e.x.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
-                                reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
+                                group_reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
       ineq(out.w, k) = ineq(e.w, k) + rules.rows * dxk - ineq(dir.w, k);
     });
     out.z = e.z + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
@@ -574,9 +554,9 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       const ForceGroup& v = problem.groups[k];
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
-      add_effect<D>(v, xk, rows);
+      add_group_effect<D>(v, xk, rows);
       r.x.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
-                              reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
+                              group_reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
       ineq(r.w, k) = rules.rows * xk - ineq(w, k);
       add_bound(k, ineq(r.w, k));
     });
