@@ -41,12 +41,6 @@ Structure block_on_incline(double angle, double turn = 0.0) {
   return s;
 }
 
-AnalysisSettings with_friction(double mu) {
-  AnalysisSettings settings;
-  settings.problem.friction = mu;
-  return settings;
-}
-
 }  // namespace
 
 TEST(Equilibrium, BlockOnGroundCarriesItsWeightEvenly) {

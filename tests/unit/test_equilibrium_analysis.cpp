@@ -24,12 +24,6 @@ Structure pushed_slab(double push, double press = 0.0, double press_at = 0.0) {
   return s;
 }
 
-AnalysisSettings with_friction(double mu) {
-  AnalysisSettings settings;
-  settings.problem.friction = mu;
-  return settings;
-}
-
 }  // namespace
 
 TEST(EquilibriumAnalysis, NewLoadsKeepTheSymbolicAnalysis) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
 #include "structure/structure.hpp"
@@ -23,6 +24,13 @@ inline std::string error_of(const std::function<void()>& action) {
     return e.what();
   }
   return "(no error)";
+}
+
+// Analysis settings with friction coefficient mu, the rest at defaults.
+inline ashlar::AnalysisSettings with_friction(double mu) {
+  ashlar::AnalysisSettings settings;
+  settings.problem.friction = mu;
+  return settings;
 }
 
 // A shared axis-aligned box block of default density, for building structures.
