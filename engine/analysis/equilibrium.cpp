@@ -55,6 +55,7 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   EquilibriumAnalysis analysis(structure, settings);
   if (warm_start) analysis.set_starting_point(warm_start->solution);
   EquilibriumResult result = analysis.solve(warm_start != nullptr);
+  result.solution = analysis.take_solution();  // moved: the object ends here
   if (problem_out) *problem_out = analysis.take_problem();
   return result;
 }

@@ -100,7 +100,7 @@ struct EquilibriumResult {
   std::vector<double> block_tension;           // N: tension over each block's interfaces
   std::vector<CableForces> cables;             // parallel to Structure::cables()
   std::vector<Vec3> virtual_torques;           // N m per block, about its centroid
-  InteriorPointSolution solution;              // scaled; for warm starts
+  InteriorPointSolution solution;              // scaled; for warm starts (filled by analyze_equilibrium)
 };
 
 // Runs the analysis. Throws InvalidArgument for bad settings; every outcome

@@ -39,7 +39,6 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   if (settings_.verdict_only) solver_settings.certify_below = settings_.stable_tolerance;
   const InteriorPointInfo info = solver_->solve(problem_, solver_settings, solution_, warm_start);
   last_status_ = info.status;
-  result.solution = solution_;
   result.status = info.status;
   result.iterations = info.iterations;
   result.factorizations = info.factorizations;

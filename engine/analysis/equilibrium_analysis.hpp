@@ -36,6 +36,8 @@ public:
   // structure); ignored by the solver when its sizes do not fit.
   void set_starting_point(const InteriorPointSolution& solution) { solution_ = solution; }
   // Solves the current QP: cold, or from the last solution when warm_start.
+  // The result's `solution` stays empty: the object keeps it (solution(),
+  // take_solution()).
   EquilibriumResult solve(bool warm_start = false);
 
   const EquilibriumProblem& problem() const { return problem_; }
@@ -52,8 +54,10 @@ public:
   bool prepare_response();
   const EquilibriumSolver& solver() const { return *solver_; }
 
-  // Moves the QP out (the object then needs an update() before solving).
+  // Move the QP or the last solution out, for a result that outlives the
+  // object (it then needs an update() before solving again).
   EquilibriumProblem take_problem() { return std::move(problem_); }
+  InteriorPointSolution take_solution() { return std::move(solution_); }
 
 private:
   const Structure* structure_;

@@ -34,9 +34,10 @@ Function* loaded_function(const char* library, const char* name) {
 // On a 100,052-block vault (5.4e10 flops per factorisation) two OpenBLAS
 // threads cut the factorisations from 46.6 s to 37.3 s, but the idle one
 // yielded for 32 s of system time (40 % of user time), so one thread there
-// too. The solver's own loops are where two cores help (ParallelLoop). Set on every calling
-// thread (max-active-levels is a per-thread OpenMP setting), so that a
-// user never needs OMP_* or OPENBLAS_* variables for speed.
+// too. The solver's own loops are where two cores help (ParallelLoop). Set
+// on every calling thread (max-active-levels is a per-thread OpenMP
+// setting), so that a user never needs OMP_* or OPENBLAS_* variables for
+// speed.
 void use_one_thread_in_factorisations() {
   using SetInt = void(int);
   static SetInt* const set_max_active_levels =
