@@ -153,4 +153,47 @@ function support.push_laterally(s, factor)
   return s
 end
 
+-- Largest force and moment imbalance of the free blocks (N, N m) under their
+-- weights and the result's vertex forces (statics alone, no point loads),
+-- and the largest vertex tension (N).
+function support.statics(s, r)
+  local force, moment = {}, {}
+  for i = 1, #s do
+    if not s:is_support(i) then
+      local b = s:block(i)
+      force[i] = { 0, 0, -9.81 * b:mass() }
+      moment[i] = { 0, 0, 0 }
+    end
+  end
+  local function add(i, f, at, sign)
+    if not force[i] then return end
+    local c = s:block(i):centroid()
+    local arm = { at[1] - c[1], at[2] - c[2], at[3] - c[3] }
+    for k = 1, 3 do force[i][k] = force[i][k] + sign * f[k] end
+    local m = { arm[2] * f[3] - arm[3] * f[2], arm[3] * f[1] - arm[1] * f[3], arm[1] * f[2] - arm[2] * f[1] }
+    for k = 1, 3 do moment[i][k] = moment[i][k] + sign * m[k] end
+  end
+  local tension = 0
+  local contacts = s:interfaces()
+  for _, v in ipairs(r.vertices) do
+    local f = r.interfaces[v.interface]
+    local contact = contacts[v.interface]
+    tension = math.max(tension, v.tension)
+    local n, u, w = contact.normal, contact.u, contact.v
+    local normal = v.compression - v.tension
+    local vec = {}
+    for k = 1, 3 do vec[k] = normal * n[k] + v.friction_u * u[k] + v.friction_v * w[k] end
+    add(f.b, vec, v.position, 1)
+    add(f.a, vec, v.position, -1)
+  end
+  local worst_force, worst_moment = 0, 0
+  for i in pairs(force) do
+    for k = 1, 3 do
+      worst_force = math.max(worst_force, math.abs(force[i][k]))
+      worst_moment = math.max(worst_moment, math.abs(moment[i][k]))
+    end
+  end
+  return worst_force, worst_moment, tension
+end
+
 return support

@@ -5,48 +5,9 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
-local G = 9.81
+local support = require "spec_support"
 
--- Largest force and moment imbalance of the free blocks (N, N m) under the
--- result's interface resultants, and the largest interface tension (N).
-local function statics(s, r)
-  local force, moment = {}, {}
-  for i = 1, #s do
-    if not s:is_support(i) then
-      local b = s:block(i)
-      force[i] = { 0, 0, -G * b:mass() }
-      moment[i] = { 0, 0, 0 }
-    end
-  end
-  local function add(i, f, at, sign)
-    if not force[i] then return end
-    local c = s:block(i):centroid()
-    local arm = { at[1] - c[1], at[2] - c[2], at[3] - c[3] }
-    for k = 1, 3 do force[i][k] = force[i][k] + sign * f[k] end
-    local m = { arm[2] * f[3] - arm[3] * f[2], arm[3] * f[1] - arm[1] * f[3], arm[1] * f[2] - arm[2] * f[1] }
-    for k = 1, 3 do moment[i][k] = moment[i][k] + sign * m[k] end
-  end
-  local tension = 0
-  for _, v in ipairs(r.vertices) do
-    local f = r.interfaces[v.interface]
-    local contact = s:interfaces()[v.interface]
-    tension = math.max(tension, v.tension)
-    local n, u, w = contact.normal, contact.u, contact.v
-    local normal = v.compression - v.tension
-    local vec = {}
-    for k = 1, 3 do vec[k] = normal * n[k] + v.friction_u * u[k] + v.friction_v * w[k] end
-    add(f.b, vec, v.position, 1)
-    add(f.a, vec, v.position, -1)
-  end
-  local worst_force, worst_moment = 0, 0
-  for i in pairs(force) do
-    for k = 1, 3 do
-      worst_force = math.max(worst_force, math.abs(force[i][k]))
-      worst_moment = math.max(worst_moment, math.abs(moment[i][k]))
-    end
-  end
-  return worst_force, worst_moment, tension
-end
+local G = 9.81
 
 describe("ashlar.analyze with verdict_only", function()
   local cases = {
@@ -75,7 +36,7 @@ describe("ashlar.analyze with verdict_only", function()
       for i = 1, #s do
         if not s:is_support(i) then weight = math.max(weight, G * s:block(i):mass()) end
       end
-      local force, moment, tension = statics(s, r)
+      local force, moment, tension = support.statics(s, r)
       -- stable_tolerance (1e-6) of the largest block weight, and its moment
       -- over a metre-sized block.
       assert(force <= 1e-6 * weight, ("force imbalance %g N of a block weight %g N"):format(force, weight))
