@@ -4,9 +4,13 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <array>
 #include <mutex>
+#include <thread>
+#include <utility>
 
 #include "core/error.hpp"
+#include "core/parallel_loop.hpp"
 
 namespace ashlar {
 
@@ -24,8 +28,8 @@ Function* loaded_function(const char* library, const char* name) {
   return reinterpret_cast<Function*>(symbol);
 }
 
-// One thread for the factorisation and its BLAS, chosen by measurement on a
-// 2-core machine (22 factorisations of a 10,051-block wall's 60,300-row
+// One thread for each factorisation and its BLAS, chosen by measurement on
+// a 2-core machine (22 factorisations of a 10,051-block wall's 60,300-row
 // normal matrix): one thread each, 3.13 s of factorisation and 0.25 s of
 // system time for the whole run; CHOLMOD's OpenMP loops on 2 threads 3.39 s
 // (Debian builds them with num_threads(4): on 2 cores, 10-17 s and as much
@@ -34,8 +38,10 @@ Function* loaded_function(const char* library, const char* name) {
 // On a 100,052-block vault (5.4e10 flops per factorisation) two OpenBLAS
 // threads cut the factorisations from 46.6 s to 37.3 s, but the idle one
 // yielded for 32 s of system time (40 % of user time), so one thread there
-// too. The solver's own loops are where two cores help (ParallelLoop). Set
-// on every calling thread (max-active-levels is a per-thread OpenMP
+// too. Two cores help where the work itself is split: the solver's loops
+// (ParallelLoop) and a large pattern's two halves, factored side by side
+// (SparseCholesky's split, 1.7x on that wall's factorisations). Set on
+// every calling thread (max-active-levels is a per-thread OpenMP
 // setting), so that a user never needs OMP_* or OPENBLAS_* variables for
 // speed.
 void use_one_thread_in_factorisations() {
@@ -54,61 +60,424 @@ void use_one_thread_in_factorisations() {
   if (set_max_active_levels) set_max_active_levels(0);
 }
 
+// One CHOLMOD matrix (the upper or the lower triangle) with its analysis
+// and factor.
+class CholmodSystem {
+public:
+  enum class Triangle { upper = 1, lower = -1 };  // CHOLMOD's stype
+
+  CholmodSystem(int n, const int* column_starts, const int* row_indices, Triangle stored) {
+    cholmod_start(&common_);
+    common_.print = 0;  // statuses are read, not printed
+    common_.error_handler = nullptr;
+    common_.supernodal = CHOLMOD_SUPERNODAL;
+    const size_t nonzeros = static_cast<size_t>(column_starts[n]);
+    matrix_ = cholmod_allocate_sparse(n, n, nonzeros, /*sorted=*/1, /*packed=*/1, static_cast<int>(stored),
+                                      CHOLMOD_REAL, &common_);
+    if (!matrix_) {
+      cholmod_finish(&common_);
+      throw Error("CHOLMOD could not allocate the normal-equation matrix");
+    }
+    std::copy(column_starts, column_starts + n + 1, static_cast<int*>(matrix_->p));
+    std::copy(row_indices, row_indices + nonzeros, static_cast<int*>(matrix_->i));
+    std::fill_n(values(), nonzeros, 0.0);
+  }
+  ~CholmodSystem() {
+    for (cholmod_dense** dense : {&solution_, &workspace_y_, &workspace_e_}) {
+      if (*dense) cholmod_free_dense(dense, &common_);
+    }
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_free_sparse(&matrix_, &common_);
+    cholmod_finish(&common_);
+  }
+  CholmodSystem(const CholmodSystem&) = delete;
+  CholmodSystem& operator=(const CholmodSystem&) = delete;
+
+  // Fill-reducing ordering of CHOLMOD's choice.
+  void analyze() {
+    factor_ = cholmod_analyze(matrix_, &common_);
+    if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
+  }
+  // The rows' own order (the caller has permuted them), kept as given: no
+  // postordering. A lower triangle in natural order is the one form that
+  // CHOLMOD factors without first copying it transposed and permuted.
+  void analyze_as_ordered() {
+    common_.nmethods = 1;
+    common_.method[0].ordering = CHOLMOD_NATURAL;
+    common_.postorder = 0;
+    analyze();
+  }
+
+  int rows() const { return static_cast<int>(matrix_->nrow); }
+  double* values() { return static_cast<double*>(matrix_->x); }
+  const cholmod_factor& factor() const { return *factor_; }
+  double factor_nonzeros() const { return common_.lnz; }
+
+  bool factorize() {
+    use_one_thread_in_factorisations();
+    const int ok = cholmod_factorize(matrix_, factor_, &common_);
+    return ok && common_.status == CHOLMOD_OK && factor_->minor == factor_->n;
+  }
+
+  // Solves `system` (CHOLMOD_A, CHOLMOD_L, CHOLMOD_Lt, ...) for the
+  // right-hand side rhs[0 .. rows()); the solution stays valid until the
+  // next solve. cholmod_solve2 keeps its solution and workspace between
+  // calls: a large model's solves then allocate (and page-fault) nothing.
+  const double* solve(int system, const double* rhs) {
+    cholmod_dense b;
+    b.nrow = static_cast<size_t>(rows());
+    b.ncol = 1;
+    b.nzmax = b.nrow;
+    b.d = b.nrow;
+    b.x = const_cast<double*>(rhs);
+    b.z = nullptr;
+    b.xtype = CHOLMOD_REAL;
+    b.dtype = CHOLMOD_DOUBLE;
+    if (!cholmod_solve2(system, factor_, &b, nullptr, &solution_, nullptr, &workspace_y_, &workspace_e_,
+                        &common_)) {
+      throw Error("CHOLMOD solve failed");
+    }
+    return static_cast<const double*>(solution_->x);
+  }
+
+private:
+  cholmod_common common_;
+  cholmod_sparse* matrix_ = nullptr;
+  cholmod_factor* factor_ = nullptr;
+  cholmod_dense* solution_ = nullptr;
+  cholmod_dense* workspace_y_ = nullptr;
+  cholmod_dense* workspace_e_ = nullptr;
+};
+
+// Runs use(pattern, common) on the upper-triangle pattern as a CHOLMOD
+// pattern-only matrix; returns false if CHOLMOD cannot allocate it or use
+// returns false.
+template <typename Use>
+bool with_cholmod_pattern(int n, const int* column_starts, const int* row_indices, Use&& use) {
+  cholmod_common common;
+  cholmod_start(&common);
+  common.print = 0;
+  common.error_handler = nullptr;
+  bool ok = false;
+  cholmod_sparse* pattern = cholmod_allocate_sparse(n, n, column_starts[n], /*sorted=*/1, /*packed=*/1,
+                                                    /*stype=upper*/ 1, CHOLMOD_PATTERN, &common);
+  if (pattern) {
+    std::copy(column_starts, column_starts + n + 1, static_cast<int*>(pattern->p));
+    std::copy(row_indices, row_indices + column_starts[n], static_cast<int*>(pattern->i));
+    ok = use(pattern, &common);
+    cholmod_free_sparse(&pattern, &common);
+  }
+  cholmod_finish(&common);
+  return ok;
+}
+
+// The rows of the pattern's graph that separate it into two parts (METIS
+// through CHOLMOD): part[i] is 0 or 1, or 2 for the separator. Empty when
+// CHOLMOD cannot bisect.
+std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices) {
+  std::vector<int> part(n);
+  const bool ok = with_cholmod_pattern(n, column_starts.data(), row_indices.data(),
+                                       [&](cholmod_sparse* pattern, cholmod_common* common) {
+    // compress: rows of one body share their pattern and stay together.
+    return cholmod_bisect(pattern, nullptr, 0, /*compress=*/1, part.data(), common) >= 0;
+  });
+  if (!ok) part.clear();
+  return part;
+}
+
+// A fill-reducing order of the pattern's rows (order[k]: the row placed
+// k-th) that places the rows from `first_last` on after all others
+// (CAMD: minimum degree under that constraint). Empty if CHOLMOD fails.
+std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_starts,
+                                      const std::vector<int>& row_indices, int first_last) {
+  std::vector<int> constraint(n), order(n);
+  for (int i = 0; i < n; ++i) constraint[i] = i < first_last ? 0 : 1;
+  const bool ok = with_cholmod_pattern(n, column_starts.data(), row_indices.data(),
+                                       [&](cholmod_sparse* pattern, cholmod_common* common) {
+    return cholmod_camd(pattern, nullptr, 0, constraint.data(), order.data(), common) != 0;
+  });
+  if (!ok) return {};
+  for (int k = first_last; k < n; ++k) {
+    if (order[k] < first_last) return {};
+  }
+  return order;
+}
+
+// A pattern in compressed columns (rows ascending in each column) with,
+// for each entry, the index of the value it takes in another pattern.
+struct SourcedPattern {
+  std::vector<int> column_starts, row_indices, sources;
+};
+
+// Entry {column, row, source} triples into compressed columns: bucketed by
+// column, then each column sorted by row.
+SourcedPattern compress_columns(int n, const std::vector<std::array<int, 3>>& entries) {
+  SourcedPattern out;
+  out.column_starts.assign(n + 1, 0);
+  for (const auto& entry : entries) ++out.column_starts[entry[0] + 1];
+  for (int j = 0; j < n; ++j) out.column_starts[j + 1] += out.column_starts[j];
+  std::vector<std::pair<int, int>> placed(entries.size());  // (row, source)
+  std::vector<int> next(out.column_starts.begin(), out.column_starts.end() - 1);
+  for (const auto& [column, row, source] : entries) placed[next[column]++] = {row, source};
+  out.row_indices.resize(entries.size());
+  out.sources.resize(entries.size());
+  for (int j = 0; j < n; ++j) {
+    std::sort(placed.begin() + out.column_starts[j], placed.begin() + out.column_starts[j + 1]);
+  }
+  for (size_t k = 0; k < placed.size(); ++k) {
+    out.row_indices[k] = placed[k].first;
+    out.sources[k] = placed[k].second;
+  }
+  return out;
+}
+
 }  // namespace
 
-struct SparseCholesky::Impl {
-  cholmod_common common;
-  cholmod_sparse* matrix = nullptr;
-  cholmod_factor* factor = nullptr;
-  cholmod_dense* solution = nullptr;  // cholmod_solve2's, kept between solves
-  cholmod_dense* workspace_y = nullptr;
-  cholmod_dense* workspace_e = nullptr;
+// LAPACK (OpenBLAS's): the product of a triangular matrix with its
+// transpose, and dense Cholesky factorisation and solve, all in place.
+extern "C" {
+void dlauum_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
+void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda, double* b,
+             const int* ldb, int* info, size_t uplo_length);
+}
 
-  Impl() {
-    cholmod_start(&common);
-    common.print = 0;  // statuses are read, not printed
-    common.error_handler = nullptr;
+// One side of the split: the rows of part A (or B) followed by the
+// separator's, factored with the separator last.
+struct SplitSide {
+  std::unique_ptr<CholmodSystem> system;
+  int own = 0;                      // rows of this part; separator rows follow
+  std::vector<int> own_rows;        // the whole matrix's row of each own row
+  std::vector<int> sources;         // the whole matrix's value behind each of system's values
+  std::vector<int> order;           // local row (own rows, then separator) at factor row k
+  std::vector<int> separator_slot;  // separator position of the factor's trailing row own + k
+  // L_SS reversed, U = J L_SS J (J: the reversal), which is upper
+  // triangular: LAPACK forms U U^T (a third of a general product's flops)
+  // and L_SS L_SS^T = J U U^T J.
+  Eigen::MatrixXd reversed_trailing;
+  Eigen::MatrixXd product;               // U U^T (upper triangle)
+  Eigen::VectorXd permuted, back;        // solve buffers (factor order)
+  Eigen::VectorXd separator_part;        // this side's M_SA M_AA^-1 b_A, separator order
+
+  int separator_rows() const { return static_cast<int>(separator_slot.size()); }
+
+  // Copies this side's values, factors, and forms its Schur share T.
+  bool factorize(const double* whole_values) {
+    double* values = system->values();
+    for (size_t k = 0; k < sources.size(); ++k) values[k] = whole_values[sources[k]];
+    if (!system->factorize()) return false;
+    extract_trailing_block();
+    product = reversed_trailing;
+    const int s = separator_rows();
+    int info = 0;
+    if (s > 0) dlauum_("U", &s, product.data(), &s, &info, 1);
+    return info == 0;
   }
-  ~Impl() {
-    for (cholmod_dense** dense : {&solution, &workspace_y, &workspace_e}) {
-      if (*dense) cholmod_free_dense(dense, &common);
+
+  // Adds this side's T = L_SS L_SS^T to the lower triangle of `schur`
+  // (separator order).
+  void add_schur_share(Eigen::MatrixXd& schur) const {
+    const int s = separator_rows();
+    for (int b = 0; b < s; ++b) {
+      const int column_slot = separator_slot[s - 1 - b];
+      for (int a = 0; a <= b; ++a) {
+        const int row_slot = separator_slot[s - 1 - a];
+        schur(std::max(row_slot, column_slot), std::min(row_slot, column_slot)) += product(a, b);
+      }
     }
-    if (factor) cholmod_free_factor(&factor, &common);
-    if (matrix) cholmod_free_sparse(&matrix, &common);
-    cholmod_finish(&common);
+  }
+
+  // L_SS from the supernodal factor, stored reversed.
+  void extract_trailing_block() {
+    const cholmod_factor& f = system->factor();
+    const int* super = static_cast<const int*>(f.super);
+    const int* pi = static_cast<const int*>(f.pi);
+    const int* px = static_cast<const int*>(f.px);
+    const int* row_of = static_cast<const int*>(f.s);
+    const double* x = static_cast<const double*>(f.x);
+    const int s = separator_rows();
+    const int last_row = own + s - 1;
+    reversed_trailing.setZero(s, s);
+    for (size_t k = 0; k < f.nsuper; ++k) {
+      const int first = super[k], last = super[k + 1];
+      if (last <= own) continue;
+      const int height = pi[k + 1] - pi[k];
+      for (int j = std::max(first, own); j < last; ++j) {
+        const double* column = x + px[k] + static_cast<ptrdiff_t>(j - first) * height;
+        for (int r = j - first; r < height; ++r) {
+          reversed_trailing(last_row - row_of[pi[k] + r], last_row - j) = column[r];
+        }
+      }
+    }
+  }
+
+  // Forward solve of this side with b_S = 0: y = L^-1 P b; its separator
+  // rows give M_SA M_AA^-1 b_A = L_SA y_A = -L_SS y_S.
+  void forward(const Eigen::VectorXd& rhs) {
+    const int n = system->rows(), s = separator_rows();
+    permuted.resize(n);
+    for (int k = 0; k < n; ++k) permuted[k] = order[k] < own ? rhs[own_rows[order[k]]] : 0.0;
+    const double* y = system->solve(CHOLMOD_L, permuted.data());
+    std::copy(y, y + n, permuted.data());
+    // L_SS y_S = J U J y_S.
+    back.noalias() = reversed_trailing.triangularView<Eigen::Upper>() * permuted.tail(s).reverse();
+    separator_part.resize(s);
+    for (int k = 0; k < s; ++k) separator_part[separator_slot[k]] = -back[s - 1 - k];
+  }
+
+  // Back solve given the separator's solution: L^T u = [y_A; L_SS^T x_S]
+  // gives u_A = x_A, written into the whole solution.
+  void backward(const Eigen::VectorXd& separator_solution, Eigen::VectorXd& out) {
+    const int n = system->rows(), s = separator_rows();
+    back.resize(n);
+    back.head(own) = permuted.head(own);
+    // L_SS^T x_S = J U^T J x_S, with x_S taken into factor order.
+    Eigen::VectorXd reversed(s);
+    for (int k = 0; k < s; ++k) reversed[s - 1 - k] = separator_solution[separator_slot[k]];
+    back.tail(s).reverse() = reversed_trailing.triangularView<Eigen::Upper>().transpose() * reversed;
+    const double* u = system->solve(CHOLMOD_Lt, back.data());
+    for (int k = 0; k < own; ++k) out[own_rows[order[k]]] = u[k];
   }
 };
 
-SparseCholesky::SparseCholesky(int n, std::vector<int> column_starts,
-                               std::vector<int> row_indices)
+struct SparseCholesky::Impl {
+  std::unique_ptr<CholmodSystem> whole;  // when not split
+  // When split: the whole matrix's values, the two sides, the separator's
+  // rows (ascending: the separator order) and its own entries.
+  std::vector<double> values;
+  SplitSide sides[2];
+  std::vector<int> separator;
+  struct SeparatorEntry {
+    int value, row, column;  // value index; separator positions, row >= column
+  };
+  std::vector<SeparatorEntry> separator_entries;
+  Eigen::MatrixXd schur;  // the Schur complement on S, then its Cholesky factor (lower)
+  Eigen::VectorXd separator_rhs;
+  ParallelLoop loop{2};
+  int nonzeros = 0;
+
+  bool split(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices,
+             const SparseCholeskyOptions& options);
+};
+
+bool SparseCholesky::Impl::split(int n, const std::vector<int>& column_starts,
+                                 const std::vector<int>& row_indices, const SparseCholeskyOptions& options) {
+  const std::vector<int> part = bisect(n, column_starts, row_indices);
+  if (part.empty()) return false;
+  // Local numbering per side: own rows first, then the separator's.
+  std::vector<int> local(n);
+  int counts[3] = {0, 0, 0};
+  for (int i = 0; i < n; ++i) local[i] = counts[part[i]]++;
+  const int s = counts[2];
+  if (s == 0 || s > options.max_separator_rows || std::min(counts[0], counts[1]) < n / 8) return false;
+  separator.reserve(s);
+  for (int i = 0; i < n; ++i) {
+    if (part[i] == 2) separator.push_back(i);
+  }
+  // Each side's entries in its local numbering, upper triangle:
+  // {column, row, value index in the whole pattern}.
+  std::vector<std::array<int, 3>> entries[2];
+  for (int p = 0; p < 2; ++p) {
+    SplitSide& side = sides[p];
+    side.own = counts[p];
+    side.own_rows.reserve(side.own);
+    for (int i = 0; i < n; ++i) {
+      if (part[i] == p) side.own_rows.push_back(i);
+    }
+  }
+  auto local_index = [&](int i, int p) { return part[i] == 2 ? sides[p].own + local[i] : local[i]; };
+  for (int j = 0; j < n; ++j) {
+    for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) {
+      const int i = row_indices[e];
+      if (part[i] != 2 && part[j] != 2 && part[i] != part[j]) return false;  // not a separator
+      for (int p = 0; p < 2; ++p) {
+        if ((part[i] == 2 || part[i] == p) && (part[j] == 2 || part[j] == p)) {
+          const int a = local_index(i, p), b = local_index(j, p);
+          entries[p].push_back({std::max(a, b), std::min(a, b), e});
+        }
+      }
+      if (part[i] == 2 && part[j] == 2) {
+        separator_entries.push_back({e, std::max(local[i], local[j]), std::min(local[i], local[j])});
+      }
+    }
+  }
+  for (int p = 0; p < 2; ++p) {
+    SplitSide& side = sides[p];
+    const int rows = side.own + s;
+    const SourcedPattern upper = compress_columns(rows, entries[p]);
+    side.order = order_with_last_rows(rows, upper.column_starts, upper.row_indices, side.own);
+    if (side.order.empty()) return false;
+    std::vector<int> position(rows);
+    for (int k = 0; k < rows; ++k) position[side.order[k]] = k;
+    // The side's lower triangle in factor order, which CHOLMOD factors in
+    // place.
+    for (auto& [column, row, source] : entries[p]) {
+      const int a = position[row], b = position[column];
+      column = std::min(a, b);
+      row = std::max(a, b);
+    }
+    const SourcedPattern lower = compress_columns(rows, entries[p]);
+    std::vector<std::array<int, 3>>().swap(entries[p]);
+    side.sources = lower.sources;
+    side.system = std::make_unique<CholmodSystem>(rows, lower.column_starts.data(), lower.row_indices.data(),
+                                                  CholmodSystem::Triangle::lower);
+    side.system->analyze_as_ordered();
+    side.separator_slot.resize(s);
+    for (int k = 0; k < s; ++k) side.separator_slot[k] = side.order[side.own + k] - side.own;
+  }
+  values.assign(row_indices.size(), 0.0);
+  return true;
+}
+
+SparseCholesky::SparseCholesky(int n, std::vector<int> column_starts, std::vector<int> row_indices,
+                               const SparseCholeskyOptions& options)
     : impl_(std::make_unique<Impl>()) {
-  const size_t nonzeros = row_indices.size();
-  impl_->matrix = cholmod_allocate_sparse(n, n, nonzeros, /*sorted=*/1, /*packed=*/1,
-                                          /*stype=upper*/ 1, CHOLMOD_REAL, &impl_->common);
-  if (!impl_->matrix) throw Error("CHOLMOD could not allocate the normal-equation matrix");
-  std::copy(column_starts.begin(), column_starts.end(), static_cast<int*>(impl_->matrix->p));
-  std::copy(row_indices.begin(), row_indices.end(), static_cast<int*>(impl_->matrix->i));
-  std::fill_n(static_cast<double*>(impl_->matrix->x), nonzeros, 0.0);
-  impl_->common.supernodal = CHOLMOD_SUPERNODAL;
-  impl_->factor = cholmod_analyze(impl_->matrix, &impl_->common);
-  if (!impl_->factor) throw Error("CHOLMOD could not analyse the normal-equation pattern");
+  impl_->nonzeros = static_cast<int>(row_indices.size());
+  const bool two_cores = std::thread::hardware_concurrency() >= 2;
+  const bool split = n >= options.split_from_rows && (two_cores || options.split_from_rows == 0) &&
+                     impl_->split(n, column_starts, row_indices, options);
+  if (!split) {
+    impl_->separator.clear();
+    impl_->whole = std::make_unique<CholmodSystem>(n, column_starts.data(), row_indices.data(),
+                                                   CholmodSystem::Triangle::upper);
+    impl_->whole->analyze();
+  }
 }
 
 SparseCholesky::~SparseCholesky() = default;
 
-double* SparseCholesky::values() { return static_cast<double*>(impl_->matrix->x); }
+double* SparseCholesky::values() { return impl_->whole ? impl_->whole->values() : impl_->values.data(); }
 
-int SparseCholesky::nonzeros() const {
-  return static_cast<int*>(impl_->matrix->p)[impl_->matrix->ncol];
+int SparseCholesky::nonzeros() const { return impl_->nonzeros; }
+
+int SparseCholesky::separator_rows() const { return static_cast<int>(impl_->separator.size()); }
+
+double SparseCholesky::factor_nonzeros() const {
+  if (impl_->whole) return impl_->whole->factor_nonzeros();
+  const double s = static_cast<double>(impl_->separator.size());
+  // The two sides' factors hold their separator block too; the dense
+  // Schur factor replaces them.
+  return impl_->sides[0].system->factor_nonzeros() + impl_->sides[1].system->factor_nonzeros() -
+         s * (s + 1) / 2;
 }
-
-double SparseCholesky::factor_nonzeros() const { return impl_->common.lnz; }
 
 bool SparseCholesky::factorize() {
   ++factorizations_;
-  use_one_thread_in_factorisations();
-  const int ok = cholmod_factorize(impl_->matrix, impl_->factor, &impl_->common);
-  return ok && impl_->common.status == CHOLMOD_OK && impl_->factor->minor == impl_->factor->n;
+  Impl& m = *impl_;
+  if (m.whole) return m.whole->factorize();
+  bool factored[2] = {false, false};
+  m.loop.run_parts(2, [&](int p) { factored[p] = m.sides[p].factorize(m.values.data()); });
+  if (!factored[0] || !factored[1]) return false;
+  // Schur complement of M onto S: T_A + T_B - M_SS (lower triangle).
+  const int s = static_cast<int>(m.separator.size());
+  m.schur.setZero(s, s);
+  for (const SplitSide& side : m.sides) side.add_schur_share(m.schur);
+  for (const Impl::SeparatorEntry& entry : m.separator_entries) {
+    m.schur(entry.row, entry.column) -= m.values[entry.value];
+  }
+  int info = 0;
+  dpotrf_("L", &s, m.schur.data(), &s, &info, 1);
+  return info == 0 && m.schur.diagonal().allFinite();
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
@@ -118,22 +487,23 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
 }
 
 void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) const {
-  cholmod_dense b;
-  b.nrow = static_cast<size_t>(rhs.size());
-  b.ncol = 1;
-  b.nzmax = b.nrow;
-  b.d = b.nrow;
-  b.x = const_cast<double*>(rhs.data());
-  b.z = nullptr;
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
-  // cholmod_solve2 keeps its solution and workspace between calls: a large
-  // model's solves then allocate (and page-fault) nothing.
-  if (!cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr,
-                      &impl_->workspace_y, &impl_->workspace_e, &impl_->common)) {
-    throw Error("CHOLMOD solve failed");
+  Impl& m = *impl_;
+  if (m.whole) {
+    const double* x = m.whole->solve(CHOLMOD_A, rhs.data());
+    out = Eigen::Map<const Eigen::VectorXd>(x, rhs.size());
+    return;
   }
-  out = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(impl_->solution->x), rhs.size());
+  out.resize(rhs.size());
+  m.loop.run_parts(2, [&](int p) { m.sides[p].forward(rhs); });
+  const int s = static_cast<int>(m.separator.size());
+  m.separator_rhs.resize(s);
+  for (int k = 0; k < s; ++k) m.separator_rhs[k] = rhs[m.separator[k]];
+  m.separator_rhs -= m.sides[0].separator_part + m.sides[1].separator_part;
+  const int one = 1;
+  int info = 0;
+  dpotrs_("L", &s, &one, m.schur.data(), &s, m.separator_rhs.data(), &s, &info, 1);
+  m.loop.run_parts(2, [&](int p) { m.sides[p].backward(m.separator_rhs, out); });
+  for (int k = 0; k < s; ++k) out[m.separator[k]] = m.separator_rhs[k];
 }
 
 }  // namespace ashlar

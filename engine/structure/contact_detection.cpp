@@ -316,6 +316,7 @@ std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks
     return std::tie(x.a, x.b, x.center.x(), x.center.y(), x.center.z()) <
            std::tie(y.a, y.b, y.center.x(), y.center.y(), y.center.z());
   });
+  interfaces.shrink_to_fit();  // kept with the structure: no room left from growing by doubling
   return interfaces;
 }
 
