@@ -16,7 +16,7 @@ namespace ashlar {
 
 namespace {
 
-using Matrix4 = Eigen::Matrix4d;
+using PhiFactor = EquilibriumSolver::PhiFactor;
 using Vector4 = Eigen::Vector4d;
 using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 // Inequality rows of one group at most: compression, tension and a
@@ -51,10 +51,10 @@ double step_to_boundary(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
 // rounds away the regularisation (1e-6) in the directions that stay free,
 // which are the very directions Phi^-1 is about; rotations keep them.
 // R's diagonal is stored inverted: the solves below multiply by it.
-Matrix4 factor_phi(const Vector4& hessian, const RowsMatrix& rows,
-                   const Eigen::Ref<const Eigen::VectorXd>& scaling) {
-  Matrix4 r = Matrix4::Zero();
-  r.diagonal() = hessian.cwiseSqrt();
+PhiFactor factor_phi(const Vector4& hessian, const RowsMatrix& rows,
+                     const Eigen::Ref<const Eigen::VectorXd>& scaling) {
+  PhiFactor r{};
+  for (int j = 0; j < 4; ++j) r(j, j) = std::sqrt(hessian(j));
   for (Eigen::Index i = 0; i < rows.rows(); ++i) {
     Vector4 v = std::sqrt(scaling(i)) * rows.row(i).transpose();
     for (int j = 0; j < 4; ++j) {
@@ -69,14 +69,14 @@ Matrix4 factor_phi(const Vector4& hessian, const RowsMatrix& rows,
       }
     }
   }
-  r.diagonal() = r.diagonal().cwiseInverse();
+  for (int j = 0; j < 4; ++j) r(j, j) = 1.0 / r(j, j);
   return r;
 }
 
 // Phi^-1 v for Phi = R^T R (R from factor_phi): two triangular solves,
 // never Phi^-1 itself (whose product with v would round the stiff
 // directions' tiny components to the size of the free ones).
-Vector4 solve_phi(const Matrix4& r, Vector4 v) {
+Vector4 solve_phi(const PhiFactor& r, Vector4 v) {
   v(0) *= r(0, 0);  // R^T t = v
   v(1) = (v(1) - r(0, 1) * v(0)) * r(1, 1);
   v(2) = (v(2) - r(0, 2) * v(0) - r(1, 2) * v(1)) * r(2, 2);
@@ -102,7 +102,7 @@ struct NewtonVectors {
 
 // A R^-1 for a D x 4 matrix A: A Phi^-1 A^T = (A R^-1)(A R^-1)^T.
 template <int D>
-Eigen::Matrix<double, D, 4> divide_by_factor(const Eigen::Matrix<double, D, 4>& a, const Matrix4& r) {
+Eigen::Matrix<double, D, 4> divide_by_factor(const Eigen::Matrix<double, D, 4>& a, const PhiFactor& r) {
   Eigen::Matrix<double, D, 4> out = a;
   for (int j = 0; j < 4; ++j) {
     for (int l = 0; l < j; ++l) out.col(j) -= r(l, j) * out.col(l);
@@ -243,7 +243,7 @@ template <int D>
 void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem,
                                                const std::vector<int>& first_row,
                                                const Eigen::VectorXd& w, const Eigen::VectorXd& z,
-                                               std::vector<Eigen::Matrix4d>& phi_factors) {
+                                               std::vector<PhiFactor>& phi_factors) {
   using BlockByVertexD = Eigen::Matrix<double, D, 4>;
   using BlockByBlockD = Eigen::Matrix<double, D, D>;
   const int nv = static_cast<int>(problem.groups.size());
@@ -307,7 +307,7 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
 
 void EquilibriumSolver::assemble(const EquilibriumProblem& problem, const std::vector<int>& first_row,
                                  const Eigen::VectorXd& w, const Eigen::VectorXd& z,
-                                 std::vector<Eigen::Matrix4d>& phi_factors) {
+                                 std::vector<PhiFactor>& phi_factors) {
   if (block_rows_ == 3) assemble_normal_matrix<3>(problem, first_row, w, z, phi_factors);
   else assemble_normal_matrix<6>(problem, first_row, w, z, phi_factors);
 }
@@ -425,7 +425,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   NewtonVectors r{Eigen::VectorXd(4 * nv), Eigen::VectorXd(size_), Eigen::VectorXd(m_total),
                   Eigen::VectorXd(m_total)};
   NewtonVectors step_direction = r, error = r;
-  std::vector<Matrix4> phi_factors(nv);
+  std::vector<PhiFactor> phi_factors(nv);
   Eigen::VectorXd rhs(size_);
   const int factorizations_before = cholesky_->factorizations();
 
