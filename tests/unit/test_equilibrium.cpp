@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/equilibrium_problem.hpp"
+#include "analysis/interior_point.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
 #include "geometry/block_builders.hpp"
@@ -239,6 +241,33 @@ TEST(Equilibrium, AnInterruptedSolveCarriesNoVerdict) {
   EXPECT_EQ(r.status, SolverStatus::interrupted);
   EXPECT_FALSE(r.stable);
   EXPECT_TRUE(std::isinf(r.infeasibility));
+}
+
+TEST(Equilibrium, AnAnswerShortOfTheToleranceIsTheIterateItsFiguresDescribe) {
+  // A tolerance of zero cannot be met: the solve runs on to the rounding
+  // floor, where the error no longer falls every iteration, and stops once
+  // the most accurate iterate is 8 iterations old. That iterate is restored
+  // by undoing the step taken from it; the figures reported with it (from
+  // the iteration it was reached) must be those of the returned unknowns.
+  for (const Structure& s : {overhanging_stack(0.7), semicircular_arch(16, 0.5)}) {
+    const EquilibriumProblem problem = build_equilibrium_problem(s, {});
+    EquilibriumSolver solver(problem);
+    InteriorPointSettings settings;
+    settings.tolerance = 0.0;
+    InteriorPointSolution solution;
+    const InteriorPointInfo info = solver.solve(problem, settings, solution, false);
+    ASSERT_EQ(info.status, SolverStatus::inaccurate);
+    const Eigen::Index m = solution.w.size();
+    ASSERT_GT(m, 0);
+    EXPECT_NEAR(solution.w.dot(solution.z) / static_cast<double>(m), info.complementarity,
+                1e-9 * info.complementarity);
+    // Balance rows: |A x - b| is part of the reported primal residual.
+    Eigen::VectorXd balance = -problem.rhs;
+    for (size_t k = 0; k < problem.groups.size(); ++k) {
+      problem.add_effect(problem.groups[k], solution.x.segment<4>(4 * static_cast<Eigen::Index>(k)), balance);
+    }
+    EXPECT_LE(balance.lpNorm<Eigen::Infinity>(), info.primal_residual * (1 + 1e-6) + 1e-15);
+  }
 }
 
 TEST(Equilibrium, BadSettingsAreRejected) {
