@@ -22,6 +22,9 @@ using RowsMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 // Inequality rows of one group at most: compression, tension and a
 // friction pyramid of up to 1024 sides.
 constexpr int kMaxGroupRows = 2 + 1024;
+// One value per inequality row of a group, on the stack: the per-group
+// passes run millions of times and must not allocate.
+using GroupRowsVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxGroupRows, 1>;
 
 // Iterations without a more accurate iterate, once one is within the
 // inaccurate tolerance, after which the solve stops; and at any accuracy,
@@ -62,7 +65,8 @@ PhiFactor factor_phi(const Vector4& hessian, const RowsMatrix& rows,
     for (int j = 0; j < 4; ++j) {
       if (v(j) == 0.0) continue;
       const double diagonal = std::sqrt(r(j, j) * r(j, j) + v(j) * v(j));
-      const double c = r(j, j) / diagonal, s = v(j) / diagonal;
+      const double inverse = 1.0 / diagonal;  // one division, not two
+      const double c = r(j, j) * inverse, s = v(j) * inverse;
       r(j, j) = diagonal;
       for (int l = j + 1; l < 4; ++l) {
         const double t = r(j, l);
@@ -253,7 +257,7 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
   // Slacks of active rows may be (near) zero; keep z / w finite.
   constexpr double kLeastSlack = std::numeric_limits<double>::min();
   loop_.run(nv, [&](int begin, int end, int) {
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxGroupRows, 1> scaling;
+    GroupRowsVector scaling;
     for (int k = begin; k < end; ++k) {
       const GroupRules& rules = problem.rules_of(problem.groups[k]);
       const int rows = static_cast<int>(rules.rows.rows());
@@ -395,7 +399,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     // Interior-point iterates must start strictly inside the cone.
     constexpr double kMargin = 1e-2;
     for (int k = 0; k < nv; ++k) {
-      ineq(w, k) = rows_of(k) * x.segment<4>(4 * k);
+      ineq(w, k).noalias() = rows_of(k) * x.segment<4>(4 * k);
       add_bound(k, ineq(w, k));
       ineq(w, k) = ineq(w, k).cwiseMax(kMargin);
     }
@@ -459,10 +463,8 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     rhs = -v.y;
     for_groups_into(rhs, [&](int k, Eigen::VectorXd& rows) {
       // Per inequality row (c + Z g) / W, combined as G^T (...).
-      const Vector4 reduced =
-          -v.x.segment<4>(4 * k) -
-          rows_of(k).transpose() *
-              (ineq(v.z, k) + ineq(z, k).cwiseProduct(ineq(v.w, k))).cwiseQuotient(ineq(w, k));
+      GroupRowsVector per_row = (ineq(v.z, k) + ineq(z, k).cwiseProduct(ineq(v.w, k))).cwiseQuotient(ineq(w, k));
+      const Vector4 reduced = -v.x.segment<4>(4 * k) - rows_of(k).transpose() * per_row;
       const Vector4 t = solve_phi(phi_factors[k], reduced);
       v.x.segment<4>(4 * k) = t;  // dx, completed below with the A^T dy part
       add_group_effect<D>(problem.groups[k], -t, rows);
@@ -470,7 +472,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     cholesky_->solve(rhs, v.y);
     for_groups([&](int k) {
       v.x.segment<4>(4 * k) += solve_phi(phi_factors[k], group_reaction<D>(problem.groups[k], v.y));
-      ineq(v.w, k) = rows_of(k) * v.x.segment<4>(4 * k) + ineq(v.w, k);  // dw = G dx + g
+      ineq(v.w, k).noalias() += rows_of(k) * v.x.segment<4>(4 * k);  // dw = G dx + g
     });
     v.z = -(v.z + z.cwiseProduct(v.w)).cwiseQuotient(w);
   };
@@ -486,7 +488,8 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       add_group_effect<D>(v, dxk, rows);
       out.x.segment<4>(4 * k) = e.x.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
                                 group_reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
-      ineq(out.w, k) = ineq(e.w, k) + rules.rows * dxk - ineq(dir.w, k);
+      ineq(out.w, k) = ineq(e.w, k) - ineq(dir.w, k);
+      ineq(out.w, k).noalias() += rules.rows * dxk;
     });
     out.z = e.z + z.cwiseProduct(dir.w) + w.cwiseProduct(dir.z);
   };
@@ -581,7 +584,8 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       add_group_effect<D>(v, xk, rows);
       r.x.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
                               group_reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
-      ineq(r.w, k) = rules.rows * xk - ineq(w, k);
+      ineq(r.w, k) = -ineq(w, k);
+      ineq(r.w, k).noalias() += rules.rows * xk;
       add_bound(k, ineq(r.w, k));
     });
     // The total gap, not its mean, bounds the objective's error.
