@@ -8,12 +8,15 @@
 -- peak memory is its own. cvxopt (Debian's python3-cvxopt, through
 -- tests/tools/solve_qps.py) solves the exported QP for the smaller sizes;
 -- only its solve is timed, not reading the file.
--- ashlar chooses its own threads (one for the factorisation and its BLAS,
--- see engine/analysis/sparse_cholesky.cpp); cvxopt runs with
--- single-threaded BLAS (OPENBLAS_NUM_THREADS=1), so its figures are per core.
+-- ashlar chooses its own threads (from 2,000 rows its factorisation is
+-- split in two halves factored on two cores, each with one-threaded BLAS;
+-- its per-group passes run on both cores; see
+-- engine/analysis/sparse_cholesky.cpp); cvxopt runs with single-threaded
+-- BLAS (OPENBLAS_NUM_THREADS=1), so its figures are per core.
 -- "whole / factor" is the analysis time over the time of one factorisation
--- of its normal matrix: how close to the cost floor of an interior point
--- (one factorisation per iteration) the method runs.
+-- of its normal matrix (split or whole, as the analysis ran it): how close
+-- to the cost floor of an interior point (one factorisation per iteration)
+-- the method runs.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
