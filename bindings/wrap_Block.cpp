@@ -15,6 +15,7 @@ BlockStyle style_from(const OptionTable& options) {
   BlockStyle style;
   style.density = options.positive("density", kDefaultDensity);
   style.name = options.string("name").value_or("");
+  style.planarity = options.positive("planarity", 0.0, /*zero_allowed=*/true);
   return style;
 }
 
@@ -25,7 +26,7 @@ int push_new_block(lua_State* L, Block block) {
 
 int w_block(lua_State* L) {
   return guard(L, [&] {
-    const OptionTable options(L, 1, {"vertices", "faces", "density", "name"});
+    const OptionTable options(L, 1, {"vertices", "faces", "density", "name", "planarity"});
     if (!options.has("vertices") || !options.has("faces")) {
       throw ArgError(1, "a block needs 'vertices' and 'faces'");
     }
@@ -35,7 +36,8 @@ int w_block(lua_State* L) {
     std::vector<FaceLoop> faces = to_faces(L, -1, 1, "faces");
     lua_pop(L, 2);
     const BlockStyle style = style_from(options);
-    return push_new_block(L, Block(std::move(vertices), std::move(faces), style.density, style.name));
+    return push_new_block(
+        L, Block(std::move(vertices), std::move(faces), style.density, style.name, style.planarity));
   });
 }
 
@@ -137,6 +139,20 @@ int w_Block_density(lua_State* L) {
   });
 }
 
+int w_Block_planarity(lua_State* L) {
+  return guard(L, [&] {
+    lua_pushnumber(L, luax_checkBlock(L, 1)->planarity());
+    return 1;
+  });
+}
+
+int w_Block_warp(lua_State* L) {
+  return guard(L, [&] {
+    lua_pushnumber(L, luax_checkBlock(L, 1)->warp());
+    return 1;
+  });
+}
+
 int w_Block_bounds(lua_State* L) {
   return guard(L, [&] {
     const BlockPtr block = luax_checkBlock(L, 1);
@@ -232,7 +248,8 @@ void register_Block(lua_State* L) {
       {"density", w_Block_density},   {"bounds", w_Block_bounds},
       {"is_convex", w_Block_is_convex}, {"translated", w_Block_translated},
       {"rotated", w_Block_rotated},   {"with", w_Block_with},
-      {"split", w_Block_split},       {nullptr, nullptr}};
+      {"split", w_Block_split},       {"planarity", w_Block_planarity},
+      {"warp", w_Block_warp},         {nullptr, nullptr}};
   static const luaL_Reg metamethods[] = {{"__tostring", w_Block_tostring},
                                          {"__gc", w_Block_gc},
                                          {"__close", w_Block_gc},

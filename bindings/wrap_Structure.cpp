@@ -45,7 +45,9 @@ int w_structure(lua_State* L) {
 int w_load(lua_State* L) {
   return guard(L, [&] {
     const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::read);
-    luax_pushStructure(L, std::make_shared<Structure>(load_structure(path)));
+    const OptionTable options(L, 2, {"planarity"});
+    const double planarity = options.positive("planarity", 0.0, /*zero_allowed=*/true);
+    luax_pushStructure(L, std::make_shared<Structure>(load_structure(path, planarity)));
     return 1;
   });
 }

@@ -131,9 +131,10 @@ bool is_support(lua_State* L, int rule, const ImportedBlock& imported) {
 int w_import(lua_State* L) {
   return guard(L, [&] {
     const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::read);
-    const OptionTable options(L, 2, {"support", "density"});
+    const OptionTable options(L, 2, {"support", "density", "planarity"});
     ImportOptions import_options;
     import_options.density = options.positive("density", kDefaultDensity);
+    import_options.planarity = options.positive("planarity", 0.0, /*zero_allowed=*/true);
     if (sandbox::settings_of(L) != nullptr)
       import_options.may_open = [L](const std::string& file) {
         return sandbox::access_problem(L, file, sandbox::Access::read).empty();

@@ -40,7 +40,7 @@ std::shared_ptr<Structure> with_design(const Structure& s, const DesignPoint& de
   for (int i = 0; i < s.size(); ++i) {
     const Block& block = s.block(i);
     out->add(std::make_shared<const Block>(design.block_vertices[i], block.faces(), block.density(),
-                                           block.name()),
+                                           block.name(), block.planarity()),
              s.is_support(i), s.name(i));
   }
   out->set_planar(s.planar());

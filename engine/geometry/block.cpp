@@ -1,7 +1,9 @@
 #include "geometry/block.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/error.hpp"
 #include "geometry/block_validation.hpp"
@@ -14,11 +16,22 @@ namespace {
 // Vertices this far (relative to the block's size) in front of a face plane
 // still count as behind it: rounding of rotated coordinates.
 constexpr double kConvexSlack = 1e-9;
+// A face warped by more than a fifth of its size is no longer a face.
+constexpr double kLargestPlanarity = 0.2;
 
 void check_density(double density, const std::string& name) {
   if (!std::isfinite(density) || density <= 0.0) {
     throw InvalidArgument(block_label(name) + ": density must be a positive finite number (kg/m^3), got " +
                           std::to_string(density));
+  }
+}
+
+void check_planarity(double planarity, const std::string& name) {
+  if (!(planarity >= 0.0 && planarity <= kLargestPlanarity)) {
+    std::ostringstream message;
+    message << block_label(name) << ": planarity must be a number from 0 to " << kLargestPlanarity
+            << " (how far a face may be warped, as a fraction of its size), got " << planarity;
+    throw InvalidArgument(message.str());
   }
 }
 
@@ -106,22 +119,25 @@ MassPropertiesGradient mass_properties_gradient(const std::vector<Vec3>& vertice
 }
 
 Block::Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double density,
-             std::string name)
+             std::string name, double planarity)
     : vertices_(std::move(vertices)),
       faces_(std::move(faces)),
       density_(density),
-      name_(std::move(name)) {
+      name_(std::move(name)),
+      planarity_(planarity) {
   check_density(density_, name_);
-  validate_block(vertices_, faces_, block_label(name_));
+  check_planarity(planarity_, name_);
+  validate_block(vertices_, faces_, block_label(name_), planarity_);
   compute_derived();
 }
 
 Block::Block(Trusted, std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double density,
-             std::string name)
+             std::string name, double planarity)
     : vertices_(std::move(vertices)),
       faces_(std::move(faces)),
       density_(density),
-      name_(std::move(name)) {
+      name_(std::move(name)),
+      planarity_(planarity) {
   compute_derived();
 }
 
@@ -143,6 +159,17 @@ std::vector<FacePlane> face_planes(const std::vector<Vec3>& vertices,
   return planes;
 }
 
+double largest_warp(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
+                    const std::vector<FacePlane>& planes) {
+  double warp = 0.0;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int index : faces[f]) {
+      warp = std::max(warp, std::abs(planes[f].normal.dot(vertices[index]) - planes[f].offset));
+    }
+  }
+  return warp;
+}
+
 bool is_convex_polyhedron(const std::vector<Vec3>& vertices,
                           const std::vector<FacePlane>& planes, double slack) {
   for (const FacePlane& plane : planes) {
@@ -158,14 +185,17 @@ void Block::compute_derived() {
   for (const Vec3& p : vertices_) bounds_.add(p);
   planes_ = ashlar::face_planes(vertices_, faces_);
   mass_ = mass_properties(vertices_, faces_);
-  convex_ = is_convex_polyhedron(vertices_, planes_, kConvexSlack * bounds_.diagonal());
+  warp_ = largest_warp(vertices_, faces_, planes_);
+  // A warped face's own vertices lie up to warp_ in front of its best-fit
+  // plane, convex block or not.
+  convex_ = is_convex_polyhedron(vertices_, planes_, std::max(kConvexSlack * bounds_.diagonal(), warp_));
 }
 
 Block Block::translated(const Vec3& offset) const {
   check_finite(offset, "translation");
   std::vector<Vec3> moved = vertices_;
   for (Vec3& p : moved) p += offset;
-  return Block(Trusted{}, std::move(moved), faces_, density_, name_);
+  return Block(Trusted{}, std::move(moved), faces_, density_, name_, planarity_);
 }
 
 Block Block::rotated(const Vec3& axis, double angle, const Vec3& origin) const {
@@ -176,16 +206,16 @@ Block Block::rotated(const Vec3& axis, double angle, const Vec3& origin) const {
   const Eigen::Matrix3d rotation = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
   std::vector<Vec3> moved = vertices_;
   for (Vec3& p : moved) p = origin + rotation * (p - origin);
-  return Block(Trusted{}, std::move(moved), faces_, density_, name_);
+  return Block(Trusted{}, std::move(moved), faces_, density_, name_, planarity_);
 }
 
 Block Block::with_name(std::string name) const {
-  return Block(Trusted{}, vertices_, faces_, density_, std::move(name));
+  return Block(Trusted{}, vertices_, faces_, density_, std::move(name), planarity_);
 }
 
 Block Block::with_density(double density) const {
   check_density(density, name_);
-  return Block(Trusted{}, vertices_, faces_, density, name_);
+  return Block(Trusted{}, vertices_, faces_, density, name_, planarity_);
 }
 
 }  // namespace ashlar

@@ -1,5 +1,9 @@
 // A rigid masonry block: a closed, consistently oriented polyhedron whose
-// faces are planar polygons (convex or not) with outward normals.
+// faces are polygons (convex or not) with outward normals, planar to
+// rounding or, with a planarity allowance, warped (as fabricated and
+// scanned blocks are): the solid is then the one bounded by each face's fan
+// triangulation from its first vertex, and contact uses each face's
+// best-fit plane.
 #pragma once
 
 #include <memory>
@@ -29,16 +33,22 @@ class Block {
 public:
   // vertices: positions in metres. faces: loops of 0-based indices into
   // vertices, counter-clockwise seen from outside. density in kg/m^3.
-  // Throws GeometryError (naming the defect and the block) unless the input
-  // is a valid block; see validate_block() for the checks.
+  // planarity: how far a face's vertices may lie off its best-fit plane, as
+  // a fraction of the face's size (its bounding-box diagonal); 0 allows
+  // rounding only (1e-6 of the block's size). Throws GeometryError (naming
+  // the defect and the block) unless the input is a valid block; see
+  // validate_block() for the checks.
   Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces,
-        double density = kDefaultDensity, std::string name = {});
+        double density = kDefaultDensity, std::string name = {}, double planarity = 0.0);
 
   const std::vector<Vec3>& vertices() const { return vertices_; }
   const std::vector<FaceLoop>& faces() const { return faces_; }
   const std::vector<FacePlane>& face_planes() const { return planes_; }
   double density() const { return density_; }
   const std::string& name() const { return name_; }
+  double planarity() const { return planarity_; }
+  // The largest distance (m) of a vertex from its face's best-fit plane.
+  double warp() const { return warp_; }
 
   double volume() const { return mass_.volume; }
   double mass() const { return density_ * mass_.volume; }  // kg
@@ -58,7 +68,7 @@ private:
   struct Trusted {};
   // For rigid motions of an already validated block: no re-validation.
   Block(Trusted, std::vector<Vec3> vertices, std::vector<FaceLoop> faces,
-        double density, std::string name);
+        double density, std::string name, double planarity);
   void compute_derived();
 
   std::vector<Vec3> vertices_;
@@ -66,6 +76,8 @@ private:
   std::vector<FacePlane> planes_;
   double density_;
   std::string name_;
+  double planarity_ = 0.0;
+  double warp_ = 0.0;
   MassProperties mass_;
   Box3 bounds_;
   bool convex_ = false;
@@ -100,6 +112,11 @@ MassPropertiesGradient mass_properties_gradient(const std::vector<Vec3>& vertice
 // Unit outward normal (Newell) and mean offset of every face.
 std::vector<FacePlane> face_planes(const std::vector<Vec3>& vertices,
                                    const std::vector<FaceLoop>& faces);
+
+// The largest distance (m) of a vertex from its own face's plane (planes
+// from face_planes): 0 to rounding for planar faces.
+double largest_warp(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
+                    const std::vector<FacePlane>& planes);
 
 // True when no vertex lies more than `slack` (m) in front of any face plane.
 bool is_convex_polyhedron(const std::vector<Vec3>& vertices,

@@ -109,7 +109,7 @@ Block make_box(const Vec3& size, const Vec3& center, const BlockStyle& style) {
   }
   std::vector<FaceLoop> faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  return Block(std::move(corners), std::move(faces), style.density, style.name);
+  return Block(std::move(corners), std::move(faces), style.density, style.name, style.planarity);
 }
 
 Block make_prism(const std::vector<Vec3>& polygon, const Vec3& direction,
@@ -129,7 +129,7 @@ Block make_prism(const std::vector<Vec3>& polygon, const Vec3& direction,
   for (const Vec3& p : bottom) vertices.push_back(p + direction);
   const int m = static_cast<int>(bottom.size());
   std::vector<FaceLoop> faces = side_faces_between(vertices, m);
-  return Block(std::move(vertices), std::move(faces), style.density, style.name);
+  return Block(std::move(vertices), std::move(faces), style.density, style.name, style.planarity);
 }
 
 Block make_loft(const std::vector<Vec3>& polygon_a, const std::vector<Vec3>& polygon_b,
@@ -152,7 +152,7 @@ Block make_loft(const std::vector<Vec3>& polygon_a, const std::vector<Vec3>& pol
   vertices.insert(vertices.end(), top.begin(), top.end());
   const int m = static_cast<int>(bottom.size());
   std::vector<FaceLoop> faces = side_faces_between(vertices, m);
-  return Block(std::move(vertices), std::move(faces), style.density, style.name);
+  return Block(std::move(vertices), std::move(faces), style.density, style.name, style.planarity);
 }
 
 }  // namespace ashlar

@@ -12,6 +12,7 @@ namespace ashlar {
 struct BlockStyle {
   double density = kDefaultDensity;  // kg/m^3
   std::string name;                  // empty: unnamed
+  double planarity = 0.0;            // accepted warp of faces, a fraction of each face's size (see Block)
 };
 
 // Axis-aligned box; size components > 0 (m).

@@ -145,8 +145,19 @@ void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::st
   }
 }
 
+// The largest distance of a face's vertices from its best-fit plane (unit
+// normal, through `mean`) as a fraction of its size, rounded up to 2
+// significant digits: the planarity that accepts the face.
+double warp_fraction(const std::vector<Vec3>& loop, const Vec3& normal, const Vec3& mean, double face_size) {
+  double off = 0.0;
+  for (const Vec3& p : loop) off = std::max(off, std::abs(normal.dot(p - mean)));
+  const double fraction = off / face_size;
+  const double unit = std::pow(10.0, std::floor(std::log10(fraction)) - 1);
+  return std::ceil(fraction / unit) * unit;
+}
+
 void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                 double size, const std::string& what) {
+                 double size, double planarity, const std::string& what) {
   std::vector<Vec3> loop;
   for (size_t f = 0; f < faces.size(); ++f) {
     const std::string face_name = "face " + std::to_string(f + 1);
@@ -159,14 +170,29 @@ void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
     }
     const PlaneFrame frame = PlaneFrame::from_normal(loop[0], normal);
     Vec3 mean = Vec3::Zero();
-    for (const Vec3& p : loop) mean += p;
+    Box3 face_box;
+    for (const Vec3& p : loop) {
+      mean += p;
+      face_box.add(p);
+    }
     mean /= static_cast<double>(loop.size());
+    const double face_size = face_box.diagonal();
+    const double allowed = std::max(kPlanarity * size, planarity * face_size);
     for (size_t k = 0; k < loop.size(); ++k) {
       const double off = std::abs(frame.normal.dot(loop[k] - mean));
-      if (off > kPlanarity * size) {
+      if (off > allowed) {
         std::ostringstream message;
-        message << face_name << " is not planar: its vertex " << faces[f][k] + 1 << " is " << off
-                << " m off the face's plane (allowed: " << kPlanarity * size << " m)";
+        if (planarity == 0.0) {
+          message << face_name << " is not planar: its vertex " << faces[f][k] + 1 << " is " << off
+                  << " m off the face's plane (allowed: " << allowed
+                  << " m); to accept warped faces pass planarity, a fraction of each face's size: "
+                  << "this face needs at least " << warp_fraction(loop, frame.normal, mean, face_size);
+        } else {
+          message << face_name << " is warped beyond planarity " << planarity << ": its vertex "
+                  << faces[f][k] + 1 << " is " << off << " m off the face's best-fit plane, "
+                  << off / face_size << " of the face's size " << face_size << " m (allowed: " << allowed
+                  << " m); this face needs planarity " << warp_fraction(loop, frame.normal, mean, face_size);
+        }
         fail(what, message.str());
       }
     }
@@ -183,7 +209,7 @@ void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
 }  // namespace
 
 void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                    const std::string& what) {
+                    const std::string& what, double planarity) {
   check_counts_and_indices(vertices, faces, what);
   Box3 box;
   for (const Vec3& p : vertices) box.add(p);
@@ -199,7 +225,7 @@ void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoo
   }
   check_coincident_vertices(vertices, size, what);
   check_closed_and_oriented(faces, what);
-  check_faces(vertices, faces, size, what);
+  check_faces(vertices, faces, size, planarity, what);
   const double volume = mass_properties(vertices, faces).volume;
   if (std::abs(volume) <= kDegenerateVolume * size * size * size) {
     fail(what, "zero volume: its vertices are flat or collapsed (expected a solid with volume)");
@@ -211,8 +237,10 @@ void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoo
   // A closed, outward-oriented surface with every vertex behind every face
   // plane is convex and cannot intersect itself; only other shapes need the
   // (CGAL) intersection test.
-  const bool convex =
-      is_convex_polyhedron(vertices, face_planes(vertices, faces), kCoincidentVertices * size);
+  const std::vector<FacePlane> planes = face_planes(vertices, faces);
+  // A warped face's own vertices lie in front of its best-fit plane.
+  const bool convex = is_convex_polyhedron(vertices, planes,
+                                           std::max(kCoincidentVertices * size, largest_warp(vertices, faces, planes)));
   if (!convex) {
     if (const std::optional<std::string> crossing = surface_self_intersection(vertices, faces)) {
       fail(what, "self-intersecting: " + *crossing +

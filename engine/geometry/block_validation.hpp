@@ -20,14 +20,17 @@ namespace ashlar {
 //    orientation (an edge used twice in the same direction) or an edge
 //    shared by more than two faces (non-manifold), or a surface in
 //    separate pieces;
-//  - degenerate (zero-area) or non-planar face, or a face whose outline
-//    crosses itself;
+//  - degenerate (zero-area) face; a face with a vertex off its best-fit
+//    plane by more than `planarity` times the face's size (bounding-box
+//    diagonal), or 1e-6 of the block's size if that is more; a face whose
+//    outline, projected on that plane, crosses itself;
 //  - zero volume, or negative volume (inverted: faces point inward);
 //  - faces that intersect each other (non-convex blocks only: a closed,
 //    outward-oriented convex polyhedron cannot self-intersect).
 // `what` names the block in messages, e.g. "block 'pier 2'".
 void validate_block(const std::vector<Vec3>& vertices,
-                    const std::vector<FaceLoop>& faces, const std::string& what);
+                    const std::vector<FaceLoop>& faces, const std::string& what,
+                    double planarity = 0.0);
 
 // The CGAL part of validation: where the (triangulated) surface crosses or
 // touches itself, e.g. "faces 2 and 7 cross each other" (1-based), or

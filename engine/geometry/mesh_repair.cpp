@@ -394,7 +394,7 @@ Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceL
            << loops.size() << " faces and " << points.size() << " vertices";
   }
   try {
-    return Block(std::move(points), std::move(loops), style.density, style.name);
+    return Block(std::move(points), std::move(loops), style.density, style.name, style.planarity);
   } catch (const GeometryError& error) {
     throw GeometryError(what + ": " + error.what() + repair.str());
   }

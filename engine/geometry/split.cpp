@@ -118,6 +118,7 @@ Block clipped_part(const Mesh& surface, const Kernel::Plane_3& plane, const CutS
   }
   BlockStyle style;
   style.density = block.density();
+  style.planarity = block.planarity();
   style.name = block.name().empty() ? std::string() : block.name() + " " + part_name;
   return block_from_mesh(soup, triangles, kWeld * block.bounds().diagonal(), style,
                          what + " (" + part_name + " part)");

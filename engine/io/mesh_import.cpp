@@ -229,7 +229,7 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
   std::vector<ImportedBlock> blocks;
   blocks.reserve(objects.size());
   for (const RawObject& object : objects) {
-    const BlockStyle style{options.density, object.name};
+    const BlockStyle style{options.density, object.name, options.planarity};
     const std::string what = "object '" + object.name + "' in '" + path + "'";
     try {
       blocks.push_back({object.name, block_from_mesh(object.vertices, object.faces,

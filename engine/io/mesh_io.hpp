@@ -18,6 +18,9 @@ struct ImportOptions {
   // Vertices closer than this fraction of the scene's bounding-box diagonal
   // are welded (files such as STL repeat each vertex per triangle).
   double relative_weld_tolerance = 1e-9;
+  // Accepted warp of each polygon face (quads of CAD and remeshed models),
+  // a fraction of the face's size; see Block.
+  double planarity = 0.0;
   // Whether the importer may open a file: the mesh itself and the files it
   // names (OBJ materials, glTF buffers, ...). Empty: any file. A refused
   // file is as if it did not exist.

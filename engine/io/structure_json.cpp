@@ -180,10 +180,12 @@ void check_header(const Reader& reader, const json& root) {
   }
 }
 
-void read_block(const Reader& reader, const json& entry, int i, Structure& structure) {
+// planarity: accepted warp of faces (see Block) for blocks that do not
+// carry a larger one of their own.
+void read_block(const Reader& reader, const json& entry, int i, double planarity, Structure& structure) {
   const std::string where = "blocks[" + std::to_string(i) + "]";
   reader.expect_object(entry, where);
-  reader.reject_unknown_keys(entry, {"name", "support", "density", "vertices", "faces"}, where);
+  reader.reject_unknown_keys(entry, {"name", "support", "density", "planarity", "vertices", "faces"}, where);
 
   std::string name;
   if (const auto found = entry.find("name"); found != entry.end()) {
@@ -199,6 +201,9 @@ void read_block(const Reader& reader, const json& entry, int i, Structure& struc
   if (const auto found = entry.find("density"); found != entry.end()) {
     density = reader.number(*found, where + ".density");
     if (density <= 0) reader.fail(where + ".density", "must be positive (kg/m^3)");
+  }
+  if (const auto found = entry.find("planarity"); found != entry.end()) {
+    planarity = std::max(planarity, reader.number(*found, where + ".planarity"));
   }
 
   const json& vertex_list = reader.member(entry, "vertices", where);
@@ -228,7 +233,9 @@ void read_block(const Reader& reader, const json& entry, int i, Structure& struc
   const std::string label = where + (name.empty() ? "" : " ('" + name + "')");
   BlockPtr block;
   try {
-    block = std::make_shared<const Block>(std::move(vertices), std::move(faces), density, name);
+    block = std::make_shared<const Block>(std::move(vertices), std::move(faces), density, name, planarity);
+  } catch (const InvalidArgument& e) {
+    reader.fail(where + ".planarity", e.what());
   } catch (const GeometryError& e) {
     throw GeometryError(reader.source() + ": " + label + ": " + e.what());
   }
@@ -329,7 +336,7 @@ std::optional<std::string> quote_non_numbers(const std::string& text) {
   return quoted;
 }
 
-Structure read_document(const Reader& reader, const json& root) {
+Structure read_document(const Reader& reader, const json& root, double planarity) {
   reader.expect_object(root, "top level");
   // Format and version first: a file of another kind or a later version is
   // reported as such, not by its first unknown field.
@@ -345,7 +352,7 @@ Structure read_document(const Reader& reader, const json& root) {
   const json& blocks = reader.member(root, "blocks", "");
   reader.expect_array(blocks, "blocks");
   for (size_t i = 0; i < blocks.size(); ++i) {
-    read_block(reader, blocks[i], static_cast<int>(i), structure);
+    read_block(reader, blocks[i], static_cast<int>(i), planarity, structure);
   }
   if (const auto loads = root.find("loads"); loads != root.end()) {
     reader.expect_array(*loads, "loads");
@@ -380,6 +387,7 @@ std::string structure_to_json(const Structure& structure) {
     }
     entry["support"] = structure.is_support(i);
     entry["density"] = block.density();
+    if (block.planarity() > 0.0) entry["planarity"] = block.planarity();
     entry["vertices"] = std::move(vertices);
     entry["faces"] = std::move(faces);
     blocks.push_back(std::move(entry));
@@ -414,7 +422,7 @@ std::string structure_to_json(const Structure& structure) {
   return text + "\n";
 }
 
-Structure structure_from_json(const std::string& text, const std::string& source_name) {
+Structure structure_from_json(const std::string& text, const std::string& source_name, double planarity) {
   const Reader reader(source_name);
   json root;
   try {
@@ -431,19 +439,19 @@ Structure structure_from_json(const std::string& text, const std::string& source
     // the syntax error stands.
     if (const std::optional<std::string> quoted = quote_non_numbers(text)) {
       const json tolerant = json::parse(*quoted, nullptr, false);
-      if (!tolerant.is_discarded()) read_document(reader, tolerant);
+      if (!tolerant.is_discarded()) read_document(reader, tolerant, planarity);
     }
     reader.fail("", "not valid JSON: " + message);
   }
-  return read_document(reader, root);
+  return read_document(reader, root, planarity);
 }
 
 void save_structure(const Structure& structure, const std::string& path) {
   write_file_atomically(path, structure_to_json(structure));
 }
 
-Structure load_structure(const std::string& path) {
-  return structure_from_json(read_file(path), path);
+Structure load_structure(const std::string& path, double planarity) {
+  return structure_from_json(read_file(path), path, planarity);
 }
 
 }  // namespace ashlar

@@ -70,6 +70,33 @@ TEST(BlockValidation, NonPlanarFace) {
   expect_error(m, "not planar");
 }
 
+TEST(BlockValidation, WarpedFacesNeedAPlanarityAndThenBoundTheFanTriangulatedSolid) {
+  // Vertex 8 (1, 1, 1) raised by h: the top face is warped, its vertices
+  // h / 4 off its best-fit plane, whose size is sqrt(2 + h^2).
+  const double h = 0.02;
+  Mesh m = unit_cube();
+  m.vertices[7].z() += h;
+  expect_error(m, "face 2 is not planar: its vertex 5 is");
+  expect_error(m, "this face needs at least 0.0036");
+  try {
+    Block(m.vertices, m.faces, kDefaultDensity, "test", 0.003);
+    ADD_FAILURE() << "accepted beyond its planarity";
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 2 is warped beyond planarity 0.003"), std::string::npos) << e.what();
+  }
+  const Block b(m.vertices, m.faces, kDefaultDensity, "test", 0.004);
+  // The top's fan from vertex 5 (0, 0, 1): two triangles over half the unit
+  // square, each with one corner h higher: a wedge of volume h / 3 whose
+  // centroid is h / 4 above z = 1. The raised side faces (x = 1, y = 1)
+  // stay planar.
+  const double volume = 1 + h / 3;
+  EXPECT_NEAR(b.volume(), volume, 1e-14);
+  EXPECT_NEAR(b.centroid().z(), (0.5 + h / 3 * (1 + h / 4)) / volume, 1e-14);
+  EXPECT_NEAR(b.warp(), h / 4, 1e-4 * h);
+  EXPECT_TRUE(b.convex());
+  EXPECT_THROW(Block(m.vertices, m.faces, kDefaultDensity, "test", 0.3), InvalidArgument);
+}
+
 TEST(BlockValidation, CoincidentVertices) {
   Mesh m = unit_cube();
   m.vertices[7] = m.vertices[6];

@@ -198,7 +198,7 @@ TEST(StructureJson, NamesTheOffendingEntry) {
        "blocks[0].support: expected true or false"},
       {[](auto& d) { d["blocks"][0]["density"] = -5; }, "blocks[0].density: must be positive"},
       {[](auto& d) { d["blocks"][0]["desnity"] = 2000; },
-       "blocks[0]: unknown field 'desnity' (allowed: density, faces, name, support, vertices)"},
+       "blocks[0]: unknown field 'desnity' (allowed: density, faces, name, planarity, support, vertices)"},
       {[](auto& d) { d["blocks"][1] = d["blocks"][0]; },
        "blocks[1] ('cube'): structure add: the name 'cube' is already used"},
       {[](auto& d) { d["loads"] = {{{"block", 1}, {"force", {0, 0, -1}}, {"at", {0, 0, 0}}}}; },

@@ -1,0 +1,98 @@
+-- Warped faces (CAD exports, remeshed and scanned blocks): the planarity
+-- option accepts faces whose vertices lie off their best-fit plane by up to
+-- a fraction of the face's size. The solid is then bounded by each face's
+-- fan triangulation, whose volume and centroid are checked here against
+-- closed forms.
+local ashlar = require "ashlar"
+local support = require "spec_support"
+
+-- A unit cube whose top corner (1, 1, 1) is raised by h: the top face
+-- (0,0,1) (1,0,1) (1,1,1+h) (0,1,1) is warped; the four sides stay planar.
+local function warped_cube_obj(h)
+  return ([[
+o warped
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 %.17g
+v 0 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+]]):format(1 + h)
+end
+
+describe("planarity", function()
+  local folder, path
+  local h = 0.01
+  setup(function()
+    folder = support.temp_folder()
+    path = folder .. "/warped.obj"
+    support.write_file(path, warped_cube_obj(h))
+  end)
+  teardown(function() support.remove_folder(folder) end)
+
+  it("is needed for a warped face, and the message says how much", function()
+    -- The top face's vertices lie h / 4 off its best-fit plane; its size
+    -- (bounding-box diagonal) is sqrt(2 + h^2): a planarity of 0.0018. (The
+    -- importer numbers faces and vertices after welding.)
+    support.expect_error({ "is not planar", "pass planarity", "needs at least 0.0018" },
+      ashlar.import, path)
+    support.expect_error({ "warped beyond planarity 0.001", "needs planarity 0.0018" },
+      ashlar.import, path, { planarity = 0.001 })
+  end)
+
+  it("accepts it, with the fan-triangulated solid's exact volume and centroid", function()
+    local b = ashlar.import(path, { planarity = 0.002 }):block(1)
+    -- The top is two triangles fanned from (0,0,1), each over half the unit
+    -- square with one corner raised by h: the wedge above z = 1 has volume
+    -- h / 3 and its centroid at z = 1 + h / 4.
+    -- (OBJ coordinates are single precision: 1 + h is read to 1e-8.)
+    local volume = 1 + h / 3
+    assert.near(volume, b:volume(), 1e-8)
+    assert.near((0.5 + h / 3 * (1 + h / 4)) / volume, b:centroid()[3], 1e-8)
+    assert.near(h / 4, b:warp(), 1e-4 * h)
+    assert.equal(0.002, b:planarity())
+    assert.is_true(b:is_convex())
+  end)
+
+  it("is kept by save and load, and given to load for files without it", function()
+    local s = ashlar.import(path, { planarity = 0.002 })
+    local saved = folder .. "/warped.json"
+    s:save(saved)
+    local loaded = ashlar.load(saved)
+    assert.equal(0.002, loaded:block(1):planarity())
+    assert.equal(s:block(1):volume(), loaded:block(1):volume())
+    -- The same file without the blocks' planarity field.
+    local text = support.read_file(saved):gsub('%s*"planarity": [^,]*,', "")
+    local bare = folder .. "/bare.json"
+    support.write_file(bare, text)
+    support.expect_error({ "is not planar", "needs at least 0.0018" }, ashlar.load, bare)
+    assert.near(1 + h / 3, ashlar.load(bare, { planarity = 0.002 }):block(1):volume(), 1e-8)
+  end)
+
+  it("is an option of ashlar.block, and a block keeps it through rigid motions", function()
+    local top = 1 + h
+    local b = ashlar.block{
+      vertices = { {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, top}, {0, 1, 1} },
+      faces = { {1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8} },
+      planarity = 0.002 }
+    assert.near(1 + h / 3, b:volume(), 1e-12)
+    local moved = b:rotated({ 0, 0, 1 }, 0.3):translated{ 5, 0, 0 }
+    assert.equal(0.002, moved:planarity())
+    assert.near(b:warp(), moved:warp(), 1e-12)
+  end)
+
+  it("refuses values out of range, naming them", function()
+    support.expect_error({ "planarity", "got -1" }, ashlar.import, path, { planarity = -1 })
+    support.expect_error({ "planarity must be a number from 0 to 0.2", "got 0.5" },
+      ashlar.import, path, { planarity = 0.5 })
+    support.expect_error({ "planarity", "got string" }, ashlar.load, path, { planarity = "a lot" })
+  end)
+end)
