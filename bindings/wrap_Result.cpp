@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "analysis/equilibrium.hpp"
 #include "analysis/qps_export.hpp"
@@ -133,13 +134,25 @@ void push_interfaces(lua_State* L, const EquilibriumResult& result) {
 
 void push_blocks(lua_State* L, const EquilibriumResult& result) {
   lua_createtable(L, static_cast<int>(result.block_tension.size()), 0);
+  // For floating blocks, the contact they miss (if one is near).
+  std::vector<const MissedContact*> missed(result.block_tension.size(), nullptr);
   std::vector<bool> floating(result.block_tension.size(), false);
-  for (int i : result.floating_blocks) floating[i] = true;
+  for (size_t k = 0; k < result.floating_blocks.size(); ++k) {
+    floating[result.floating_blocks[k]] = true;
+    if (k < result.floating_gaps.size() && result.floating_gaps[k].block >= 0) {
+      missed[result.floating_blocks[k]] = &result.floating_gaps[k];
+    }
+  }
   for (size_t i = 0; i < result.block_tension.size(); ++i) {
     lua_createtable(L, 0, 3);
     set_field(L, "tension", result.block_tension[i]);
     set_field(L, "virtual_torque", result.virtual_torques[i]);
     set_boolean(L, "floating", floating[i]);
+    if (missed[i]) {
+      lua_pushinteger(L, missed[i]->block + 1);
+      lua_setfield(L, -2, "nearest");
+      set_field(L, "gap", missed[i]->tolerance);
+    }
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
 }
@@ -221,9 +234,22 @@ int w_Result_tostring(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
     const EquilibriumResult& r = record->result;
-    lua_pushfstring(L, "Result (%s, infeasibility %f, %s after %d iterations)",
-                    r.stable ? "stable" : "unstable", r.infeasibility, status_name(r.status),
-                    r.iterations);
+    std::ostringstream text;
+    text << "Result (" << (r.stable ? "stable" : "unstable") << ", infeasibility " << r.infeasibility << ", "
+         << status_name(r.status) << " after " << r.iterations << " iterations";
+    if (!r.floating_blocks.empty()) {
+      // Why, for the first floating block: what a user must change.
+      text << "; " << r.floating_blocks.size() << (r.floating_blocks.size() == 1 ? " block floats" : " blocks float")
+           << ": block " << r.floating_blocks[0] + 1;
+      if (!r.floating_gaps.empty() && r.floating_gaps[0].block >= 0) {
+        text << " is " << r.floating_gaps[0].tolerance << " m from block " << r.floating_gaps[0].block + 1
+             << " (contact_tolerance = " << r.floating_gaps[0].tolerance << " closes it)";
+      } else {
+        text << " touches nothing within 1 % of the structure's size";
+      }
+    }
+    text << ")";
+    lua_pushstring(L, text.str().c_str());
     return 1;
   });
 }

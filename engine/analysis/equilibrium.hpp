@@ -93,6 +93,10 @@ struct EquilibriumResult {
   // blocks.
   bool borderline = false;
   std::vector<int> floating_blocks;        // 0-based; they make the structure unstable
+  // Why each floating block floats (parallel to floating_blocks): the
+  // nearest block it has no interface with, within 1 % of the structure's
+  // size, and the contact tolerance that would give them one.
+  std::vector<MissedContact> floating_gaps;
   std::vector<Eigen::Vector4d> vertex_forces;  // (c, s, f_u, f_v) in N per contact vertex
   std::vector<Vec3> vertex_positions;          // m
   std::vector<int> vertex_interface;           // interface index of each vertex

@@ -8,6 +8,14 @@
 
 namespace ashlar {
 
+namespace {
+
+// The largest gap, as a fraction of the structure's size, reported as the
+// reason a block floats.
+constexpr double kNearMiss = 0.01;
+
+}  // namespace
+
 EquilibriumAnalysis::EquilibriumAnalysis(const Structure& structure, const AnalysisSettings& settings) {
   update(structure, settings);
 }
@@ -20,6 +28,12 @@ void EquilibriumAnalysis::update(const Structure& structure, const AnalysisSetti
   problem_ = build_equilibrium_problem(structure, settings.problem);
   structure_ = &structure;
   settings_ = settings;
+  floating_gaps_.clear();
+  if (!problem_.floating_blocks.empty()) {
+    // Near misses only: a gap of over 1 % of the structure is not one.
+    floating_gaps_ = structure.missed_contacts(problem_.floating_blocks, kNearMiss * structure.bounds().diagonal(),
+                                               settings.problem.contact);
+  }
   if (!solver_ || !solver_->fits(problem_)) {
     solver_ = std::make_unique<EquilibriumSolver>(problem_);
     ++symbolic_analyses_;
@@ -47,6 +61,7 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   result.timings.factorization = info.factorization_seconds;
   result.timings.solve = info.solve_seconds;
   result.floating_blocks = problem_.floating_blocks;
+  result.floating_gaps = floating_gaps_;
 
   const std::vector<Interface>& interfaces = structure_->interfaces(settings_.problem.contact);
   result.interfaces.resize(interfaces.size());

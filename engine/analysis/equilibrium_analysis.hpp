@@ -65,6 +65,7 @@ private:
   EquilibriumProblem problem_;
   std::unique_ptr<EquilibriumSolver> solver_;
   InteriorPointSolution solution_;
+  std::vector<MissedContact> floating_gaps_;  // see EquilibriumResult::floating_gaps
   SolverStatus last_status_ = SolverStatus::numerical_error;
   double setup_seconds_ = 0.0;  // of the last constructor or update()
   int symbolic_analyses_ = 0;

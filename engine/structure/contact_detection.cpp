@@ -294,6 +294,39 @@ std::vector<std::pair<int, int>> box_pairs(const std::vector<const Block*>& bloc
   return pairs;
 }
 
+std::vector<MissedContact> missed_contacts(const std::vector<const Block*>& blocks,
+                                           const std::vector<int>& which, double reach,
+                                           const ContactOptions& options) {
+  const double tol = effective_tolerance(blocks, options);
+  std::vector<MissedContact> out(which.size());
+  if (!(reach > tol)) return out;
+  std::vector<int> slot(blocks.size(), -1);  // into `which`
+  for (size_t k = 0; k < which.size(); ++k) slot[which[k]] = static_cast<int>(k);
+  std::vector<std::vector<FaceInfo>> faces(blocks.size());
+  auto faces_of = [&](int i) -> const std::vector<FaceInfo>& {
+    if (faces[i].empty()) faces[i] = face_infos(*blocks[i]);
+    return faces[i];
+  };
+  auto touch = [&](int a, int b, double tolerance) {
+    std::vector<Interface> found;
+    ContactBuilder(tolerance).add_contacts(a, b, faces_of(a), faces_of(b), blocks[a]->bounds(),
+                                           blocks[b]->bounds(), found);
+    return !found.empty();
+  };
+  for (const auto& [a, b] : box_pairs(blocks, 0.5 * reach)) {
+    if ((slot[a] < 0 && slot[b] < 0) || touch(a, b, tol) || !touch(a, b, reach)) continue;
+    double lo = tol, hi = reach;  // no contact at lo, contact at hi
+    while (hi - lo > 1e-3 * hi) {
+      const double mid = 0.5 * (lo + hi);
+      (touch(a, b, mid) ? hi : lo) = mid;
+    }
+    for (const auto& [self, other] : {std::pair{a, b}, std::pair{b, a}}) {
+      if (slot[self] >= 0 && hi < out[slot[self]].tolerance) out[slot[self]] = {other, hi};
+    }
+  }
+  return out;
+}
+
 std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
                                          const ContactOptions& options) {
   const double tol = effective_tolerance(blocks, options);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <utility>
+#include <limits>
 #include <vector>
 
 #include "geometry/block.hpp"
@@ -25,6 +26,22 @@ struct ContactOptions {
 // non-convex or several faces share a plane). Sorted by (a, b).
 std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
                                          const ContactOptions& options);
+
+// The contact a block just misses: the nearest block it has no interface
+// with, and the least contact tolerance (m) that would give them one (a gap
+// between two faces closes at about its width).
+struct MissedContact {
+  int block = -1;  // 0-based; -1: none within reach
+  double tolerance = std::numeric_limits<double>::infinity();
+};
+
+// For blocks[i], i in `which`: the missed contact with the smallest closing
+// tolerance up to `reach` (m), among the blocks it has no interface with at
+// options' tolerance. The tolerance is found by bisection to 1e-3 of itself
+// (on the detection itself, so it is the one an analysis would need).
+std::vector<MissedContact> missed_contacts(const std::vector<const Block*>& blocks,
+                                           const std::vector<int>& which, double reach,
+                                           const ContactOptions& options);
 
 // The rules by which detection pairs faces, shared with the interfaces'
 // derivatives (interface_gradient.cpp), which must find the faces an

@@ -124,6 +124,11 @@ Box3 Structure::bounds() const {
   return box;
 }
 
+std::vector<MissedContact> Structure::missed_contacts(const std::vector<int>& which, double reach,
+                                                     const ContactOptions& options) const {
+  return ashlar::missed_contacts(block_pointers(), which, reach, options);
+}
+
 std::vector<const Block*> Structure::block_pointers() const {
   std::vector<const Block*> blocks;
   blocks.reserve(blocks_.size());

@@ -89,6 +89,10 @@ public:
   // how deep they overlap: an analysis of interpenetrating blocks would miss
   // the contacts between them. `caller` starts the message.
   void require_no_overlaps(const ContactOptions& options, const std::string& caller) const;
+  // For each block in `which`, the nearest contact it misses within `reach`
+  // (m) under `options` (see missed_contacts in contact_detection.hpp).
+  std::vector<MissedContact> missed_contacts(const std::vector<int>& which, double reach,
+                                             const ContactOptions& options = {}) const;
   // Throws InvalidArgument unless some block is not a support: an empty
   // structure, or ground alone, has nothing to analyse.
   void require_free_block(const std::string& caller) const;

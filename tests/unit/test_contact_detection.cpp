@@ -206,3 +206,37 @@ TEST(ContactDetection, RelativeToleranceScalesWithTheModel) {
     EXPECT_NEAR(s.interfaces()[0].area, 0.75 * scale * scale, 1e-12 * scale * scale);
   }
 }
+
+TEST(MissedContacts, AColumnWithGapsSaysWhichToleranceClosesEachGap) {
+  // Ground (block 0), then three 0.3 m cubes (1-3) stacked with gaps of 0.5,
+  // 0.2 and 1 mm, and a fourth (4) 0.15 m beside the column, beyond reach.
+  Structure s;
+  s.add(box({1, 1, 0.2}, {0, 0, -0.1}), true);
+  const double gaps[3] = {0.0005, 0.0002, 0.001};
+  double z = 0.0;
+  for (double gap : gaps) {
+    z += gap;
+    s.add(box({0.3, 0.3, 0.3}, {0, 0, z + 0.15}));
+    z += 0.3;
+  }
+  s.add(box({0.3, 0.3, 0.3}, {0.45, 0, 0.8}));
+  const double reach = 0.01 * s.bounds().diagonal();
+  ASSERT_LT(reach, 0.1);
+  const std::vector<MissedContact> missed = s.missed_contacts({1, 2, 3, 4}, reach);
+  ASSERT_EQ(missed.size(), 4u);
+  // Block 1 is 0.5 mm above the ground and 0.2 mm below block 2: its
+  // nearest miss is block 2. Block 3 is 1 mm above block 2.
+  EXPECT_EQ(missed[0].block, 2);
+  EXPECT_NEAR(missed[0].tolerance, 0.0002, 1e-3 * 0.0002 + 1e-9);
+  EXPECT_EQ(missed[1].block, 1);
+  EXPECT_NEAR(missed[1].tolerance, 0.0002, 1e-3 * 0.0002 + 1e-9);
+  EXPECT_EQ(missed[2].block, 2);
+  EXPECT_NEAR(missed[2].tolerance, 0.001, 1e-3 * 0.001 + 1e-9);
+  EXPECT_EQ(missed[3].block, -1);
+  EXPECT_TRUE(std::isinf(missed[3].tolerance));
+  // Each closing tolerance does close that gap: an analysis with the
+  // largest one finds all three.
+  ContactOptions closing;
+  closing.tolerance = missed[2].tolerance;
+  EXPECT_EQ(s.interfaces(closing).size(), 3u);
+}

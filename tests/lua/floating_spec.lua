@@ -1,0 +1,43 @@
+-- A floating block says why: the nearest block it misses and the contact
+-- tolerance that closes the gap (a column whose blocks were modelled with
+-- 0.5 mm gaps, as imported models often are).
+local ashlar = require "ashlar"
+
+local function column_with_gaps(gap)
+  local s = ashlar.structure()
+  s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { 0, 0, -0.1 } }, { support = true })
+  local z = 0
+  for _ = 1, 4 do
+    z = z + gap
+    s:add(ashlar.box{ size = { 0.3, 0.3, 0.3 }, center = { 0, 0, z + 0.15 } })
+    z = z + 0.3
+  end
+  return s
+end
+
+describe("a floating block", function()
+  it("names the block it misses, the gap, and the contact tolerance that closes it", function()
+    local s = column_with_gaps(0.0005)
+    local r = ashlar.analyze(s)
+    assert.is_false(r.stable)
+    assert.same({ 2, 3, 4, 5 }, r.floating)
+    for i = 2, 5 do
+      assert.is_true(r.blocks[i].floating)
+      assert.equal(i - 1, r.blocks[i].nearest)  -- the block below (ties: the first found)
+      assert.near(0.0005, r.blocks[i].gap, 1e-3 * 0.0005)
+    end
+    assert.matches("4 blocks float: block 2 is 0.0005%d* m from block 1 %(contact_tolerance = 0.0005%d* closes it%)",
+      tostring(r))
+    local closed = ashlar.analyze(s, { contact_tolerance = r.blocks[2].gap })
+    assert.is_true(closed.stable)
+    assert.same({}, closed.floating)
+    assert.is_nil(closed.blocks[2].gap)
+  end)
+
+  it("says so when nothing is near", function()
+    local s = column_with_gaps(0.5)
+    local r = ashlar.analyze(s)
+    assert.is_nil(r.blocks[2].nearest)
+    assert.matches("block 2 touches nothing within 1 %% of the structure's size", tostring(r))
+  end)
+end)
