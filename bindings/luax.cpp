@@ -46,12 +46,6 @@ std::string describe_number_problem(lua_State* L, int idx) {
   return value > 0 ? "expected a finite number, got inf" : "expected a finite number, got -inf";
 }
 
-// As Lua prints numbers: 0 and 2.5, not 0.000000 and 2.500000.
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, LUA_NUMBER_FMT, value);
-  return text;
-}
 
 bool finite_number_at(lua_State* L, int idx, double& out) {
   if (lua_type(L, idx) != LUA_TNUMBER) return false;
@@ -60,6 +54,12 @@ bool finite_number_at(lua_State* L, int idx, double& out) {
 }
 
 }  // namespace
+
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, LUA_NUMBER_FMT, value);
+  return text;
+}
 
 double check_number(lua_State* L, int arg, const char* what) {
   double value = 0.0;

@@ -88,6 +88,9 @@ void set_index_field(lua_State* L, const char* key, int zero_based);
 // An option table argument. Construction checks that the argument is a table
 // (or absent/nil) and that every key is one of `allowed`, naming the unknown
 // key and the allowed ones otherwise. Readers name the key in their errors.
+// As Lua prints numbers: 0 and 2.5, not 0.000000 and 2.500000.
+std::string number_text(double value);
+
 class OptionTable {
 public:
   OptionTable(lua_State* L, int arg, std::initializer_list<const char*> allowed);

@@ -244,6 +244,43 @@ int w_Structure_interfaces(lua_State* L) {
   });
 }
 
+// Near misses: gaps a tolerance up to `range` times the current one would
+// close, and overlaps deeper than the tolerance, which are errors.
+int w_Structure_contact_report(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"tolerance", "range"});
+    ContactOptions contact;
+    contact.tolerance = options.positive("tolerance", 0.0, true);
+    const double range = options.positive("range", 10.0);
+    if (range <= 1.0) throw ArgError(2, "range: expected a number > 1 (a multiple of the tolerance), got " + number_text(range));
+    const double tolerance = s.contact_tolerance(contact);
+    const std::vector<NearMiss> gaps = s.near_misses(range * tolerance, contact);
+    const std::vector<BlockOverlap>& overlaps = s.overlaps(contact);
+    lua_createtable(L, 0, 3);
+    set_field(L, "tolerance", tolerance);
+    lua_createtable(L, static_cast<int>(gaps.size()), 0);
+    for (size_t k = 0; k < gaps.size(); ++k) {
+      lua_createtable(L, 0, 3);
+      set_index_field(L, "a", gaps[k].a);
+      set_index_field(L, "b", gaps[k].b);
+      set_field(L, "gap", gaps[k].tolerance);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "gaps");
+    lua_createtable(L, static_cast<int>(overlaps.size()), 0);
+    for (size_t k = 0; k < overlaps.size(); ++k) {
+      lua_createtable(L, 0, 3);
+      set_index_field(L, "a", overlaps[k].a);
+      set_index_field(L, "b", overlaps[k].b);
+      set_field(L, "depth", overlaps[k].depth);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "overlaps");
+    return 1;
+  });
+}
+
 int w_Structure_overlaps(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
@@ -352,6 +389,7 @@ void register_Structure(lua_State* L) {
                                      {"bounds", w_Structure_bounds},
                                      {"interfaces", w_Structure_interfaces},
                                      {"overlaps", w_Structure_overlaps},
+                                     {"contact_report", w_Structure_contact_report},
                                      {"set_planar", w_Structure_set_planar},
                                      {"is_planar", w_Structure_is_planar},
                                      {"save", w_Structure_save},

@@ -294,14 +294,17 @@ std::vector<std::pair<int, int>> box_pairs(const std::vector<const Block*>& bloc
   return pairs;
 }
 
-std::vector<MissedContact> missed_contacts(const std::vector<const Block*>& blocks,
-                                           const std::vector<int>& which, double reach,
-                                           const ContactOptions& options) {
+namespace {
+
+// The pairs (a, b) with wanted(a, b) that have no interface at options'
+// tolerance but one at `reach`, each with the least tolerance that gives
+// one (bisection on the detection itself, to 1e-3 of it).
+template <typename Wanted>
+std::vector<NearMiss> find_near_misses(const std::vector<const Block*>& blocks, double reach,
+                                       const ContactOptions& options, Wanted&& wanted) {
   const double tol = effective_tolerance(blocks, options);
-  std::vector<MissedContact> out(which.size());
+  std::vector<NearMiss> out;
   if (!(reach > tol)) return out;
-  std::vector<int> slot(blocks.size(), -1);  // into `which`
-  for (size_t k = 0; k < which.size(); ++k) slot[which[k]] = static_cast<int>(k);
   std::vector<std::vector<FaceInfo>> faces(blocks.size());
   auto faces_of = [&](int i) -> const std::vector<FaceInfo>& {
     if (faces[i].empty()) faces[i] = face_infos(*blocks[i]);
@@ -314,16 +317,40 @@ std::vector<MissedContact> missed_contacts(const std::vector<const Block*>& bloc
     return !found.empty();
   };
   for (const auto& [a, b] : box_pairs(blocks, 0.5 * reach)) {
-    if ((slot[a] < 0 && slot[b] < 0) || touch(a, b, tol) || !touch(a, b, reach)) continue;
+    if (!wanted(a, b) || touch(a, b, tol) || !touch(a, b, reach)) continue;
     double lo = tol, hi = reach;  // no contact at lo, contact at hi
     while (hi - lo > 1e-3 * hi) {
       const double mid = 0.5 * (lo + hi);
       (touch(a, b, mid) ? hi : lo) = mid;
     }
-    for (const auto& [self, other] : {std::pair{a, b}, std::pair{b, a}}) {
-      if (slot[self] >= 0 && hi < out[slot[self]].tolerance) out[slot[self]] = {other, hi};
+    out.push_back({a, b, hi});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<MissedContact> missed_contacts(const std::vector<const Block*>& blocks,
+                                           const std::vector<int>& which, double reach,
+                                           const ContactOptions& options) {
+  std::vector<int> slot(blocks.size(), -1);  // into `which`
+  for (size_t k = 0; k < which.size(); ++k) slot[which[k]] = static_cast<int>(k);
+  std::vector<MissedContact> out(which.size());
+  const std::vector<NearMiss> misses =
+      find_near_misses(blocks, reach, options, [&](int a, int b) { return slot[a] >= 0 || slot[b] >= 0; });
+  for (const NearMiss& miss : misses) {  // in pair order: ties go to the first pair
+    for (const auto& [self, other] : {std::pair{miss.a, miss.b}, std::pair{miss.b, miss.a}}) {
+      if (slot[self] >= 0 && miss.tolerance < out[slot[self]].tolerance) out[slot[self]] = {other, miss.tolerance};
     }
   }
+  return out;
+}
+
+std::vector<NearMiss> near_misses(const std::vector<const Block*>& blocks, double reach,
+                                  const ContactOptions& options) {
+  std::vector<NearMiss> out = find_near_misses(blocks, reach, options, [](int, int) { return true; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const NearMiss& x, const NearMiss& y) { return x.tolerance < y.tolerance; });
   return out;
 }
 

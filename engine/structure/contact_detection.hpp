@@ -43,6 +43,16 @@ std::vector<MissedContact> missed_contacts(const std::vector<const Block*>& bloc
                                            const std::vector<int>& which, double reach,
                                            const ContactOptions& options);
 
+// Every pair of blocks with no interface at options' tolerance that has one
+// at some tolerance up to `reach` (m), with that least tolerance (as
+// missed_contacts finds it), sorted by it.
+struct NearMiss {
+  int a = -1, b = -1;  // 0-based, a < b
+  double tolerance = 0.0;  // m
+};
+std::vector<NearMiss> near_misses(const std::vector<const Block*>& blocks, double reach,
+                                  const ContactOptions& options);
+
 // The rules by which detection pairs faces, shared with the interfaces'
 // derivatives (interface_gradient.cpp), which must find the faces an
 // interface was cut from.

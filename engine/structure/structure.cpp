@@ -129,6 +129,14 @@ std::vector<MissedContact> Structure::missed_contacts(const std::vector<int>& wh
   return ashlar::missed_contacts(block_pointers(), which, reach, options);
 }
 
+std::vector<NearMiss> Structure::near_misses(double reach, const ContactOptions& options) const {
+  return ashlar::near_misses(block_pointers(), reach, options);
+}
+
+double Structure::contact_tolerance(const ContactOptions& options) const {
+  return effective_tolerance(block_pointers(), options);
+}
+
 std::vector<const Block*> Structure::block_pointers() const {
   std::vector<const Block*> blocks;
   blocks.reserve(blocks_.size());

@@ -93,6 +93,11 @@ public:
   // (m) under `options` (see missed_contacts in contact_detection.hpp).
   std::vector<MissedContact> missed_contacts(const std::vector<int>& which, double reach,
                                              const ContactOptions& options = {}) const;
+  // Pairs of blocks that would touch with a tolerance up to `reach` (m) but
+  // do not under `options` (see near_misses in contact_detection.hpp).
+  std::vector<NearMiss> near_misses(double reach, const ContactOptions& options = {}) const;
+  // The contact tolerance (m) `options` stands for on this structure.
+  double contact_tolerance(const ContactOptions& options = {}) const;
   // Throws InvalidArgument unless some block is not a support: an empty
   // structure, or ground alone, has nothing to analyse.
   void require_free_block(const std::string& caller) const;

@@ -40,4 +40,29 @@ describe("a floating block", function()
     assert.is_nil(r.blocks[2].nearest)
     assert.matches("block 2 touches nothing within 1 %% of the structure's size", tostring(r))
   end)
+
+  it("is among the near misses s:contact_report lists, with what the tolerance closes", function()
+    -- Gaps of 10 and 30 micrometres: the default tolerance (1e-6 of the
+    -- model's size, 1.6 micrometres here) misses both; range 10 reaches the
+    -- first only, range 100 both, in order of their gaps.
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { 0, 0, -0.1 } }, { support = true })
+    s:add(ashlar.box{ size = { 0.3, 0.3, 0.3 }, center = { 0, 0, 0.15 + 3e-5 } })
+    s:add(ashlar.box{ size = { 0.3, 0.3, 0.3 }, center = { 0, 0, 0.45 + 4e-5 } })
+    local near = s:contact_report()
+    assert.near(1e-6 * math.sqrt(1 + 1 + 0.8 ^ 2), near.tolerance, 1e-9)
+    assert.equal(1, #near.gaps)
+    assert.same({ 2, 3 }, { near.gaps[1].a, near.gaps[1].b })
+    assert.near(1e-5, near.gaps[1].gap, 1e-3 * 1e-5 + 1e-10)
+    assert.same({}, near.overlaps)
+    local far = s:contact_report{ range = 100 }
+    assert.equal(2, #far.gaps)
+    assert.same({ 1, 2 }, { far.gaps[2].a, far.gaps[2].b })
+    assert.near(3e-5, far.gaps[2].gap, 1e-3 * 3e-5 + 1e-10)
+    -- An explicit tolerance that closes the first gap leaves the second.
+    local closed = s:contact_report{ tolerance = 2e-5, range = 2 }
+    assert.equal(1, #closed.gaps)
+    assert.same({ 1, 2 }, { closed.gaps[1].a, closed.gaps[1].b })
+    require("spec_support").expect_error({ "range", "got 1" }, s.contact_report, s, { range = 1 })
+  end)
 end)
