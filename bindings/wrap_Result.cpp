@@ -51,7 +51,7 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
   }
   problem.tension_weight = options.positive("tension_weight", problem.tension_weight, true);
   problem.force_weight = options.positive("force_weight", problem.force_weight);
-  problem.contact.tolerance = options.positive("contact_tolerance", 0.0, true);
+  problem.contact = contact_options(options, "contact_tolerance", "contact_angle", "contact_min_area");
   settings.solver.tolerance = options.positive("tolerance", settings.solver.tolerance);
   if (options.push("max_iterations") != LUA_TNIL) {
     settings.solver.max_iterations = static_cast<int>(check_integer(L, -1, "max_iterations"));

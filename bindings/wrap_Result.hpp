@@ -13,7 +13,8 @@ class OptionTable;
 // The option names of ashlar.analyze, for option tables that accept them.
 #define ASHLAR_ANALYSIS_OPTIONS                                                          \
   "friction", "friction_sides", "friction_model", "tension_weight", "force_weight",      \
-      "tolerance", "max_iterations", "stable_tolerance", "contact_tolerance"
+      "tolerance", "max_iterations", "stable_tolerance", "contact_tolerance", "contact_angle",     \
+      "contact_min_area"
 // Analysis settings from an option table that allows ASHLAR_ANALYSIS_OPTIONS.
 AnalysisSettings analysis_settings(const OptionTable& options);
 

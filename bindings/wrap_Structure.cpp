@@ -9,6 +9,21 @@
 
 namespace ashlar::lua {
 
+ContactOptions contact_options(const OptionTable& options, const char* tolerance_key, const char* angle_key,
+                               const char* min_area_key) {
+  ContactOptions contact;
+  contact.tolerance = options.positive(tolerance_key, 0.0, true);
+  if (const std::optional<double> angle = options.number(angle_key)) {
+    if (!(*angle > 0.0 && *angle < 0.5 * M_PI)) {
+      throw ArgError(options.arg(), std::string(angle_key) + ": expected an angle in radians between 0 and pi/2, got " +
+                                        number_text(*angle));
+    }
+    contact.angle = *angle;
+  }
+  if (min_area_key) contact.min_area = options.positive(min_area_key, 0.0, true);
+  return contact;
+}
+
 namespace {
 
 constexpr const char* kStructureMeta = "ashlar.Structure";
@@ -231,9 +246,8 @@ int w_Structure_interfaces(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {"tolerance"});
-    ContactOptions contact;
-    contact.tolerance = options.positive("tolerance", 0.0, true);
+    const OptionTable options(L, 2, {"tolerance", "angle", "min_area"});
+    const ContactOptions contact = contact_options(options, "tolerance", "angle", "min_area");
     const std::vector<Interface>& found = s.interfaces(contact);
     lua_createtable(L, static_cast<int>(found.size()), 0);
     for (size_t k = 0; k < found.size(); ++k) {
@@ -249,9 +263,8 @@ int w_Structure_interfaces(lua_State* L) {
 int w_Structure_contact_report(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
-    const OptionTable options(L, 2, {"tolerance", "range"});
-    ContactOptions contact;
-    contact.tolerance = options.positive("tolerance", 0.0, true);
+    const OptionTable options(L, 2, {"tolerance", "angle", "range"});
+    const ContactOptions contact = contact_options(options, "tolerance", "angle", nullptr);
     const double range = options.positive("range", 10.0);
     if (range <= 1.0) throw ArgError(2, "range: expected a number > 1 (a multiple of the tolerance), got " + number_text(range));
     const double tolerance = s.contact_tolerance(contact);

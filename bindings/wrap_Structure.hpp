@@ -4,6 +4,7 @@
 #include <lua.hpp>
 #include <memory>
 
+#include "luax.hpp"
 #include "structure/structure.hpp"
 
 namespace ashlar::lua {
@@ -15,6 +16,12 @@ void luax_pushStructure(lua_State* L, std::shared_ptr<Structure> structure);
 void register_Structure(lua_State* L);
 // ashlar.structure and ashlar.load: set into the table on top of the stack.
 void set_structure_functions(lua_State* L);
+
+// Contact options from an option table's keys for the tolerance (m), the
+// angle (rad) and the smallest interface area (m^2); absent keys keep the
+// defaults.
+ContactOptions contact_options(const OptionTable& options, const char* tolerance_key, const char* angle_key,
+                               const char* min_area_key);
 
 // Block index argument: an integer 1..#s or a block name; returns 0-based.
 int check_block_index(lua_State* L, const Structure& s, int idx, int arg, const char* what);

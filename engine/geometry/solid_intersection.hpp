@@ -9,9 +9,11 @@
 
 namespace ashlar {
 
-// Vertices of the intersection of the two blocks' solids, by exact CGAL
-// corefinement: empty when they only touch or are apart. Nothing when CGAL
-// cannot build the intersection as a manifold surface.
-std::optional<std::vector<Vec3>> shared_solid_vertices(const Block& a, const Block& b);
+// The intersection of the two blocks' solids, by exact CGAL corefinement,
+// as the vertices of each of its connected pieces: empty when they only
+// touch or are apart. Nothing when CGAL cannot build the intersection as a
+// manifold surface. (Two facetings of one curved joint share many thin
+// lens-shaped pieces: each is thin, together they span the joint.)
+std::optional<std::vector<std::vector<Vec3>>> shared_solid_pieces(const Block& a, const Block& b);
 
 }  // namespace ashlar

@@ -124,7 +124,7 @@ struct PlaneContact {
 
 class ContactBuilder {
 public:
-  ContactBuilder(double tol) : tol_(tol) {}
+  ContactBuilder(double tol, double opposite) : tol_(tol), opposite_(opposite) {}
 
   void add_contacts(int ia, int ib, const std::vector<FaceInfo>& fa,
                     const std::vector<FaceInfo>& fb, const Box3& box_a, const Box3& box_b,
@@ -132,7 +132,7 @@ public:
     std::vector<PlaneContact> planes;
     for_each_overlapping_face_pair(fa, box_a, fb, box_b, tol_, [&](int f, int g) {
       const FacePlane& pa = fa[f].plane;
-      if (!faces_may_touch(fa[f].loop, pa, fb[g].loop, fb[g].plane, tol_)) return;
+      if (!faces_may_touch(fa[f].loop, pa, fb[g].loop, fb[g].plane, tol_, opposite_)) return;
       PlaneContact* target = nullptr;
       for (PlaneContact& contact : planes) {
         if (on_same_plane(pa.normal, pa.offset, fa[contact.faces_a.front()].plane, tol_)) {
@@ -245,6 +245,7 @@ private:
   }
 
   double tol_;
+  double opposite_;  // see opposite_cosine
 };
 
 }  // namespace
@@ -254,14 +255,22 @@ bool boxes_overlap(const Box3& a, const Box3& b, double grow) {
 }
 
 bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
-                     const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol) {
-  return plane_a.normal.dot(plane_b.normal) <= kOppositeNormals &&
+                     const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol,
+                     double opposite) {
+  return plane_a.normal.dot(plane_b.normal) <= opposite &&
          !clear_of_plane(loop_b, plane_a, tol) && !clear_of_plane(loop_a, plane_b, tol);
 }
 
 bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol) {
   return 1.0 - plane.normal.dot(normal) <= kSamePlaneNormals &&
          std::abs(plane.offset - offset) <= tol;
+}
+
+double opposite_cosine(const ContactOptions& options) { return -std::cos(options.angle); }
+
+bool same_contacts(const ContactOptions& x, const ContactOptions& y) {
+  return x.tolerance == y.tolerance && x.relative_tolerance == y.relative_tolerance && x.angle == y.angle &&
+         x.min_area == y.min_area;
 }
 
 double effective_tolerance(const std::vector<const Block*>& blocks,
@@ -271,6 +280,14 @@ double effective_tolerance(const std::vector<const Block*>& blocks,
   }
   if (!std::isfinite(options.relative_tolerance) || options.relative_tolerance <= 0.0) {
     throw InvalidArgument("relative contact tolerance must be a finite number > 0");
+  }
+  if (!(options.angle > 0.0 && options.angle < 0.5 * M_PI)) {
+    throw InvalidArgument("contact angle must be a number of radians in (0, pi/2), got " +
+                          std::to_string(options.angle));
+  }
+  if (!std::isfinite(options.min_area) || options.min_area < 0.0) {
+    throw InvalidArgument("contact min_area must be a finite number >= 0 (m^2), got " +
+                          std::to_string(options.min_area));
   }
   if (options.tolerance > 0.0) return options.tolerance;
   Box3 box;
@@ -303,6 +320,7 @@ template <typename Wanted>
 std::vector<NearMiss> find_near_misses(const std::vector<const Block*>& blocks, double reach,
                                        const ContactOptions& options, Wanted&& wanted) {
   const double tol = effective_tolerance(blocks, options);
+  const double opposite = opposite_cosine(options);
   std::vector<NearMiss> out;
   if (!(reach > tol)) return out;
   std::vector<std::vector<FaceInfo>> faces(blocks.size());
@@ -312,7 +330,7 @@ std::vector<NearMiss> find_near_misses(const std::vector<const Block*>& blocks, 
   };
   auto touch = [&](int a, int b, double tolerance) {
     std::vector<Interface> found;
-    ContactBuilder(tolerance).add_contacts(a, b, faces_of(a), faces_of(b), blocks[a]->bounds(),
+    ContactBuilder(tolerance, opposite).add_contacts(a, b, faces_of(a), faces_of(b), blocks[a]->bounds(),
                                            blocks[b]->bounds(), found);
     return !found.empty();
   };
@@ -365,11 +383,16 @@ std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks
     if (faces[a].empty()) faces[a] = face_infos(*blocks[a]);
     if (faces[b].empty()) faces[b] = face_infos(*blocks[b]);
   }
-  const ContactBuilder builder(tol);
+  const ContactBuilder builder(tol, opposite_cosine(options));
   std::vector<Interface> interfaces;
   for (const auto& [a, b] : candidates) {
     builder.add_contacts(a, b, faces[a], faces[b], blocks[a]->bounds(), blocks[b]->bounds(),
                          interfaces);
+  }
+  if (options.min_area > 0.0) {
+    interfaces.erase(std::remove_if(interfaces.begin(), interfaces.end(),
+                                    [&](const Interface& c) { return c.area < options.min_area; }),
+                     interfaces.end());
   }
   // Same-pair pieces in a stable order, whatever order CGAL reported pairs in.
   std::stable_sort(interfaces.begin(), interfaces.end(), [](const Interface& x, const Interface& y) {

@@ -1,8 +1,9 @@
 // Finds every contact polygon between the blocks of a structure.
 #pragma once
 
-#include <utility>
+#include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "geometry/block.hpp"
@@ -17,7 +18,21 @@ struct ContactOptions {
   // <= 0 means relative_tolerance times the model's bounding-box diagonal.
   double tolerance = 0.0;
   double relative_tolerance = 1e-6;
+  // Largest angle (rad) between one face's outward normal and the reverse of
+  // the other's for the two to be in contact: acos(0.99), about 8.1 degrees,
+  // by default; larger for warped or curved joints whose facets do not
+  // match, less than pi / 2.
+  double angle = std::acos(0.99);
+  // Interfaces smaller than this (m^2) are dropped: slivers of imperfect
+  // models.
+  double min_area = 0.0;
 };
+
+// -cos(options.angle): two faces may touch when the dot product of their
+// outward normals is at most this.
+double opposite_cosine(const ContactOptions& options);
+// Whether two option sets find the same interfaces.
+bool same_contacts(const ContactOptions& x, const ContactOptions& y);
 
 // Broad phase: overlapping bounding boxes (CGAL box intersection,
 // O(n log n + k)); narrow phase: face pairs with opposite normals whose
@@ -57,18 +72,17 @@ std::vector<NearMiss> near_misses(const std::vector<const Block*>& blocks, doubl
 // derivatives (interface_gradient.cpp), which must find the faces an
 // interface was cut from.
 //
-// Faces whose normals are further from opposite than about 8 degrees are never
-// in contact; nearer ones are judged by the gap at the contact polygon.
-constexpr double kOppositeNormals = -0.99;
 // Normals of faces of one block within this (1 - cos) are treated as one plane.
 constexpr double kSamePlaneNormals = 1e-9;
 
 bool boxes_overlap(const Box3& a, const Box3& b, double grow);
 // Whether two faces (vertex loops and planes, m) may touch within `tol` (m):
-// opposite normals, and neither loop entirely more than tol to one side of
-// the other's plane. Their boxes are checked apart.
+// normals opposite to within the contact angle (their dot product at most
+// `opposite`, see opposite_cosine), and neither loop entirely more than tol
+// to one side of the other's plane. Their boxes are checked apart.
 bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
-                     const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol);
+                     const std::vector<Vec3>& loop_b, const FacePlane& plane_b, double tol,
+                     double opposite);
 // Whether the plane (normal, offset) is `plane` within `tol` (m).
 bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol);
 

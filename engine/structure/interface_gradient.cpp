@@ -37,10 +37,10 @@ Box3 bounds_of(const std::vector<Vec3>& points) {
 }
 
 // Whether contact detection intersects face f of block a with face g of block b.
-bool faces_touch(const Block& a, int f, const Block& b, int g, double tol) {
+bool faces_touch(const Block& a, int f, const Block& b, int g, double tol, double opposite) {
   const std::vector<Vec3> loop_a = face_loop(a, f), loop_b = face_loop(b, g);
   return boxes_overlap(bounds_of(loop_a), bounds_of(loop_b), tol) &&
-         faces_may_touch(loop_a, a.face_planes()[f], loop_b, b.face_planes()[g], tol);
+         faces_may_touch(loop_a, a.face_planes()[f], loop_b, b.face_planes()[g], tol, opposite);
 }
 
 // The faces of blocks a and b that contact detection intersected on one plane.
@@ -50,7 +50,7 @@ struct ContactFaces {
 };
 
 ContactFaces find_contact_faces(const Block& a, const Block& b, const Interface& contact,
-                                double tol) {
+                                double tol, double opposite) {
   const Vec3& n = contact.normal;
   double offset = 0.0;
   for (const Vec3& x : contact.vertices) offset += n.dot(x);
@@ -62,7 +62,7 @@ ContactFaces find_contact_faces(const Block& a, const Block& b, const Interface&
     }
   }
   for (size_t g = 0; g < b.faces().size(); ++g) {
-    if (b.face_planes()[g].normal.dot(n) <= kOppositeNormals) {
+    if (b.face_planes()[g].normal.dot(n) <= opposite) {
       facing_b.push_back(static_cast<int>(g));
     }
   }
@@ -71,7 +71,7 @@ ContactFaces find_contact_faces(const Block& a, const Block& b, const Interface&
   for (int f : on_plane_a) {
     bool touched = false;
     for (size_t j = 0; j < facing_b.size(); ++j) {
-      if (faces_touch(a, f, b, facing_b[j], tol)) touched = touched_b[j] = true;
+      if (faces_touch(a, f, b, facing_b[j], tol, opposite)) touched = touched_b[j] = true;
     }
     if (touched) faces.faces_a.push_back(f);
   }
@@ -358,11 +358,11 @@ std::string describe_pair(const Structure& structure, const Interface& contact) 
 }
 
 void accumulate_one(const Structure& structure, const Interface& contact,
-                    const InterfaceAdjoint& adjoint, double tol,
+                    const InterfaceAdjoint& adjoint, double tol, double opposite,
                     std::vector<std::vector<Vec3>>& gradient) {
   const Block& a = structure.block(contact.a);
   const Block& b = structure.block(contact.b);
-  const ContactFaces faces = find_contact_faces(a, b, contact, tol);
+  const ContactFaces faces = find_contact_faces(a, b, contact, tol, opposite);
   if (faces.plane_face < 0) {
     throw InvalidArgument("interface gradient: no faces of " + describe_pair(structure, contact) +
                           " meet on the plane of their interface");
@@ -449,7 +449,7 @@ void accumulate_interface_gradient(const Structure& structure, const ContactOpti
   const double tol = effective_tolerance(blocks, options);
   for (size_t k = 0; k < interfaces.size(); ++k) {
     if (all_zero(adjoints[k])) continue;
-    accumulate_one(structure, interfaces[k], adjoints[k], tol, gradient);
+    accumulate_one(structure, interfaces[k], adjoints[k], tol, opposite_cosine(options), gradient);
   }
 }
 

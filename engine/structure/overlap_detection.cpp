@@ -98,18 +98,24 @@ std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) 
   axes.insert(axes.end(), more.begin(), more.end());
   if (a.convex() && b.convex()) return least;
   // Unseparated non-convex blocks may still only touch (a box in an L's
-  // corner): measure the solid they share. When CGAL cannot build it, the
-  // pair is left alone: a refused valid structure is worse than a missed
-  // overlap.
-  const std::optional<std::vector<Vec3>> shared = shared_solid_vertices(a, b);
+  // corner): measure the solid they share, piece by piece (the depth is the
+  // thickest piece's thinnest extent along the axes: differently faceted
+  // curved joints share many thin pieces that together span the joint).
+  // When CGAL cannot build it, the pair is left alone: a refused valid
+  // structure is worse than a missed overlap.
+  const std::optional<std::vector<std::vector<Vec3>>> shared = shared_solid_pieces(a, b);
   if (!shared || shared->empty()) return std::nullopt;
-  double thickness = std::numeric_limits<double>::infinity();
-  for (const Vec3& axis : axes) {
-    const Extent extent = extent_along(*shared, axis, origin);
-    thickness = std::min(thickness, extent.hi - extent.lo);
+  double depth = 0.0;
+  for (const std::vector<Vec3>& piece : *shared) {
+    double thickness = std::numeric_limits<double>::infinity();
+    for (const Vec3& axis : axes) {
+      const Extent extent = extent_along(piece, axis, origin);
+      thickness = std::min(thickness, extent.hi - extent.lo);
+    }
+    depth = std::max(depth, thickness);
   }
-  if (thickness <= tol) return std::nullopt;
-  return thickness;
+  if (depth <= tol) return std::nullopt;
+  return depth;
 }
 
 }  // namespace

@@ -145,8 +145,7 @@ std::vector<const Block*> Structure::block_pointers() const {
 }
 
 const std::vector<Interface>& Structure::interfaces(const ContactOptions& options) const {
-  if (!cache_.valid || cache_.options.tolerance != options.tolerance ||
-      cache_.options.relative_tolerance != options.relative_tolerance) {
+  if (!cache_.valid || !same_contacts(cache_.options, options)) {
     cache_.interfaces = detect_interfaces(block_pointers(), options);
     cache_.options = options;
     cache_.valid = true;
@@ -155,8 +154,7 @@ const std::vector<Interface>& Structure::interfaces(const ContactOptions& option
 }
 
 const std::vector<BlockOverlap>& Structure::overlaps(const ContactOptions& options) const {
-  if (!overlap_cache_.valid || overlap_cache_.options.tolerance != options.tolerance ||
-      overlap_cache_.options.relative_tolerance != options.relative_tolerance) {
+  if (!overlap_cache_.valid || !same_contacts(overlap_cache_.options, options)) {
     const std::vector<const Block*> blocks = block_pointers();
     overlap_cache_.tolerance = effective_tolerance(blocks, options);
     overlap_cache_.overlaps = detect_overlaps(blocks, overlap_cache_.tolerance);

@@ -155,8 +155,9 @@ end
 
 -- Largest force and moment imbalance of the free blocks (N, N m) under their
 -- weights and the result's vertex forces (statics alone, no point loads),
--- and the largest vertex tension (N).
-function support.statics(s, r)
+-- and the largest vertex tension (N). `contact`: the options of
+-- s:interfaces that match the analysis' contact options (default none).
+function support.statics(s, r, contact)
   local force, moment = {}, {}
   for i = 1, #s do
     if not s:is_support(i) then
@@ -174,7 +175,7 @@ function support.statics(s, r)
     for k = 1, 3 do moment[i][k] = moment[i][k] + sign * m[k] end
   end
   local tension = 0
-  local contacts = s:interfaces()
+  local contacts = s:interfaces(contact)
   for _, v in ipairs(r.vertices) do
     local f = r.interfaces[v.interface]
     local contact = contacts[v.interface]
