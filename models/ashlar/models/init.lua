@@ -14,4 +14,5 @@ return {
   buttressed_vault = require "ashlar.models.buttressed_vault",
   arch_bridge = require "ashlar.models.arch_bridge",
   cable_stayed_bridge = require "ashlar.models.cable_stayed_bridge",
+  perturbed = require "ashlar.models.perturbed",
 }

@@ -1,0 +1,82 @@
+-- Imperfect models (models.perturbed): a barrel vault whose every free
+-- vertex is moved by up to 1 % of its block's size, exported to OBJ and
+-- imported back with `planarity`, keeps its contacts (every pair of blocks,
+-- total area within 2 %) and its verdict, thick and thin, once the contact
+-- tolerance covers the moves.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+local support = require "spec_support"
+
+local AMOUNT, PLANARITY = 0.01, 0.05
+
+local function contacts(s, tolerance)
+  local area, seen, pairs_found = 0, {}, 0
+  for _, c in ipairs(s:interfaces{ tolerance = tolerance, angle = math.rad(15) }) do
+    area = area + c.area
+    local key = c.a .. "," .. c.b
+    if not seen[key] then seen[key], pairs_found = true, pairs_found + 1 end
+  end
+  return pairs_found, area
+end
+
+local function mean_block_size(s)
+  local sum = 0
+  for i = 1, #s do
+    local lo, hi = s:block(i):bounds()
+    sum = sum + math.sqrt((hi[1] - lo[1]) ^ 2 + (hi[2] - lo[2]) ^ 2 + (hi[3] - lo[3]) ^ 2)
+  end
+  return sum / #s
+end
+
+describe("a perturbed barrel vault through OBJ", function()
+  local folder
+  setup(function() folder = support.temp_folder() end)
+  teardown(function() support.remove_folder(folder) end)
+
+  for _, case in ipairs{ { thickness = 0.45, stable = true }, { thickness = 0.27, stable = false } } do
+    it(("keeps its contacts and its verdict at t/R = %.2f"):format(case.thickness / 3), function()
+      local s = models.barrel_vault{ radius = 3, thickness = case.thickness, voussoirs = 24, courses = 6,
+                                     bond = "running" }
+      local moved = models.perturbed(s, { amount = AMOUNT, planarity = PLANARITY, seed = 5 })
+      local path = folder .. "/vault.obj"
+      ashlar.export(moved, path)
+      local supports = {}
+      for i = 1, #s do if s:is_support(i) then supports[s:name(i)] = true end end
+      local imported = ashlar.import(path, { planarity = PLANARITY, support = function(name) return supports[name] == true end })
+      assert.equal(#s, #imported)
+      local tolerance = 2.5 * AMOUNT * mean_block_size(s)
+      local expected_pairs, expected_area = contacts(s)
+      local found_pairs, found_area = contacts(imported, tolerance)
+      assert.equal(expected_pairs, found_pairs)
+      assert.near(expected_area, found_area, 0.02 * expected_area)
+      assert.is_true(found_area < expected_area)  -- moved faces overlap less, on average
+      local r = ashlar.analyze(imported, { friction = 0.7, contact_tolerance = tolerance, contact_angle = math.rad(15) })
+      assert.equal("converged", r.status)
+      assert.equal(case.stable, r.stable)
+      assert.equal(case.stable, ashlar.analyze(s, { friction = 0.7 }).stable)
+    end)
+  end
+
+  it("is reproducible, and refuses what it cannot copy", function()
+    local s = models.arch{}
+    local a = models.perturbed(s, { seed = 2 }):block(5):vertices()
+    local b = models.perturbed(s, { seed = 2 }):block(5):vertices()
+    local c = models.perturbed(s, { seed = 3 }):block(5):vertices()
+    assert.same(a, b)
+    assert.are_not.same(a, c)
+    -- Supports stay; every free vertex moves by at most amount x the block's size.
+    local moved = models.perturbed(s, { amount = 0.02, seed = 4 })
+    for i = 1, #s do
+      local lo, hi = s:block(i):bounds()
+      local size = math.sqrt((hi[1] - lo[1]) ^ 2 + (hi[2] - lo[2]) ^ 2 + (hi[3] - lo[3]) ^ 2)
+      local before, after = s:block(i):vertices(), moved:block(i):vertices()
+      for k = 1, #before do
+        local d = math.sqrt((after[k][1] - before[k][1]) ^ 2 + (after[k][2] - before[k][2]) ^ 2 +
+                            (after[k][3] - before[k][3]) ^ 2)
+        if s:is_support(i) then assert.equal(0, d) else assert.is_true(d <= 0.02 * size + 1e-12) end
+      end
+    end
+    support.expect_error({ "models.perturbed", "expected a structure" }, models.perturbed, {})
+    support.expect_error({ "models.perturbed", "amount", "<= 0.1" }, models.perturbed, s, { amount = 1 })
+  end)
+end)
