@@ -258,6 +258,20 @@ int w_Structure_interfaces(lua_State* L) {
   });
 }
 
+// Pushes a list of { a = i, b = j, <field> = value } for pairs of blocks
+// (0-based .a and .b, pushed 1-based), the value taken by value_of.
+template <typename Pair, typename ValueOf>
+void push_block_pairs(lua_State* L, const std::vector<Pair>& pairs, const char* field, ValueOf value_of) {
+  lua_createtable(L, static_cast<int>(pairs.size()), 0);
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    lua_createtable(L, 0, 3);
+    set_index_field(L, "a", pairs[k].a);
+    set_index_field(L, "b", pairs[k].b);
+    set_field(L, field, value_of(pairs[k]));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
 // Near misses: gaps a tolerance up to `range` times the current one would
 // close, and overlaps deeper than the tolerance, which are errors.
 int w_Structure_contact_report(lua_State* L) {
@@ -272,23 +286,9 @@ int w_Structure_contact_report(lua_State* L) {
     const std::vector<BlockOverlap>& overlaps = s.overlaps(contact);
     lua_createtable(L, 0, 3);
     set_field(L, "tolerance", tolerance);
-    lua_createtable(L, static_cast<int>(gaps.size()), 0);
-    for (size_t k = 0; k < gaps.size(); ++k) {
-      lua_createtable(L, 0, 3);
-      set_index_field(L, "a", gaps[k].a);
-      set_index_field(L, "b", gaps[k].b);
-      set_field(L, "gap", gaps[k].tolerance);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
+    push_block_pairs(L, gaps, "gap", [](const NearMiss& gap) { return gap.tolerance; });
     lua_setfield(L, -2, "gaps");
-    lua_createtable(L, static_cast<int>(overlaps.size()), 0);
-    for (size_t k = 0; k < overlaps.size(); ++k) {
-      lua_createtable(L, 0, 3);
-      set_index_field(L, "a", overlaps[k].a);
-      set_index_field(L, "b", overlaps[k].b);
-      set_field(L, "depth", overlaps[k].depth);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
+    push_block_pairs(L, overlaps, "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
     lua_setfield(L, -2, "overlaps");
     return 1;
   });
@@ -300,15 +300,7 @@ int w_Structure_overlaps(lua_State* L) {
     const OptionTable options(L, 2, {"tolerance"});
     ContactOptions contact;
     contact.tolerance = options.positive("tolerance", 0.0, true);
-    const std::vector<BlockOverlap>& found = s.overlaps(contact);
-    lua_createtable(L, static_cast<int>(found.size()), 0);
-    for (size_t k = 0; k < found.size(); ++k) {
-      lua_createtable(L, 0, 3);
-      set_index_field(L, "a", found[k].a);
-      set_index_field(L, "b", found[k].b);
-      set_field(L, "depth", found[k].depth);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
+    push_block_pairs(L, s.overlaps(contact), "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
     return 1;
   });
 }
