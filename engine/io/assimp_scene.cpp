@@ -81,6 +81,25 @@ std::vector<std::array<int, 3>> triangulate(const std::vector<Vec3>& loop, const
 
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(loop.size() - 2);
+  // A strictly convex face is fanned from its first vertex, which is how a
+  // Block bounds the solid of a warped face (mass_properties): the mesh
+  // written is then the very solid the analyses use, and reads back with
+  // the same volume. (Any triangulation of a planar face bounds the same
+  // solid.)
+  Loop2 ordered;
+  for (int index : remaining) ordered.push_back(points[index]);
+  const size_t corners = remaining.size();
+  bool strictly_convex = is_convex(ordered);
+  for (size_t i = 0; i < corners && strictly_convex; ++i) {
+    strictly_convex = turn(ordered[(i + corners - 1) % corners], ordered[i], ordered[(i + 1) % corners]) > 0;
+  }
+  if (strictly_convex) {
+    const size_t first = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), 0) - remaining.begin());
+    for (size_t k = 1; k + 1 < corners; ++k) {
+      triangles.push_back({0, remaining[(first + k) % corners], remaining[(first + k + 1) % corners]});
+    }
+    return triangles;
+  }
   while (remaining.size() > 3) {
     const size_t n = remaining.size();
     auto corner = [&](size_t i) {
