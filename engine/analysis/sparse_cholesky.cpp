@@ -285,7 +285,9 @@ struct SplitSide {
   // and L_SS L_SS^T = J U U^T J.
   Eigen::MatrixXd reversed_trailing;
   Eigen::MatrixXd product;               // U U^T (upper triangle)
-  Eigen::VectorXd permuted, back;        // solve buffers (factor order)
+  // Solve buffers, kept between solves at their sizes: rows of this side
+  // (factor order), and separator rows.
+  Eigen::VectorXd permuted, back, separator_work;
   Eigen::VectorXd separator_part;        // this side's M_SA M_AA^-1 b_A, separator order
 
   int separator_rows() const { return static_cast<int>(separator_slot.size()); }
@@ -349,9 +351,9 @@ struct SplitSide {
     const double* y = system->solve(CHOLMOD_L, permuted.data());
     std::copy(y, y + n, permuted.data());
     // L_SS y_S = J U J y_S.
-    back.noalias() = reversed_trailing.triangularView<Eigen::Upper>() * permuted.tail(s).reverse();
+    separator_work.noalias() = reversed_trailing.triangularView<Eigen::Upper>() * permuted.tail(s).reverse();
     separator_part.resize(s);
-    for (int k = 0; k < s; ++k) separator_part[separator_slot[k]] = -back[s - 1 - k];
+    for (int k = 0; k < s; ++k) separator_part[separator_slot[k]] = -separator_work[s - 1 - k];
   }
 
   // Back solve given the separator's solution: L^T u = [y_A; L_SS^T x_S]
@@ -361,9 +363,9 @@ struct SplitSide {
     back.resize(n);
     back.head(own) = permuted.head(own);
     // L_SS^T x_S = J U^T J x_S, with x_S taken into factor order.
-    Eigen::VectorXd reversed(s);
-    for (int k = 0; k < s; ++k) reversed[s - 1 - k] = separator_solution[separator_slot[k]];
-    back.tail(s).reverse() = reversed_trailing.triangularView<Eigen::Upper>().transpose() * reversed;
+    separator_work.resize(s);
+    for (int k = 0; k < s; ++k) separator_work[s - 1 - k] = separator_solution[separator_slot[k]];
+    back.tail(s).reverse() = reversed_trailing.triangularView<Eigen::Upper>().transpose() * separator_work;
     const double* u = system->solve(CHOLMOD_Lt, back.data());
     for (int k = 0; k < own; ++k) out[own_rows[order[k]]] = u[k];
   }
