@@ -37,6 +37,8 @@ void push_interface(lua_State* L, const Interface& contact) {
   set_field(L, "normal", contact.normal);
   set_field(L, "u", contact.u);
   set_field(L, "v", contact.v);
+  lua_pushboolean(L, contact.is_explicit);
+  lua_setfield(L, -2, "explicit");
   push_points(L, contact.vertices);
   lua_setfield(L, -2, "vertices");
   lua_createtable(L, static_cast<int>(contact.holes.size()), 0);
@@ -141,6 +143,45 @@ int w_Structure_add_cable(lua_State* L) {
       cable.max_tension = options.positive("max_tension", cable.max_tension);
     }
     lua_pushinteger(L, s.add_cable(cable) + 1);
+    return 1;
+  });
+}
+
+int w_Structure_add_interface(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    Structure& s = *structure;
+    if (lua_type(L, 2) != LUA_TTABLE) {
+      throw ArgError(2, "expected an interface table {a = i, b = j, polygons = {{{x, y, z}, ...}, ...}, "
+                        "normal = nil}, got " + type_name(L, 2));
+    }
+    const OptionTable options(L, 2, {"a", "b", "polygons", "normal"});
+    int ends[2];
+    const char* keys[2] = {"a", "b"};
+    for (int k = 0; k < 2; ++k) {
+      options.push(keys[k]);
+      ends[k] = check_block_index(L, s, -1, 2, keys[k]);
+      lua_pop(L, 1);
+    }
+    if (options.push("polygons") != LUA_TTABLE) {
+      throw ArgError(2, "polygons: required, a list of polygons {{{x, y, z}, ...}, ...} (m), got " + type_name(L, -1));
+    }
+    const int list = lua_gettop(L);
+    std::vector<std::vector<Vec3>> polygons;
+    const lua_Unsigned count = lua_rawlen(L, list);
+    for (lua_Unsigned k = 1; k <= count; ++k) {
+      lua_rawgeti(L, list, static_cast<lua_Integer>(k));
+      if (lua_type(L, -1) == LUA_TTABLE && lua_rawgeti(L, -1, 1) == LUA_TNUMBER) {
+        throw ArgError(2, "polygons: expected a list of polygons, got a list of points (wrap the polygon in "
+                          "another table: polygons = {{{x, y, z}, ...}})");
+      }
+      lua_settop(L, list + 1);  // the polygon
+      polygons.push_back(to_points(L, -1, 2, "polygons[" + std::to_string(k) + "]"));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    const std::optional<Vec3> normal = options.vec3("normal");
+    lua_pushinteger(L, s.add_interface(ends[0], ends[1], polygons, normal));
     return 1;
   });
 }
@@ -385,6 +426,7 @@ void register_Structure(lua_State* L) {
   static const luaL_Reg methods[] = {{"add", w_Structure_add},
                                      {"add_load", w_Structure_add_load},
                                      {"add_cable", w_Structure_add_cable},
+                                     {"add_interface", w_Structure_add_interface},
                                      {"cables", w_Structure_cables},
                                      {"block", w_Structure_block},
                                      {"name", w_Structure_name},

@@ -326,6 +326,7 @@ void push_outcome(lua_State* L, OptimizeStatus status, bool stable, const std::s
 int optimize_structure(lua_State* L) {
   const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
   const Structure& s = *structure;
+  s.require_detected_interfaces("optimize");
   const OptionTable options(
       L, 2, {"method", "max_iterations", "gradient_tolerance", "value_tolerance", "initial_step",
              "analysis", "progress", "fixed", "fixed_names", "fixed_vertices", "fixed_cables",

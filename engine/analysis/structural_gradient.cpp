@@ -38,6 +38,7 @@ StructuralGradient structural_gradient(const Structure& structure,
 
 StructuralGradient structural_gradient(EquilibriumAnalysis& analysis, const Structure& structure,
                                        bool warm_start) {
+  structure.require_detected_interfaces("gradient");
   StructuralGradient out;
   out.analysis = analysis.solve(warm_start);
   const EquilibriumProblem& problem = analysis.problem();

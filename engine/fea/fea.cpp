@@ -306,6 +306,7 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   const Clock::time_point start = Clock::now();
   check_settings(structure, settings);
   structure.require_free_block("fea");
+  structure.require_detected_interfaces("fea");
   structure.require_no_overlaps(settings.contact, "fea");
   FeaResult result;
   const std::vector<Interface>& interfaces = structure.interfaces(settings.contact);

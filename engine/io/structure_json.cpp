@@ -294,6 +294,27 @@ void read_cable(const Reader& reader, const json& entry, int i, Structure& struc
   }
 }
 
+void read_interface(const Reader& reader, const json& entry, int i, Structure& structure) {
+  const std::string where = "interfaces[" + std::to_string(i) + "]";
+  reader.expect_object(entry, where);
+  reader.reject_unknown_keys(entry, {"a", "b", "normal", "polygon"}, where);
+  const int a = reader.index(reader.member(entry, "a", where), structure.size(), "blocks", where + ".a");
+  const int b = reader.index(reader.member(entry, "b", where), structure.size(), "blocks", where + ".b");
+  std::optional<Vec3> normal;
+  if (const auto found = entry.find("normal"); found != entry.end()) normal = reader.vec3(*found, where + ".normal");
+  const json& points = reader.member(entry, "polygon", where);
+  reader.expect_array(points, where + ".polygon");
+  std::vector<Vec3> polygon;
+  for (size_t k = 0; k < points.size(); ++k) {
+    polygon.push_back(reader.vec3(points[k], where + ".polygon[" + std::to_string(k) + "]"));
+  }
+  try {
+    structure.add_interface(a, b, {polygon}, normal);
+  } catch (const InvalidArgument& e) {
+    reader.fail(where, e.what());
+  }
+}
+
 json cable_end_to_json(const CableEnd& end) {
   json out;
   if (end.block >= 0) out["block"] = end.block;
@@ -341,7 +362,8 @@ Structure read_document(const Reader& reader, const json& root, double planarity
   // Format and version first: a file of another kind or a later version is
   // reported as such, not by its first unknown field.
   check_header(reader, root);
-  reader.reject_unknown_keys(root, {"format", "version", "units", "planar", "blocks", "loads", "cables"},
+  reader.reject_unknown_keys(root,
+                             {"format", "version", "units", "planar", "blocks", "loads", "cables", "interfaces"},
                              "top level");
 
   Structure structure;
@@ -364,6 +386,12 @@ Structure read_document(const Reader& reader, const json& root, double planarity
     reader.expect_array(*cables, "cables");
     for (size_t i = 0; i < cables->size(); ++i) {
       read_cable(reader, (*cables)[i], static_cast<int>(i), structure);
+    }
+  }
+  if (const auto interfaces = root.find("interfaces"); interfaces != root.end()) {
+    reader.expect_array(*interfaces, "interfaces");
+    for (size_t i = 0; i < interfaces->size(); ++i) {
+      read_interface(reader, (*interfaces)[i], static_cast<int>(i), structure);
     }
   }
   return structure;
@@ -409,6 +437,17 @@ std::string structure_to_json(const Structure& structure) {
     if (std::isfinite(cable.max_tension)) entry["max_tension"] = cable.max_tension;
     cables.push_back(std::move(entry));
   }
+  json interfaces = json::array();
+  for (const Interface& contact : structure.explicit_interfaces()) {
+    json polygon = json::array();
+    for (const Vec3& p : contact.vertices) polygon.push_back(vec3_to_json(p));
+    json entry;
+    entry["a"] = contact.a;
+    entry["b"] = contact.b;
+    entry["normal"] = vec3_to_json(contact.normal);
+    entry["polygon"] = std::move(polygon);
+    interfaces.push_back(std::move(entry));
+  }
   json root;
   root["format"] = kFormatName;
   root["version"] = kStructureFormatVersion;
@@ -417,6 +456,7 @@ std::string structure_to_json(const Structure& structure) {
   root["blocks"] = std::move(blocks);
   root["loads"] = std::move(loads);
   if (!cables.empty()) root["cables"] = std::move(cables);
+  if (!interfaces.empty()) root["interfaces"] = std::move(interfaces);
   std::string text;
   write_pretty(root, 0, text);
   return text + "\n";

@@ -1,4 +1,5 @@
-// A contact interface between two blocks, found by contact detection.
+// A contact interface between two blocks: found by contact detection, or
+// given explicitly (Structure::add_interface).
 #pragma once
 
 #include <vector>
@@ -19,6 +20,10 @@ struct Interface {
   double area = 0.0;             // m^2, holes excluded
   std::vector<Vec3> vertices;    // outer boundary, counter-clockwise about normal
   std::vector<std::vector<Vec3>> holes;  // clockwise about normal
+  // Given by the user (Structure::add_interface, or a file's stored
+  // interfaces), not found from the geometry: it does not move with the
+  // blocks, so nothing differentiates it.
+  bool is_explicit = false;
 };
 
 }  // namespace ashlar

@@ -5,6 +5,9 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/polygon_boolean.hpp"
 
 namespace ashlar {
 
@@ -130,7 +133,11 @@ std::vector<MissedContact> Structure::missed_contacts(const std::vector<int>& wh
 }
 
 std::vector<NearMiss> Structure::near_misses(double reach, const ContactOptions& options) const {
-  return ashlar::near_misses(block_pointers(), reach, options);
+  std::vector<NearMiss> found = ashlar::near_misses(block_pointers(), reach, options);
+  found.erase(std::remove_if(found.begin(), found.end(),
+                             [&](const NearMiss& pair) { return has_explicit_pair(pair.a, pair.b); }),
+              found.end());
+  return found;
 }
 
 double Structure::contact_tolerance(const ContactOptions& options) const {
@@ -144,9 +151,142 @@ std::vector<const Block*> Structure::block_pointers() const {
   return blocks;
 }
 
+Interface Structure::explicit_interface(int a, int b, std::vector<Vec3> polygon,
+                                        const std::optional<Vec3>& normal, const std::string& what) const {
+  if (polygon.size() < 3) {
+    throw InvalidArgument(what + ": expected at least 3 points, got " + std::to_string(polygon.size()));
+  }
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    if (!polygon[k].allFinite()) {
+      throw InvalidArgument(what + ": point " + std::to_string(k + 1) + " is not finite");
+    }
+  }
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& p : polygon) centroid += p;
+  centroid /= static_cast<double>(polygon.size());
+  Box3 extent;
+  for (const Vec3& p : polygon) extent.add(p);
+  const double size = extent.diagonal();
+  const Vec3 own_normal = newell_normal(polygon);
+  if (!(own_normal.norm() > 1e-12 * size * size)) {
+    throw InvalidArgument(what + ": its points enclose no area (collinear or repeated points)");
+  }
+  const double allowed = 1e-3 * size;
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const double off = std::abs(own_normal.normalized().dot(polygon[k] - centroid));
+    if (off > allowed) {
+      throw InvalidArgument(what + ": not planar: point " + std::to_string(k + 1) + " is " + message_number(off) +
+                            " m off its plane (allowed: " + message_number(allowed) + " m, 1e-3 of its size)");
+    }
+  }
+  Vec3 n = own_normal.normalized();
+  if (normal) {
+    if (!normal->allFinite() || !(normal->norm() > 0.0)) {
+      throw InvalidArgument(what + ": normal must be a finite, non-zero vector");
+    }
+    const Vec3 given = normal->normalized();
+    const double angle = std::acos(std::min(1.0, std::abs(given.dot(n))));
+    if (angle > kPi / 180.0) {
+      throw InvalidArgument(what + ": the polygon's plane is " + message_number(angle * 180.0 / kPi) +
+                            " degrees off perpendicular to the given normal (allowed: 1 degree)");
+    }
+    n = given;
+  } else if (n.dot(block(b).centroid() - block(a).centroid()) < 0.0) {
+    n = -n;
+  }
+  // By its blocks: a polygon away from them would apply forces at a distance.
+  for (int end : {a, b}) {
+    const Box3& box = block(end).bounds();
+    const double grow = 0.05 * box.diagonal();
+    if ((centroid.array() < box.lo.array() - grow).any() || (centroid.array() > box.hi.array() + grow).any()) {
+      const Vec3 nearest = centroid.cwiseMax(box.lo).cwiseMin(box.hi);
+      throw InvalidArgument(what + ": it lies " + message_number((centroid - nearest).norm()) + " m from " + label(end) +
+                            " (its centroid must be within the block's bounding box grown by 5 % of its size)");
+    }
+  }
+  if (a > b) {
+    std::swap(a, b);
+    n = -n;
+  }
+  const PlaneFrame frame = PlaneFrame::from_normal(centroid, n);
+  Loop2 flat;
+  for (const Vec3& p : polygon) flat.push_back(frame.project(p));
+  if (signed_area(flat) < 0.0) std::reverse(flat.begin(), flat.end());
+  if (!is_convex(flat) && !is_simple_loop(flat)) {
+    throw InvalidArgument(what + ": its outline crosses itself: expected a simple polygon");
+  }
+  Interface contact;
+  contact.a = a;
+  contact.b = b;
+  contact.normal = n;
+  contact.area = signed_area(flat);
+  contact.center = frame.lift(area_centroid(flat));
+  for (const Vec2& q : flat) contact.vertices.push_back(frame.lift(q));
+  size_t longest = 0;
+  for (size_t i = 1; i < contact.vertices.size(); ++i) {
+    const auto length = [&](size_t j) {
+      return (contact.vertices[(j + 1) % contact.vertices.size()] - contact.vertices[j]).norm();
+    };
+    if (length(i) > length(longest)) longest = i;
+  }
+  contact.u = (contact.vertices[(longest + 1) % contact.vertices.size()] - contact.vertices[longest]).normalized();
+  contact.v = contact.normal.cross(contact.u);
+  contact.is_explicit = true;
+  return contact;
+}
+
+int Structure::add_interface(int a, int b, const std::vector<std::vector<Vec3>>& polygons,
+                             const std::optional<Vec3>& normal) {
+  for (int end : {a, b}) {
+    if (end < 0 || end >= size()) {
+      throw InvalidArgument("interface: block " + std::to_string(end + 1) + " does not exist (the structure has " +
+                            std::to_string(size()) + " blocks)");
+    }
+  }
+  if (a == b) throw InvalidArgument("interface: a and b are both " + label(a) + "; expected two blocks");
+  if (polygons.empty()) throw InvalidArgument("interface: expected at least one polygon, got none");
+  std::vector<Interface> added;
+  for (size_t k = 0; k < polygons.size(); ++k) {
+    const std::string what = "interface between " + label(a) + " and " + label(b) + ", polygon " +
+                             std::to_string(k + 1);
+    added.push_back(explicit_interface(a, b, polygons[k], normal, what));
+  }
+  explicit_.insert(explicit_.end(), added.begin(), added.end());
+  cache_.valid = false;
+  overlap_cache_.valid = false;
+  return static_cast<int>(added.size());
+}
+
+bool Structure::has_explicit_pair(int a, int b) const {
+  if (a > b) std::swap(a, b);
+  return std::any_of(explicit_.begin(), explicit_.end(),
+                     [&](const Interface& contact) { return contact.a == a && contact.b == b; });
+}
+
+void Structure::require_detected_interfaces(const std::string& caller) const {
+  if (explicit_.empty()) return;
+  throw InvalidArgument(caller + ": the structure has " + std::to_string(explicit_.size()) +
+                        (explicit_.size() == 1 ? " explicit interface" : " explicit interfaces") +
+                        " (from s:add_interface or a file's stored interfaces, the first between " +
+                        label(explicit_[0].a) + " and " + label(explicit_[0].b) + "); " + caller +
+                        " needs contacts found from the geometry, which move with the blocks (import a COMPAS "
+                        "file with interfaces = \"detect\")");
+}
+
 const std::vector<Interface>& Structure::interfaces(const ContactOptions& options) const {
   if (!cache_.valid || !same_contacts(cache_.options, options)) {
-    cache_.interfaces = detect_interfaces(block_pointers(), options);
+    std::vector<Interface> found = detect_interfaces(block_pointers(), options);
+    if (!explicit_.empty()) {
+      found.erase(std::remove_if(found.begin(), found.end(),
+                                 [&](const Interface& contact) { return has_explicit_pair(contact.a, contact.b); }),
+                  found.end());
+      found.insert(found.end(), explicit_.begin(), explicit_.end());
+      std::stable_sort(found.begin(), found.end(), [](const Interface& x, const Interface& y) {
+        return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+      });
+      found.shrink_to_fit();
+    }
+    cache_.interfaces = std::move(found);
     cache_.options = options;
     cache_.valid = true;
   }
@@ -158,6 +298,10 @@ const std::vector<BlockOverlap>& Structure::overlaps(const ContactOptions& optio
     const std::vector<const Block*> blocks = block_pointers();
     overlap_cache_.tolerance = effective_tolerance(blocks, options);
     overlap_cache_.overlaps = detect_overlaps(blocks, overlap_cache_.tolerance);
+    std::vector<BlockOverlap>& found = overlap_cache_.overlaps;
+    found.erase(std::remove_if(found.begin(), found.end(),
+                               [&](const BlockOverlap& pair) { return has_explicit_pair(pair.a, pair.b); }),
+                found.end());
     overlap_cache_.options = options;
     overlap_cache_.valid = true;
   }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -79,8 +80,31 @@ public:
   void set_planar(bool planar) { planar_ = planar; }
   bool planar() const { return planar_; }
 
-  // Contact interfaces; recomputed only when blocks were added or the
-  // options differ from the cached call.
+  // Adds contacts that detection cannot find between blocks a and b
+  // (0-based): a curved bed given as planar facets, a mortar joint modelled
+  // as a plane, a chosen contact zone. Each polygon (at least 3 points, m)
+  // becomes one interface: it must be planar within 1e-3 of its size and
+  // simple. Its normal, from block a into block b, is `normal` when given
+  // (the polygon is then projected on the plane through its centroid
+  // perpendicular to it, and must be within 1 degree of that plane), else
+  // the polygon's own normal turned to point from a's centroid towards
+  // b's. Every polygon must lie by its blocks (its centroid within their
+  // bounding boxes grown by 5 % of their size). From then on interfaces()
+  // gives these in place of any it detects between a and b, and the pair
+  // never counts as overlapping. Returns the number added; throws
+  // InvalidArgument naming the polygon and the value at fault.
+  int add_interface(int a, int b, const std::vector<std::vector<Vec3>>& polygons,
+                    const std::optional<Vec3>& normal = std::nullopt);
+  // The interfaces given by add_interface, in the order given.
+  const std::vector<Interface>& explicit_interfaces() const { return explicit_; }
+  // Throws InvalidArgument when the structure has explicit interfaces:
+  // `caller` (gradients, optimisation, FEA) needs contacts found from the
+  // geometry, which move and mesh with the blocks.
+  void require_detected_interfaces(const std::string& caller) const;
+
+  // Contact interfaces: the detected ones (recomputed only when blocks were
+  // added or the options differ from the cached call) but between pairs
+  // with explicit interfaces, and the explicit ones, sorted by (a, b).
   const std::vector<Interface>& interfaces(const ContactOptions& options = {}) const;
   // Pairs of blocks that interpenetrate by more than the contact tolerance
   // of `options`; cached like the interfaces.
@@ -105,10 +129,14 @@ public:
 private:
   std::vector<const Block*> block_pointers() const;
   void check_cable(const Cable& cable, int index) const;
+  Interface explicit_interface(int a, int b, std::vector<Vec3> polygon, const std::optional<Vec3>& normal,
+                               const std::string& what) const;
+  bool has_explicit_pair(int a, int b) const;
 
   std::vector<StructureBlock> blocks_;
   std::vector<PointLoad> loads_;
   std::vector<Cable> cables_;
+  std::vector<Interface> explicit_;
   std::unordered_map<std::string, int> index_by_name_;
   bool planar_ = false;
 

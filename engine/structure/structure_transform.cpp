@@ -33,6 +33,11 @@ Structure rotated(const Structure& structure, const Vec3& axis, double angle, co
     cable.to.point = move(cable.to.point);
     out.add_cable(cable);
   }
+  for (const Interface& contact : structure.explicit_interfaces()) {
+    std::vector<Vec3> polygon;
+    for (const Vec3& p : contact.vertices) polygon.push_back(move(p));
+    out.add_interface(contact.a, contact.b, {polygon}, Vec3(rotation * contact.normal));
+  }
   return out;
 }
 

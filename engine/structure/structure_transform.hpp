@@ -14,7 +14,8 @@ namespace ashlar {
 //
 // Every block, supports included, keeps its name, support flag, density and
 // faces; cable end points (anchors and junctions) turn with the blocks, and
-// cables keep their mass and tension bound. Point loads move their point of
+// cables keep their mass and tension bound; explicit interfaces turn with
+// their blocks. Point loads move their point of
 // application but keep their force vector in world coordinates: they are
 // dead weights that still hang vertically, as gravity does. So about +y by
 // theta > 0 (which moves +z towards +x) gravity, seen in the structure's own
