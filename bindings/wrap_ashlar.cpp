@@ -7,6 +7,7 @@
 #include "core/process_stats.hpp"
 #include "core/version.hpp"
 #include "io/color_map.hpp"
+#include "io/compas_assembly.hpp"
 #include "io/mesh_io.hpp"
 #include "luax.hpp"
 #include "wrap_Block.hpp"
@@ -57,9 +58,36 @@ int w_export(lua_State* L) {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
-    const OptionTable options(L, 3, {"color", "interfaces", "tolerance", "result", "forces",
+    const OptionTable options(L, 3, {"format", "color", "interfaces", "tolerance", "result", "forces",
                                      "thrust", "force_scale", "opacity", "cable_color", "traces",
                                      "trace_color"});
+    const std::optional<std::string> format = options.string("format");
+    if (format && *format != "compas") {
+      throw ArgError(3, "format: expected \"compas\" (other formats follow the file's extension), got \"" +
+                            *format + "\"");
+    }
+    if (format || file_extension(path) == "json") {
+      CompasExportOptions compas;
+      compas.contact.tolerance = options.positive("tolerance", 0.0, true);
+      std::shared_ptr<const EquilibriumResult> result;
+      if (options.push("result") != LUA_TNIL) {
+        result = luax_testResult(L, -1);
+        if (!result) {
+          throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " + type_name(L, -1));
+        }
+        compas.result = result.get();
+      }
+      lua_pop(L, 1);
+      for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
+                              "traces", "trace_color"}) {
+        if (options.has(key)) {
+          throw ArgError(3, std::string(key) + ": does not apply to a COMPAS assembly (.json), which holds blocks, "
+                                               "supports, interfaces and, with result, their forces");
+        }
+      }
+      write_compas_assembly(s, path, compas);
+      return 0;
+    }
     ExportOptions exported;
     exported.block_colors = block_colors(L, options, s.size());
     exported.interfaces = options.boolean("interfaces").value_or(false);
@@ -131,7 +159,7 @@ bool is_support(lua_State* L, int rule, const ImportedBlock& imported) {
 int w_import(lua_State* L) {
   return guard(L, [&] {
     const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::read);
-    const OptionTable options(L, 2, {"support", "density", "planarity"});
+    const OptionTable options(L, 2, {"support", "density", "planarity", "interfaces"});
     ImportOptions import_options;
     import_options.density = options.positive("density", kDefaultDensity);
     import_options.planarity = options.positive("planarity", 0.0, /*zero_allowed=*/true);
@@ -145,11 +173,25 @@ int w_import(lua_State* L) {
       throw ArgError(2, "support: expected a name pattern (string) or function(name, block), got " +
                             type_name(L, rule));
     }
+    const bool compas = file_extension(path) == "json";
+    const std::optional<std::string> interfaces = options.string("interfaces");
+    if (interfaces && !compas) {
+      throw ArgError(2, "interfaces: applies to COMPAS assembly files (.json) only, not to '" + path + "'");
+    }
+    if (interfaces && *interfaces != "file" && *interfaces != "detect") {
+      throw ArgError(2, "interfaces: expected \"file\" (the file's stored interfaces, explicit) or \"detect\" "
+                        "(found from the geometry), got \"" + *interfaces + "\"");
+    }
     auto structure = std::make_shared<Structure>();
-    for (ImportedBlock& imported : import_blocks(path, import_options)) {
-      const bool support = is_support(L, rule, imported);
-      structure->add(std::make_shared<const Block>(std::move(imported.block)), support,
-                     imported.name);
+    if (compas) {
+      *structure = compas_structure(read_compas_assembly(path, import_options), interfaces.value_or("file") == "file",
+                                    [&](const ImportedBlock& imported) { return is_support(L, rule, imported); });
+    } else {
+      for (ImportedBlock& imported : import_blocks(path, import_options)) {
+        const bool support = is_support(L, rule, imported);
+        structure->add(std::make_shared<const Block>(std::move(imported.block)), support,
+                       imported.name);
+      }
     }
     lua_pop(L, 1);
     luax_pushStructure(L, std::move(structure));

@@ -1,7 +1,8 @@
 -- Imperfect models, as CAD and scans deliver them: every vertex of every
 -- free block of a generated barrel vault and dome moved at random by up to
 -- 1 % of its block's size (warped faces, gaps and overlaps of that order),
--- written to OBJ and imported back with `planarity`, then compared with the
+-- written to OBJ and to a COMPAS assembly (contacts left to detection) and
+-- imported back with `planarity`, then compared with the
 -- unperturbed model: interfaces found (count, total area), and the verdict of
 -- a thick (stable) and a thin (unstable) version. Then the time of contact
 -- detection on a perturbed 10,027-block vault.
@@ -29,16 +30,18 @@ local function mean_block_size(s)
   return sum / #s
 end
 
--- models.perturbed's copy of the model, through an OBJ file; the supports
--- keep their names and are picked by them on import.
-local function perturbed_through_obj(s, name, seed)
+-- models.perturbed's copy of the model, through an OBJ file (the supports
+-- keep their names and are picked by them on import) or a COMPAS assembly
+-- (which flags its supports; its interfaces are left to detection).
+local function perturbed_through(route, s, name, seed)
   local moved = models.perturbed(s, { amount = AMOUNT, seed = seed, planarity = PLANARITY })
+  local path = ("%s/perturbed_%s.%s"):format(folder, name, route == "obj" and "obj" or "json")
+  ashlar.export(moved, path)
+  if route == "compas" then return ashlar.import(path, { planarity = PLANARITY, interfaces = "detect" }) end
   local supports = {}
   for i = 1, #s do
     if s:is_support(i) then supports[s:name(i)] = true end
   end
-  local path = ("%s/perturbed_%s.obj"):format(folder, name)
-  ashlar.export(moved, path)
   return ashlar.import(path, { planarity = PLANARITY, support = function(n) return supports[n] == true end })
 end
 
@@ -55,7 +58,7 @@ end
 
 print(("every free block's vertices moved by up to %g of its size; planarity %g; contact tolerance %g x that move, angle %g deg"):format(
   AMOUNT, PLANARITY, TOLERANCE, math.deg(ANGLE)))
-print(("%-22s %6s %11s %11s %8s %8s %8s %9s"):format("model", "blocks", "pairs", "area m^2", "area %",
+print(("%-22s %-6s %6s %11s %11s %8s %8s %8s %9s"):format("model", "route", "blocks", "pairs", "area m^2", "area %",
   "stable", "before", "tolerance"))
 local cases = {
   { "barrel vault t/R 0.15", models.barrel_vault{ radius = 3, thickness = 0.45, voussoirs = 24, courses = 6, bond = "running" } },
@@ -67,13 +70,15 @@ for index, case in ipairs(cases) do
   local name, s = case[1], case[2]
   local count, area = interfaces_of(s)
   local before = ashlar.analyze(s, { friction = FRICTION })
-  local p = perturbed_through_obj(s, tostring(index), index)
-  local tolerance = TOLERANCE * AMOUNT * mean_block_size(s)
-  local found, found_area = interfaces_of(p, tolerance, ANGLE)
-  local ok, r = pcall(ashlar.analyze, p, { friction = FRICTION, contact_tolerance = tolerance, contact_angle = ANGLE })
-  print(("%-22s %6d %5d/%-5d %5.2f/%-5.2f %+7.2f %8s %8s %9.4f"):format(name, #s, found, count, found_area, area,
-    100 * (found_area - area) / area, ok and tostring(r.stable) or "error", tostring(before.stable), tolerance))
-  if not ok then print("  " .. tostring(r)) end
+  for _, route in ipairs{ "obj", "compas" } do
+    local p = perturbed_through(route, s, tostring(index), index)
+    local tolerance = TOLERANCE * AMOUNT * mean_block_size(s)
+    local found, found_area = interfaces_of(p, tolerance, ANGLE)
+    local ok, r = pcall(ashlar.analyze, p, { friction = FRICTION, contact_tolerance = tolerance, contact_angle = ANGLE })
+    print(("%-22s %-6s %6d %5d/%-5d %5.2f/%-5.2f %+7.2f %8s %8s %9.4f"):format(name, route, #s, found, count, found_area,
+      area, 100 * (found_area - area) / area, ok and tostring(r.stable) or "error", tostring(before.stable), tolerance))
+    if not ok then print("  " .. tostring(r)) end
+  end
 end
 
 -- Contact detection at scale: a 10,027-block vault, perturbed in memory.

@@ -8,153 +8,17 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <nlohmann/json.hpp>
-#include <set>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/json_document.hpp"
 
 namespace ashlar {
 namespace {
 
-// ordered_json keeps fields in the order written, so files read top-down.
-using json = nlohmann::ordered_json;
-
 constexpr const char* kFormatName = "ashlar-structure";
 
-json vec3_to_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
-
-std::string scalar_text(const json& value) {
-  return value.dump(-1, ' ', false, json::error_handler_t::strict);
-}
-
-// JSON text is UTF-8; nlohmann's strict dump refuses anything else.
-bool is_valid_utf8(const json& text) {
-  try {
-    scalar_text(text);
-    return true;
-  } catch (const json::type_error&) {
-    return false;
-  }
-}
-
-// "[x, y, z]": arrays of scalars on one line.
-std::string inline_array(const json& array) {
-  std::string text = "[";
-  for (size_t i = 0; i < array.size(); ++i) text += (i > 0 ? ", " : "") + scalar_text(array[i]);
-  return text + "]";
-}
-
-// Objects one key per line, arrays of scalars on one line, arrays of arrays
-// one element per line: a vertex or a face reads as one line of the file.
-void write_pretty(const json& value, int indent, std::string& out) {
-  const std::string pad(static_cast<size_t>(indent) * 2, ' ');
-  const std::string inner_pad = pad + "  ";
-  if (value.is_object() && !value.empty()) {
-    out += "{\n";
-    bool first = true;
-    for (const auto& [key, item] : value.items()) {
-      if (!first) out += ",\n";
-      first = false;
-      out += inner_pad + json(key).dump() + ": ";
-      write_pretty(item, indent + 1, out);
-    }
-    out += "\n" + pad + "}";
-  } else if (value.is_array() && !value.empty() &&
-             (value.front().is_array() || value.front().is_object())) {
-    out += "[\n";
-    for (size_t i = 0; i < value.size(); ++i) {
-      if (i > 0) out += ",\n";
-      out += inner_pad;
-      if (value[i].is_array()) {
-        out += inline_array(value[i]);
-      } else {
-        write_pretty(value[i], indent + 1, out);
-      }
-    }
-    out += "\n" + pad + "]";
-  } else if (value.is_array()) {
-    out += inline_array(value);
-  } else {
-    out += scalar_text(value);
-  }
-}
-
-// Reads the document, throwing IoError "<source>: <where>: <problem>".
-class Reader {
-public:
-  explicit Reader(std::string source_name) : source_(std::move(source_name)) {}
-
-  [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
-    throw IoError(source_ + ": " + (where.empty() ? "" : where + ": ") + problem);
-  }
-
-  const json& member(const json& object, const char* key, const std::string& where) const {
-    const auto found = object.find(key);
-    if (found == object.end()) fail(where, std::string("missing field '") + key + "'");
-    return *found;
-  }
-
-  void expect_object(const json& value, const std::string& where) const {
-    if (!value.is_object()) fail(where, "expected an object, got " + describe(value));
-  }
-
-  void expect_array(const json& value, const std::string& where) const {
-    if (!value.is_array()) fail(where, "expected an array, got " + describe(value));
-  }
-
-  void reject_unknown_keys(const json& object, const std::set<std::string>& allowed,
-                           const std::string& where) const {
-    for (const auto& item : object.items()) {
-      if (allowed.count(item.key()) == 0) {
-        std::string names;
-        for (const auto& name : allowed) names += (names.empty() ? "" : ", ") + name;
-        fail(where, "unknown field '" + item.key() + "' (allowed: " + names + ")");
-      }
-    }
-  }
-
-  // Numbers are finite here: the parser rejects NaN, Infinity and overflow.
-  double number(const json& value, const std::string& where) const {
-    if (!value.is_number()) fail(where, "expected a finite number, got " + describe(value));
-    return value.get<double>();
-  }
-
-  Vec3 vec3(const json& value, const std::string& where) const {
-    if (!value.is_array() || value.size() != 3 || !value[0].is_number() ||
-        !value[1].is_number() || !value[2].is_number()) {
-      fail(where, "expected 3 finite numbers, got " + describe(value));
-    }
-    return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
-  }
-
-  // A 0-based index below `count`; `what` names what it indexes.
-  int index(const json& value, size_t count, const std::string& what,
-            const std::string& where) const {
-    if (!value.is_number_integer()) {
-      fail(where, "expected an integer index, got " + describe(value));
-    }
-    const bool negative = !value.is_number_unsigned() && value.get<std::int64_t>() < 0;
-    if (negative || value.get<std::uint64_t>() >= count) {
-      fail(where, "index " + value.dump() + " is out of range (" + std::to_string(count) + " " +
-                      what + ", 0-based)");
-    }
-    return static_cast<int>(value.get<std::uint64_t>());
-  }
-
-  const std::string& source() const { return source_; }
-
-private:
-  static std::string describe(const json& value) {
-    std::string text = value.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
-    return std::string(value.type_name()) + " " + text;
-  }
-
-  std::string source_;
-};
-
-void check_header(const Reader& reader, const json& root) {
+void check_header(const JsonReader& reader, const json& root) {
   const json& format = reader.member(root, "format", "");
   if (!format.is_string() || format.get<std::string>() != kFormatName) {
     reader.fail("format", "not an ashlar structure file (format is " + format.dump() +
@@ -182,7 +46,7 @@ void check_header(const Reader& reader, const json& root) {
 
 // planarity: accepted warp of faces (see Block) for blocks that do not
 // carry a larger one of their own.
-void read_block(const Reader& reader, const json& entry, int i, double planarity, Structure& structure) {
+void read_block(const JsonReader& reader, const json& entry, int i, double planarity, Structure& structure) {
   const std::string where = "blocks[" + std::to_string(i) + "]";
   reader.expect_object(entry, where);
   reader.reject_unknown_keys(entry, {"name", "support", "density", "planarity", "vertices", "faces"}, where);
@@ -246,7 +110,7 @@ void read_block(const Reader& reader, const json& entry, int i, double planarity
   }
 }
 
-void read_load(const Reader& reader, const json& entry, int i, Structure& structure) {
+void read_load(const JsonReader& reader, const json& entry, int i, Structure& structure) {
   const std::string where = "loads[" + std::to_string(i) + "]";
   reader.expect_object(entry, where);
   reader.reject_unknown_keys(entry, {"block", "force", "at"}, where);
@@ -262,7 +126,7 @@ void read_load(const Reader& reader, const json& entry, int i, Structure& struct
   }
 }
 
-CableEnd read_cable_end(const Reader& reader, const json& entry, const std::string& where,
+CableEnd read_cable_end(const JsonReader& reader, const json& entry, const std::string& where,
                         const Structure& structure) {
   reader.expect_object(entry, where);
   reader.reject_unknown_keys(entry, {"block", "point"}, where);
@@ -274,7 +138,7 @@ CableEnd read_cable_end(const Reader& reader, const json& entry, const std::stri
   return end;
 }
 
-void read_cable(const Reader& reader, const json& entry, int i, Structure& structure) {
+void read_cable(const JsonReader& reader, const json& entry, int i, Structure& structure) {
   const std::string where = "cables[" + std::to_string(i) + "]";
   reader.expect_object(entry, where);
   reader.reject_unknown_keys(entry, {"from", "to", "mass_per_length", "max_tension"}, where);
@@ -294,7 +158,7 @@ void read_cable(const Reader& reader, const json& entry, int i, Structure& struc
   }
 }
 
-void read_interface(const Reader& reader, const json& entry, int i, Structure& structure) {
+void read_interface(const JsonReader& reader, const json& entry, int i, Structure& structure) {
   const std::string where = "interfaces[" + std::to_string(i) + "]";
   reader.expect_object(entry, where);
   reader.reject_unknown_keys(entry, {"a", "b", "normal", "polygon"}, where);
@@ -322,42 +186,7 @@ json cable_end_to_json(const CableEnd& end) {
   return out;
 }
 
-// JSON has no NaN or Infinity, but some writers (Python's json module)
-// emit them bare. The text with them quoted, or nothing when it has none.
-std::optional<std::string> quote_non_numbers(const std::string& text) {
-  static const std::string kTokens[] = {"-Infinity", "Infinity", "NaN"};
-  std::string quoted;
-  quoted.reserve(text.size());
-  bool in_string = false, changed = false;
-  for (size_t i = 0; i < text.size();) {
-    const char c = text[i];
-    if (in_string) {
-      const size_t length = (c == '\\' && i + 1 < text.size()) ? 2 : 1;
-      quoted.append(text, i, length);
-      in_string = c != '"';
-      i += length;
-      continue;
-    }
-    in_string = c == '"';
-    const std::string* token = nullptr;
-    for (const std::string& candidate : kTokens) {
-      if (text.compare(i, candidate.size(), candidate) == 0) token = &candidate;
-      if (token) break;
-    }
-    if (token) {
-      quoted += '"' + *token + '"';
-      i += token->size();
-      changed = true;
-    } else {
-      quoted += c;
-      ++i;
-    }
-  }
-  if (!changed) return std::nullopt;
-  return quoted;
-}
-
-Structure read_document(const Reader& reader, const json& root, double planarity) {
+Structure read_document(const JsonReader& reader, const json& root, double planarity) {
   reader.expect_object(root, "top level");
   // Format and version first: a file of another kind or a later version is
   // reported as such, not by its first unknown field.
@@ -457,33 +286,12 @@ std::string structure_to_json(const Structure& structure) {
   root["loads"] = std::move(loads);
   if (!cables.empty()) root["cables"] = std::move(cables);
   if (!interfaces.empty()) root["interfaces"] = std::move(interfaces);
-  std::string text;
-  write_pretty(root, 0, text);
-  return text + "\n";
+  return pretty_json(root);
 }
 
 Structure structure_from_json(const std::string& text, const std::string& source_name, double planarity) {
-  const Reader reader(source_name);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {
-    // Syntax errors and numbers beyond the double range ("1e999") land here.
-    // Drop nlohmann's "[json.exception.parse_error.101] " prefix.
-    std::string message = e.what();
-    if (const auto end = message.find("] "); end != std::string::npos) {
-      message = message.substr(end + 2);
-    }
-    // With bare NaN or Infinity quoted the reader names the entry that holds
-    // one and says a number was expected; should nothing refuse them there,
-    // the syntax error stands.
-    if (const std::optional<std::string> quoted = quote_non_numbers(text)) {
-      const json tolerant = json::parse(*quoted, nullptr, false);
-      if (!tolerant.is_discarded()) read_document(reader, tolerant, planarity);
-    }
-    reader.fail("", "not valid JSON: " + message);
-  }
-  return read_document(reader, root, planarity);
+  const JsonReader reader(source_name);
+  return read_json_document(text, reader, [&](const json& root) { return read_document(reader, root, planarity); });
 }
 
 void save_structure(const Structure& structure, const std::string& path) {

@@ -40,6 +40,11 @@ return function(s, opts)
   if #s:cables() > 0 then
     error("models.perturbed: structures with cables are not supported (their end points would not follow)", 2)
   end
+  for _, c in ipairs(s:interfaces()) do
+    if c.explicit then
+      error("models.perturbed: structures with explicit interfaces are not supported (their polygons would not follow)", 2)
+    end
+  end
   local random = generator(o.seed)
   -- A point uniform in the ball of radius `length`, by rejection.
   local function move(length)
