@@ -76,9 +76,20 @@ int w_analyze(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only", "method"});
     AnalysisSettings settings = analysis_settings(options);
     settings.verdict_only = options.boolean("verdict_only").value_or(false);
+    if (const std::optional<std::string> method = options.string("method")) {
+      if (*method == method_name(AnalysisMethod::kinematic)) settings.method = AnalysisMethod::kinematic;
+      else if (*method != method_name(AnalysisMethod::equilibrium)) {
+        throw ArgError(2, "method: expected \"equilibrium\" or \"kinematic\", got \"" + *method + "\"");
+      }
+    }
+    if (settings.method == AnalysisMethod::kinematic && lua_type(L, 2) == LUA_TTABLE &&
+        lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
+      throw ArgError(2, "warm_start: not with method = \"kinematic\" (its rounds start from no prestress)");
+    }
+    lua_settop(L, 2);
     std::shared_ptr<const AnalysisRecord> warm;
     if (lua_type(L, 2) == LUA_TTABLE && lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
       const Box<AnalysisRecord>* previous = test_boxed<AnalysisRecord>(L, -1, kResultMeta);
@@ -172,6 +183,20 @@ void push_vertices(lua_State* L, const EquilibriumResult& result) {
   }
 }
 
+const char* mode_name(LimitMode mode) {
+  switch (mode) {
+    case LimitMode::hinge:
+      return "hinge";
+    case LimitMode::sliding:
+      return "sliding";
+    case LimitMode::hinge_sliding:
+      return "hinge_sliding";
+    case LimitMode::separation:
+      return "separation";
+  }
+  return "?";
+}
+
 void push_cables(lua_State* L, const EquilibriumResult& result) {
   lua_createtable(L, static_cast<int>(result.cables.size()), 0);
   for (size_t c = 0; c < result.cables.size(); ++c) {
@@ -220,6 +245,15 @@ int w_Result_index(lua_State* L) {
         lua_pushinteger(L, r.floating_blocks[i] + 1);
         lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
       }
+    } else if (is("method")) {
+      lua_pushstring(L, method_name(r.method));
+    } else if (is("rounds")) {
+      lua_pushinteger(L, r.rounds);
+    } else if (is("mechanism")) {
+      if (r.mechanism.empty()) return 0;
+      push_mechanism(L, r.mechanism);
+    } else if (is("limit")) {
+      push_limit(L, r.limit, [&](int k) { return std::array<int, 2>{r.interfaces[k].a, r.interfaces[k].b}; });
     } else if (is("interfaces")) return push_cached_table(L, "interfaces", r, push_interfaces);
     else if (is("blocks")) return push_cached_table(L, "blocks", r, push_blocks);
     else if (is("vertices")) return push_cached_table(L, "vertices", r, push_vertices);
@@ -257,6 +291,34 @@ int w_Result_tostring(lua_State* L) {
 int w_Result_gc(lua_State* L) { return release_boxed<AnalysisRecord>(L, kResultMeta); }
 
 }  // namespace
+
+void push_mechanism(lua_State* L, const std::vector<BlockMotion>& mechanism) {
+  lua_createtable(L, static_cast<int>(mechanism.size()), 0);
+  for (size_t i = 0; i < mechanism.size(); ++i) {
+    lua_createtable(L, 0, 2);
+    set_field(L, "velocity", mechanism[i].velocity);
+    set_field(L, "rotation", mechanism[i].rotation);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+void push_limit(lua_State* L, const std::vector<LimitInterface>& limit,
+                const std::function<std::array<int, 2>(int)>& ends_of) {
+  lua_createtable(L, static_cast<int>(limit.size()), 0);
+  for (size_t k = 0; k < limit.size(); ++k) {
+    const LimitInterface& entry = limit[k];
+    const std::array<int, 2> ends = ends_of(entry.interface);
+    lua_createtable(L, 0, 7);
+    set_field(L, "interface", entry.interface + 1);
+    set_index_field(L, "a", ends[0]);
+    set_index_field(L, "b", ends[1]);
+    set_string(L, "mode", mode_name(entry.mode));
+    set_field(L, "pivot", entry.pivot);
+    set_field(L, "opening", entry.opening);
+    set_field(L, "slip", entry.slip);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
 
 std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx) {
   Box<AnalysisRecord>* box = test_boxed<AnalysisRecord>(L, idx, kResultMeta);

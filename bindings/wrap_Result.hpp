@@ -4,6 +4,10 @@
 
 #include <lua.hpp>
 
+#include <array>
+#include <functional>
+#include <vector>
+
 #include "analysis/equilibrium.hpp"
 
 namespace ashlar::lua {
@@ -22,6 +26,14 @@ AnalysisSettings analysis_settings(const OptionTable& options);
 // it uses it (see check_boxed), or nullptr if it is not an open Result.
 std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx);
 void register_Result(lua_State* L);
+
+// A collapse mechanism as Lua tables (ashlar.analyze's and
+// ashlar.load_factor's): per block { velocity, rotation }, and the moving
+// interfaces { interface, a, b, mode, pivot, opening, slip }, their blocks
+// from ends_of(interface index) -> {a, b} (0-based).
+void push_mechanism(lua_State* L, const std::vector<BlockMotion>& mechanism);
+void push_limit(lua_State* L, const std::vector<LimitInterface>& limit,
+                const std::function<std::array<int, 2>(int)>& ends_of);
 // ashlar.analyze and ashlar.export_qp: set into the table on top of the stack.
 void set_analysis_functions(lua_State* L);
 

@@ -13,20 +13,6 @@ namespace {
 // point solver's do not apply.
 #define ASHLAR_PROGRAM_OPTIONS "friction_sides", "friction_model", "contact_tolerance"
 
-const char* mode_name(LimitMode mode) {
-  switch (mode) {
-    case LimitMode::hinge:
-      return "hinge";
-    case LimitMode::sliding:
-      return "sliding";
-    case LimitMode::hinge_sliding:
-      return "hinge_sliding";
-    case LimitMode::separation:
-      return "separation";
-  }
-  return "?";
-}
-
 int w_load_factor(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
@@ -53,28 +39,10 @@ int w_load_factor(lua_State* L) {
     set_boolean(L, "stable", factor.stable);
     set_field(L, "iterations", factor.iterations);
     set_field(L, "seconds", factor.seconds);
-    lua_createtable(L, static_cast<int>(factor.limit.size()), 0);
-    for (size_t k = 0; k < factor.limit.size(); ++k) {
-      const LimitInterface& limit = factor.limit[k];
-      lua_createtable(L, 0, 7);
-      set_field(L, "interface", limit.interface + 1);
-      set_index_field(L, "a", interfaces[limit.interface].a);
-      set_index_field(L, "b", interfaces[limit.interface].b);
-      set_string(L, "mode", mode_name(limit.mode));
-      set_field(L, "pivot", limit.pivot);
-      set_field(L, "opening", limit.opening);
-      set_field(L, "slip", limit.slip);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
+    push_limit(L, factor.limit, [&](int k) { return std::array<int, 2>{interfaces[k].a, interfaces[k].b}; });
     lua_setfield(L, -2, "limit");
     if (!factor.mechanism.empty()) {
-      lua_createtable(L, s.size(), 0);
-      for (int i = 0; i < s.size(); ++i) {
-        lua_createtable(L, 0, 2);
-        set_field(L, "velocity", factor.mechanism[i].velocity);
-        set_field(L, "rotation", factor.mechanism[i].rotation);
-        lua_rawseti(L, -2, i + 1);
-      }
+      push_mechanism(L, factor.mechanism);
       lua_setfield(L, -2, "mechanism");
     }
     return 1;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "analysis/equilibrium_analysis.hpp"
+#include "analysis/kinematic.hpp"
 #include "core/error.hpp"
 
 namespace ashlar {
@@ -49,9 +50,19 @@ void check_analysed_block(const EquilibriumProblem& problem, const Structure& st
   }
 }
 
+const char* method_name(AnalysisMethod method) {
+  return method == AnalysisMethod::kinematic ? "kinematic" : "equilibrium";
+}
+
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start,
                                       EquilibriumProblem* problem_out) {
+  if (settings.method == AnalysisMethod::kinematic) {
+    if (warm_start || problem_out) {
+      throw InvalidArgument("the kinematic method takes no warm start and gives no problem out");
+    }
+    return analyze_kinematic(structure, settings);
+  }
   EquilibriumAnalysis analysis(structure, settings);
   if (warm_start) analysis.set_starting_point(warm_start->solution);
   EquilibriumResult result = analysis.solve(warm_start != nullptr);

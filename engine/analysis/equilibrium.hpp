@@ -7,10 +7,24 @@
 
 #include "analysis/equilibrium_problem.hpp"
 #include "analysis/interior_point.hpp"
+#include "analysis/mechanism.hpp"
 
 namespace ashlar {
 
+// Which question the analysis answers (see docs/api.md, "Two methods").
+enum class AnalysisMethod {
+  // Is there a compression-only equilibrium within the friction cones (the
+  // lower-bound theorem, Shin 2014 eq. 1)? Exact for associative friction;
+  // with real, non-dilatant joints its "stable" can rest on normal forces
+  // nothing creates (a block clamped between walls).
+  equilibrium,
+  // Is there one whose friction needs no more normal force than the joints
+  // develop from an unstressed state (kinematic.hpp)?
+  kinematic,
+};
+
 struct AnalysisSettings {
+  AnalysisMethod method = AnalysisMethod::equilibrium;
   EquilibriumOptions problem;
   InteriorPointSettings solver;
   // A structure is stable when the solver's forces, with every tension
@@ -25,6 +39,11 @@ struct AnalysisSettings {
   // penalty / objective are theirs. Unstable structures still solve to the
   // optimum, whose tension is what proves them unstable.
   bool verdict_only = false;
+  // Kinematic method: at most this many equilibrium solves (rounds) to
+  // settle the joints' shear strengths, which settle when no vertex's
+  // changes by more than round_tolerance of the mean block weight.
+  int max_rounds = 200;
+  double round_tolerance = 1e-5;
 };
 
 // A verdict is borderline when imbalance_without_tension lies between these
@@ -61,6 +80,7 @@ struct AnalysisTimings {
 };
 
 struct EquilibriumResult {
+  AnalysisMethod method = AnalysisMethod::equilibrium;
   bool stable = false;
   // Total tension of the best equilibrium over the total weight
   // (dimensionless): interface tension, cable compression, and virtual
@@ -104,10 +124,23 @@ struct EquilibriumResult {
   std::vector<double> block_tension;           // N: tension over each block's interfaces
   std::vector<CableForces> cables;             // parallel to Structure::cables()
   std::vector<Vec3> virtual_torques;           // N m per block, about its centroid
+  // How an unstable structure starts to move: per block (supports and
+  // floating blocks still), the virtual motion that the best equilibrium's
+  // balance multipliers give (mechanism.hpp): the direction in which the
+  // loads make the penalised tension grow. With it, the interfaces that
+  // move and how. Empty when stable, floating or without an answer.
+  std::vector<BlockMotion> mechanism;
+  std::vector<LimitInterface> limit;
+  // Kinematic method: equilibrium solves until the joints' strengths
+  // settled (1 for the equilibrium method).
+  int rounds = 1;
   InteriorPointSolution solution;              // scaled; for warm starts (filled by analyze_equilibrium)
 };
 
-// Runs the analysis. Throws InvalidArgument for bad settings; every outcome
+// The names used in scripts: "equilibrium", "kinematic".
+const char* method_name(AnalysisMethod method);
+
+// Runs the analysis (the method of `settings`). Throws InvalidArgument for bad settings; every outcome
 // (unstable, not converged, floating blocks) is reported in the result.
 // `warm_start`, if given, must come from the same structure. `problem`, if
 // given, receives the QP that was solved (for its derivatives). One

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "core/clock.hpp"
 
@@ -39,6 +40,13 @@ void EquilibriumAnalysis::update(const Structure& structure, const AnalysisSetti
     ++symbolic_analyses_;
   }
   setup_seconds_ = seconds_since(start);
+}
+
+void EquilibriumAnalysis::set_shear_strengths(const std::vector<double>& strengths) {
+  if (strengths.size() != static_cast<size_t>(problem_.contact_vertex_count)) {
+    throw std::logic_error("set_shear_strengths: one strength per contact vertex needed");
+  }
+  for (size_t k = 0; k < strengths.size(); ++k) problem_.groups[k].bound = strengths[k];
 }
 
 bool EquilibriumAnalysis::prepare_response() {
@@ -91,7 +99,7 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
       continue;
     }
     if (v.kind == GroupKind::slack) {
-      if (v.block_a >= 0) {
+      if (v.block_a >= 0 && rows[v.component] >= 3) {
         result.virtual_torques[v.block_a](rows[v.component] - 3) =
             (scaled(0) - scaled(1)) * wu * problem_.length_unit;
       }
@@ -139,6 +147,10 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   } else {
     result.infeasibility = result.stable ? 0.0 : penalised / bodies;
     result.penalty = info.objective / bodies;
+    if (!result.stable) {
+      result.mechanism = mechanism_of(*structure_, problem_, solution_.y.data());
+      result.limit = limit_interfaces(*structure_, interfaces, result.mechanism);
+    }
   }
   result.seconds = setup_seconds_ + seconds_since(start);
   setup_seconds_ = 0.0;  // counted once, by the first solve after it

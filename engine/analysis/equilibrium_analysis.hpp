@@ -35,6 +35,10 @@ public:
   // Starts the next solve(true) from `solution` (e.g. a Result of the same
   // structure); ignored by the solver when its sizes do not fit.
   void set_starting_point(const InteriorPointSolution& solution) { solution_ = solution; }
+  // FrictionLaw::given_strength: the shear strength (scaled) of every
+  // contact vertex, in group order (problem().contact_vertex_count of
+  // them). The QP's pattern, and so the symbolic analysis, stays.
+  void set_shear_strengths(const std::vector<double>& strengths);
   // Solves the current QP: cold, or from the last solution when warm_start.
   // The result's `solution` stays empty: the object keeps it (solution(),
   // take_solution()).

@@ -205,7 +205,18 @@ Eigen::Matrix<double, 6, 4> cable_effect(const Vec3& direction, const Vec3& at,
   return effect;
 }
 
+// With given friction strengths, what a unit of friction beyond them costs
+// against a unit of virtual force on a block: far more, so that the best
+// equilibrium puts what the joints cannot carry on the blocks themselves
+// (where it creates no moments that joints would balance with normal forces
+// nothing presses in). The excess only keeps the QP strictly feasible.
+constexpr double kExcessFrictionCost = 10.0;
+// The linear cost of virtual loads with given friction strengths, against
+// their kinetic energy of about half a unit per block.
+constexpr double kLeastConstraintExactness = 1e-3;
+
 void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
+  const bool given_strength = options.friction_law == FrictionLaw::given_strength;
   // The regularisation's pull on the multipliers grows with the forces,
   // which grow with the number of blocks sharing the load (an arch's thrust
   // is a fraction of its whole weight). Dividing it by the body count keeps
@@ -218,13 +229,27 @@ void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
   contact.rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2 + friction.rows(), 4);
   contact.rows(0, 0) = 1.0;
   contact.rows(1, 1) = 1.0;
+  if (given_strength && friction.rows() > 0) contact.bound_coefficients = Eigen::VectorXd::Zero(2 + friction.rows());
+  // With a given strength the pyramid's sides stand where mu c would put
+  // them: at strength x cos(pi / m) (the box's at strength); the tension
+  // unknown, which then acts on no block, adds to the strength.
+  const double side_reach =
+      options.friction_model == FrictionModel::box ? 1.0 : std::cos(kPi / options.friction_sides);
   for (int j = 0; j < friction.rows(); ++j) {
+    if (given_strength) {
+      const double tangential = Eigen::Vector2d(friction(j, 1), friction(j, 2)).norm();
+      contact.rows(2 + j, 1) = side_reach;
+      contact.rows(2 + j, 2) = friction(j, 1) / tangential;
+      contact.rows(2 + j, 3) = friction(j, 2) / tangential;
+      contact.bound_coefficients(2 + j) = side_reach;
+      continue;
+    }
     contact.rows(2 + j, 0) = friction(j, 0);
     contact.rows(2 + j, 2) = friction(j, 1);
     contact.rows(2 + j, 3) = friction(j, 2);
   }
   contact.hessian << regularisation, tension, regularisation, regularisation;
-  contact.linear << 0.0, 1.0, 0.0, 0.0;
+  contact.linear << 0.0, given_strength ? kExcessFrictionCost : 1.0, 0.0, 0.0;
 
   GroupRules& cable = problem.rules[static_cast<int>(GroupKind::cable)];
   cable.rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2, 4);
@@ -236,12 +261,19 @@ void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
   bounded = cable;
   bounded.rows.conservativeResize(3, 4);
   bounded.rows.row(2) << -1.0, 0.0, 0.0, 0.0;
-  bounded.bounded_row = 2;
+  bounded.bound_coefficients = Eigen::Vector3d(0.0, 0.0, 1.0);
 
   GroupRules& slack = problem.rules[static_cast<int>(GroupKind::slack)];
   slack.rows = cable.rows;
-  slack.hessian << tension, tension, regularisation, regularisation;
-  slack.linear << 1.0, 1.0, 0.0, 0.0;
+  if (given_strength) {
+    // Least constraint: the kinetic energy (above), and a small linear part
+    // that makes zero virtual load exact when the joints carry everything.
+    slack.hessian << 1.0, 1.0, regularisation, regularisation;
+    slack.linear << kLeastConstraintExactness, kLeastConstraintExactness, 0.0, 0.0;
+  } else {
+    slack.hessian << tension, tension, regularisation, regularisation;
+    slack.linear << 1.0, 1.0, 0.0, 0.0;
+  }
 
   // Weights are regularised like forces: the thesis's eq. 8 minimises the
   // squares of both, and tension stays far dearer than any weight.
@@ -344,7 +376,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   // Reserved exactly (slacks: at most d per end of each cable): the groups
   // are most of a large problem's memory, and growing by doubling left up to
   // half of it unused (a 100,052-block vault: 940 MB at the peak).
-  size_t group_count = cables.size() * (1 + 2 * d);
+  const bool given_strength = options.friction_law == FrictionLaw::given_strength;
+  size_t group_count = cables.size() * (1 + 2 * d) + (given_strength ? static_cast<size_t>(n) * d : 0);
   for (const Interface& contact : interfaces) group_count += contact.vertices.size();
   problem.groups.reserve(group_count);
   for (size_t k = 0; k < interfaces.size(); ++k) {
@@ -363,6 +396,10 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
           contact_vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0, rows);
       vertex.on_a =
           contact_vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0, rows);
+      if (given_strength) {  // joints without tension: its unknown only pays for excess friction
+        vertex.on_a.col(1).setZero();
+        vertex.on_b.col(1).setZero();
+      }
       problem.groups.push_back(vertex);
     }
   }
@@ -391,19 +428,30 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   }
 
   // Virtual torques on blocks with cables, virtual forces and torques on
-  // junctions (whose torque rows have nothing else and stay zero).
+  // junctions (whose torque rows have nothing else and stay zero). With
+  // given friction strengths every free block gets virtual forces and
+  // torques instead, each scaled by the square root of the block's mass or
+  // moment of inertia: their quadratic cost is then the kinetic energy of
+  // the motion the unbalanced loads start (Gauss's least constraint).
   for (int body = 0; body < bodies; ++body) {
-    if (!has_cable[body]) continue;
+    const bool inertial = given_strength && body < n;
+    if (!has_cable[body] && !inertial) continue;
+    if (inertial && problem.row_of_block[body] < 0) continue;
+    // Mass in weight units, and the square of a radius of gyration (a
+    // cube's, from the block's size) in length units.
+    const double mass = inertial ? structure.block(body).mass() * kGravity / wu : 1.0;
+    const double gyration = inertial ? block_size(structure.block(body)) / lu : 0.0;
     for (int r = 0; r < d; ++r) {
-      if (body < n && rows[r] < 3) continue;
+      if (body < n && rows[r] < 3 && !inertial) continue;
       ForceGroup slack;
       slack.kind = GroupKind::slack;
       slack.source = body;
       slack.component = r;
       slack.block_a = body < n ? body : -1;
       slack.row_a = row_of_body(body);
-      slack.on_a(r, 0) = 1.0;
-      slack.on_a(r, 1) = -1.0;
+      const double scale = !inertial ? 1.0 : std::sqrt(rows[r] < 3 ? mass : mass * gyration * gyration / 18.0);
+      slack.on_a(r, 0) = scale;
+      slack.on_a(r, 1) = -scale;
       problem.groups.push_back(slack);
     }
   }
@@ -433,7 +481,7 @@ double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen
                                        .select(0.0, x.segment<4>(4 * static_cast<Eigen::Index>(k)));
     problem.add_effect(v, forces, imbalance);
     for (Eigen::Index i = 0; i < rules.rows.rows(); ++i) {
-      const double lower = i == rules.bounded_row ? -v.bound : 0.0;
+      const double lower = rules.lower(i, v.bound);
       worst = std::max(worst, lower - rules.rows.row(i).dot(forces));
     }
   }

@@ -50,10 +50,26 @@ enum class FrictionModel {
   box,      // |f_u| <= mu c and |f_v| <= mu c (the thesis; up to sqrt 2 too generous)
 };
 
+// How friction is bounded at a contact vertex.
+enum class FrictionLaw {
+  coulomb,  // by mu times the vertex's compression (associative: the rigid-block equilibrium)
+  // By the vertex's shear strength, the group's `bound` (scaled), which the
+  // kinematic method (kinematic.hpp) sets to mu times the compression found
+  // before: friction that does not create the normal force it needs (no
+  // dilatancy). Joints then carry no tension: the tension unknown acts on
+  // no block and only buys friction beyond the strength, dearly. What the
+  // joints cannot carry, virtual forces and torques on every free block
+  // (slack groups) do, at the cost of the kinetic energy of the motion it
+  // would start (Gauss's principle of least constraint): the QP is then one
+  // step of frictional contact dynamics from rest.
+  given_strength,
+};
+
 struct EquilibriumOptions {
   double friction = 0.7;            // Coulomb coefficient mu >= 0; +infinity: no sliding
   int friction_sides = 4;           // sides of the friction pyramid, >= 3
   FrictionModel friction_model = FrictionModel::pyramid;
+  FrictionLaw friction_law = FrictionLaw::coulomb;
   double tension_weight = 1.0;      // quadratic tension penalty (scaled units)
   double force_weight = 1e-4;       // regularisation of compression and friction (over n)
   ContactOptions contact;           // how interfaces are found
@@ -69,13 +85,18 @@ enum class GroupKind {
 };
 constexpr int kGroupKinds = 5;
 
-// Inequalities and objective shared by every group of one kind: each row r
-// gives r . x_k >= 0, except bounded_row, which gives r . x_k >= -bound.
+// Inequalities and objective shared by every group of one kind: row i
+// gives r_i . x_k >= -bound_k * bound_coefficients(i) (bound_k: the
+// group's ForceGroup::bound), or >= 0 when bound_coefficients is empty.
 struct GroupRules {
   Eigen::Matrix<double, Eigen::Dynamic, 4> rows;
   Eigen::Vector4d hessian = Eigen::Vector4d::Zero();  // diagonal, scaled
   Eigen::Vector4d linear = Eigen::Vector4d::Zero();   // scaled
-  int bounded_row = -1;
+  Eigen::VectorXd bound_coefficients;                 // empty, or one per row
+  // The lower side of row i for a group with this bound.
+  double lower(Eigen::Index i, double bound) const {
+    return bound_coefficients.size() ? -bound * bound_coefficients(i) : 0.0;
+  }
 };
 
 // One group of four unknowns and its effect on the balance rows of the (at
@@ -89,7 +110,7 @@ struct ForceGroup {
   int block_a = -1, block_b = -1;  // contact: the interface's blocks; cable: the end blocks
   int row_a = -1, row_b = -1;  // first of each body's balance rows, -1 for supports
   Vec3 position = Vec3::Zero();  // m: contact vertex
-  double bound = 0.0;            // bounded cable: max_tension, scaled
+  double bound = 0.0;  // scaled: a bounded cable's max_tension; a contact vertex's shear strength (FrictionLaw)
   // Scaled effect of the four unknowns on the balance rows of body b and of
   // body a: force, then moment about the block's centroid / L. Only the
   // first block_rows rows count: for planar problems they are Fx, Fz, My.

@@ -120,9 +120,10 @@ EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
     out.cable_to[g.source] += weight_multiplier * d_weight_d_to;
     out.cable_from[g.source] -= weight_multiplier * d_weight_d_to;
     if (g.kind == GroupKind::bounded_cable) {
-      const int bounded_row = problem.rules_of(g).bounded_row;
+      const GroupRules& rules = problem.rules_of(g);
       // l = -max_tension / wu, so dl/dwu = max_tension / wu^2 = g.bound / wu.
-      d_weight_unit_bounds += optimum.z(first_row[k] + bounded_row) * g.bound / wu;
+      d_weight_unit_bounds +=
+          optimum.z.segment(first_row[k], rules.rows.rows()).dot(rules.bound_coefficients) * g.bound / wu;
     }
   }
 

@@ -375,13 +375,14 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   const int nv = static_cast<int>(problem.groups.size());
   const Eigen::VectorXd& b = problem.rhs;
   // Each group's inequality rows start at first_row[k] in w and z. Their
-  // constant sides (G x_k >= lower) are 0 but for a bounded cable's row,
-  // -bound: add_bound turns G x_k into G x_k - lower.
+  // constant sides (G x_k >= lower) are 0 but for groups with bounds (a
+  // bounded cable's row, friction with a given strength): add_bound turns
+  // G x_k into G x_k - lower.
   const std::vector<int> first_row = problem.inequality_starts();
   const int m_total = first_row[nv];
   auto add_bound = [&](int k, auto&& rows) {
     const GroupRules& rules = problem.rules_of(problem.groups[k]);
-    if (rules.bounded_row >= 0) rows(rules.bounded_row) += problem.groups[k].bound;
+    if (rules.bound_coefficients.size()) rows += problem.groups[k].bound * rules.bound_coefficients;
   };
   auto rows_of = [&](int k) -> const RowsMatrix& { return problem.rules_of(problem.groups[k]).rows; };
   auto ineq = [&](auto& v, int k) {

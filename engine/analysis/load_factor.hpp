@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "analysis/equilibrium_problem.hpp"
+#include "analysis/mechanism.hpp"
 
 namespace ashlar {
 
@@ -31,32 +32,6 @@ struct LoadFactorSettings {
   LoadPattern pattern = LoadPattern::body_force;
   Vec3 direction = Vec3(1.0, 0.0, 0.0);  // body_force only; normalised; in the x-z plane
                                          // for a planar structure
-};
-
-// How an interface moves in the collapse mechanism.
-enum class LimitMode {
-  hinge,          // rotates open about an edge or a corner, no slip
-  sliding,        // slips (opening only as much as associative friction dilates)
-  hinge_sliding,  // both
-  separation,     // lifts off as a whole
-};
-
-struct LimitInterface {
-  int interface = -1;          // index into Structure::interfaces(options.contact)
-  LimitMode mode = LimitMode::hinge;
-  // m: mean of the contact vertices that do not open (the hinge's edge or
-  // corner); the interface centre when every vertex moves.
-  Vec3 pivot = Vec3::Zero();
-  double opening = 0.0;        // largest normal separation rate of a vertex (mechanism units)
-  double slip = 0.0;           // largest tangential slip rate of a vertex
-};
-
-// A block's rigid motion in the collapse mechanism, about its centroid.
-// Scaled so that the fastest centroid moves at 1 (a rotation-only
-// mechanism: the fastest vertex); only the shape is meaningful.
-struct BlockMotion {
-  Vec3 velocity = Vec3::Zero();  // of the centroid
-  Vec3 rotation = Vec3::Zero();  // rad per unit
 };
 
 struct LoadFactor {

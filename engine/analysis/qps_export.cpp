@@ -41,6 +41,7 @@
 #include <cctype>
 #include <charconv>
 
+#include "core/error.hpp"
 #include "io/atomic_file.hpp"
 
 namespace ashlar {
@@ -137,6 +138,9 @@ std::string problem_name_of(const std::string& path) {
 std::string equilibrium_qps(const EquilibriumProblem& problem, const std::string& name) {
   const int group_count = static_cast<int>(problem.groups.size());
   const GroupRules& contact = problem.rules[static_cast<int>(GroupKind::contact_vertex)];
+  if (contact.bound_coefficients.size()) {
+    throw InvalidArgument("QPS export: friction with given strengths (the kinematic method's rounds) is not exported");
+  }
   // The first two rows of every kind are its two non-negativities: bounds,
   // not rows; a cable's tension bound is an upper bound.
   const int friction_sides = static_cast<int>(contact.rows.rows()) - 2;

@@ -1,0 +1,47 @@
+// The kinematic method: stability when joints slide without dilatancy and
+// the structure starts unstressed (no prestress).
+//
+// The rigid-block equilibrium (the lower-bound theorem) lets friction use
+// any normal force an equilibrium has, including normal forces that nothing
+// in the structure creates: a block clamped between two walls "stands" on
+// friction from a squeeze the walls never apply. Real joints slide without
+// opening (no dilatancy), so friction can use only the normal force the
+// loads themselves press into a joint.
+//
+// Formulation (non-associative friction by successive associative problems,
+// as Gilbert, Casapulla & Ahmed 2006 do for limit analysis): each round
+// solves ashlar's equilibrium QP with friction bounded not by mu times the
+// unknown compression but by a given shear strength per contact vertex
+// (FrictionLaw::given_strength: the joint behaves as cohesive, which has no
+// dilatancy), then sets each strength to mu times the compression that
+// round found. The first round starts with no strength at all (no
+// prestress). Each round's QP picks, among the equilibria with least
+// tension and excess friction, the one of least sum of squared forces: the
+// forces of contacts with equal springs at every vertex, which is how an
+// unstressed structure takes up its loads. The rounds end when no strength
+// changes (a fixed point: friction is within mu times the very compression
+// it rests on, and that compression is what the loads press in).
+//
+// Verdict: stable when the rounds settled and the last QP's forces balance
+// every block without tension or excess friction (as the equilibrium method
+// decides). It is certain in that model: such forces exist and arise from an
+// unstressed state under elastic contacts with Coulomb slip. "Unstable" is
+// the fixed point the rounds reach from no prestress, a local answer: an
+// iteration from another starting point, or another spring law, could find
+// another. Rounds that do not settle within max_rounds give status
+// max_iterations and no verdict (stable false).
+//
+// Both methods agree where friction does not matter (mu infinite: no
+// sliding; or frictionless): the QP is then the same.
+#pragma once
+
+#include "analysis/equilibrium.hpp"
+
+namespace ashlar {
+
+// Throws InvalidArgument for bad settings, as analyze_equilibrium. The
+// result's method is kinematic and `rounds` the equilibrium solves made;
+// its forces, tension and mechanism are the last round's.
+EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSettings& settings);
+
+}  // namespace ashlar
