@@ -1,10 +1,13 @@
 #include "wrap_Result.hpp"
 
+#include "analysis/kinematic.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/kinematic.hpp"
 #include "analysis/qps_export.hpp"
 #include "luax.hpp"
 #include "wrap_Structure.hpp"
@@ -61,6 +64,16 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
   return settings;
 }
 
+// The analysis method option ("equilibrium" or "kinematic") into settings.
+void read_method(const OptionTable& options, AnalysisSettings& settings) {
+  if (const std::optional<std::string> method = options.string("method")) {
+    if (*method == method_name(AnalysisMethod::kinematic)) settings.method = AnalysisMethod::kinematic;
+    else if (*method != method_name(AnalysisMethod::equilibrium)) {
+      throw ArgError(options.arg(), "method: expected \"equilibrium\" or \"kinematic\", got \"" + *method + "\"");
+    }
+  }
+}
+
 namespace {
 
 // Options table of ashlar.export_qp at stack index arg.
@@ -79,12 +92,7 @@ int w_analyze(lua_State* L) {
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only", "method"});
     AnalysisSettings settings = analysis_settings(options);
     settings.verdict_only = options.boolean("verdict_only").value_or(false);
-    if (const std::optional<std::string> method = options.string("method")) {
-      if (*method == method_name(AnalysisMethod::kinematic)) settings.method = AnalysisMethod::kinematic;
-      else if (*method != method_name(AnalysisMethod::equilibrium)) {
-        throw ArgError(2, "method: expected \"equilibrium\" or \"kinematic\", got \"" + *method + "\"");
-      }
-    }
+    read_method(options, settings);
     if (settings.method == AnalysisMethod::kinematic && lua_type(L, 2) == LUA_TTABLE &&
         lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
       throw ArgError(2, "warm_start: not with method = \"kinematic\" (its rounds start from no prestress)");
@@ -105,13 +113,35 @@ int w_analyze(lua_State* L) {
                               std::to_string(s.size()));
       }
     }
-    auto record = std::make_shared<AnalysisRecord>();
-    record->result = analyze_equilibrium(s, settings, warm ? &warm->result : nullptr);
-    record->thrust = thrust_line(s, record->result);
-    record->block_count = s.size();
-    void* memory = lua_newuserdatauv(L, sizeof(Box<AnalysisRecord>), 1);
-    new (memory) Box<AnalysisRecord>{std::move(record)};
-    luaL_setmetatable(L, kResultMeta);
+    luax_pushResult(L, s, analyze_equilibrium(s, settings, warm ? &warm->result : nullptr));
+    return 1;
+  });
+}
+
+int w_compare_methods(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    const Structure& s = *structure;
+    const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
+    MethodComparison comparison = compare_methods(s, settings);
+    lua_createtable(L, 0, 4);
+    luax_pushResult(L, s, std::move(comparison.equilibrium));
+    lua_setfield(L, -2, "equilibrium");
+    luax_pushResult(L, s, std::move(comparison.kinematic));
+    lua_setfield(L, -2, "kinematic");
+    const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
+    lua_createtable(L, static_cast<int>(comparison.borrowed.size()), 0);
+    for (size_t k = 0; k < comparison.borrowed.size(); ++k) {
+      const MethodComparison::Borrowed& entry = comparison.borrowed[k];
+      lua_createtable(L, 0, 5);
+      set_field(L, "interface", entry.interface + 1);
+      set_index_field(L, "a", interfaces[entry.interface].a);
+      set_index_field(L, "b", interfaces[entry.interface].b);
+      set_field(L, "friction", entry.friction);
+      set_field(L, "available", entry.available);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "borrowed");
     return 1;
   });
 }
@@ -292,6 +322,16 @@ int w_Result_gc(lua_State* L) { return release_boxed<AnalysisRecord>(L, kResultM
 
 }  // namespace
 
+void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult result) {
+  auto record = std::make_shared<AnalysisRecord>();
+  record->result = std::move(result);
+  record->thrust = thrust_line(structure, record->result);
+  record->block_count = structure.size();
+  void* memory = lua_newuserdatauv(L, sizeof(Box<AnalysisRecord>), 1);
+  new (memory) Box<AnalysisRecord>{std::move(record)};
+  luaL_setmetatable(L, kResultMeta);
+}
+
 void push_mechanism(lua_State* L, const std::vector<BlockMotion>& mechanism) {
   lua_createtable(L, static_cast<int>(mechanism.size()), 0);
   for (size_t i = 0; i < mechanism.size(); ++i) {
@@ -338,7 +378,7 @@ void register_Result(lua_State* L) {
 
 void set_analysis_functions(lua_State* L) {
   static const luaL_Reg functions[] = {
-      {"analyze", w_analyze}, {"export_qp", w_export_qp}, {nullptr, nullptr}};
+      {"analyze", w_analyze}, {"compare_methods", w_compare_methods}, {"export_qp", w_export_qp}, {nullptr, nullptr}};
   luaL_setfuncs(L, functions, 0);
 }
 

@@ -26,6 +26,10 @@ AnalysisSettings analysis_settings(const OptionTable& options);
 // it uses it (see check_boxed), or nullptr if it is not an open Result.
 std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx);
 void register_Result(lua_State* L);
+// A new Result of `structure` holding `result`.
+void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult result);
+// The "method" option ("equilibrium", "kinematic") into settings.
+void read_method(const OptionTable& options, AnalysisSettings& settings);
 
 // A collapse mechanism as Lua tables (ashlar.analyze's and
 // ashlar.load_factor's): per block { velocity, rotation }, and the moving

@@ -1,5 +1,6 @@
 #include "wrap_margins.hpp"
 
+#include "analysis/kinematic.hpp"
 #include "analysis/load_factor.hpp"
 #include "luax.hpp"
 #include "wrap_Result.hpp"
@@ -17,9 +18,12 @@ int w_load_factor(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load"});
+    const OptionTable options(L, 2, {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load", "method", "tolerance"});
+    AnalysisSettings analysis = analysis_settings(options);
+    analysis.solver = InteriorPointSettings{};  // "tolerance" is the factor's here, as for friction_demand
+    read_method(options, analysis);
     LoadFactorSettings settings;
-    settings.problem = analysis_settings(options).problem;
+    settings.problem = analysis.problem;
     if (const std::optional<std::string> load = options.string("load")) {
       if (*load == "body_force") settings.pattern = LoadPattern::body_force;
       else if (*load == "point_loads") settings.pattern = LoadPattern::point_loads;
@@ -31,6 +35,29 @@ int w_load_factor(lua_State* L) {
       }
       settings.direction = *direction;
     }
+    if (analysis.method == AnalysisMethod::kinematic) {
+      const KinematicLoadFactor factor =
+          kinematic_load_factor(s, settings, analysis, options.positive("tolerance", 1e-3));
+      lua_createtable(L, 0, 8);
+      set_string(L, "method", method_name(AnalysisMethod::kinematic));
+      set_field(L, "factor", factor.factor);
+      set_string(L, "status", factor.status.c_str());
+      set_boolean(L, "stable", factor.status == "optimal" ? factor.factor >= 0.0 : factor.status == "unbounded");
+      set_field(L, "equilibrium_factor", factor.equilibrium_factor);
+      lua_pushinteger(L, factor.analyses);
+      lua_setfield(L, -2, "analyses");
+      set_field(L, "seconds", factor.seconds);
+      if (!factor.failure.mechanism.empty()) {
+        push_mechanism(L, factor.failure.mechanism);
+        lua_setfield(L, -2, "mechanism");
+        const EquilibriumResult& failure = factor.failure;
+        push_limit(L, failure.limit,
+                   [&](int k) { return std::array<int, 2>{failure.interfaces[k].a, failure.interfaces[k].b}; });
+        lua_setfield(L, -2, "limit");
+      }
+      return 1;
+    }
+    if (options.has("tolerance")) throw ArgError(2, "tolerance: only with method = \"kinematic\" (a bisection)");
     const LoadFactor factor = load_factor(s, settings);
     const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
     lua_createtable(L, 0, 8);

@@ -213,7 +213,7 @@ Eigen::Matrix<double, 6, 4> cable_effect(const Vec3& direction, const Vec3& at,
 constexpr double kExcessFrictionCost = 10.0;
 // The linear cost of virtual loads with given friction strengths, against
 // their kinetic energy of about half a unit per block.
-constexpr double kLeastConstraintExactness = 1e-3;
+constexpr double kLeastConstraintExactness = 1.0;
 
 void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
   const bool given_strength = options.friction_law == FrictionLaw::given_strength;

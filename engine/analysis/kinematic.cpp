@@ -1,11 +1,13 @@
 #include "analysis/kinematic.hpp"
 
 #include <algorithm>
+#include <string>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include "analysis/equilibrium_analysis.hpp"
+#include "analysis/load_factor.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 
@@ -17,22 +19,48 @@ namespace {
 // keeps its direction.
 constexpr double kFullStep = 1.0, kLeastStep = 1.0 / 256;
 constexpr double kStepGrowth = 1.25;
-// Compressions are counted from this (scaled: a fraction of the mean block
-// weight) up: below, they are the solver's rounding, not forces the loads
-// press into a joint. Where
-// nothing presses, the QP's tiny regularisation leaves compressions of
-// about 3e-4 (a flat arch of five voussoirs), and friction from them would
-// feed the very moments that create them, a loop that only prestress could
-// start.
-constexpr double kLeastCompression = 1e-3;
+// Compressions count from this fraction of the lighter free block's weight
+// up: below, they are not forces the loads press into a joint but the
+// solver's rounding. Where nothing presses, the QP's tiny regularisation
+// leaves compressions up to 6e-4 of a block's weight (a flat arch of five
+// voussoirs with vertical joints), and friction from them feeds the very
+// moments that create them: a loop that grows by a third each round at
+// mu = 0.9 and makes the arch stand on compression only prestress could
+// start. 1e-3 let that seed through; at 1 % the friction of joints that
+// carry less than 1 % of a block's weight is the method's resolution.
+constexpr double kLeastCompression = 1e-2;
+
+// A compression as the strengths count it: in full from `least` up, none
+// below half of it, and linearly between (a threshold that switched would
+// make the rounds dither at it).
+double counted_compression(double compression, double least) {
+  if (compression >= least) return compression;
+  return std::max(0.0, 2.0 * compression - least);
+}
+
+// Per contact vertex, the least compression counted: kLeastCompression of
+// the lighter free block it presses on, in scaled weight.
+Eigen::VectorXd least_compressions(const Structure& structure, const EquilibriumProblem& problem) {
+  Eigen::VectorXd least(problem.contact_vertex_count);
+  auto weight = [&](int block) {
+    return structure.is_support(block) ? std::numeric_limits<double>::infinity()
+                                       : structure.block(block).mass() * kGravity / problem.weight_unit;
+  };
+  for (int k = 0; k < problem.contact_vertex_count; ++k) {
+    const ForceGroup& g = problem.groups[k];
+    least(k) = kLeastCompression * std::min(weight(g.block_a), weight(g.block_b));
+  }
+  return least;
+}
 
 // Whether the friction at every contact vertex of x (scaled) is within the
 // pyramid of mu times the vertex's own compression, to `tolerance` (scaled
 // force): the given-strength rows with mu c in place of the strength.
-bool within_own_cones(const EquilibriumProblem& problem, const Eigen::VectorXd& x, double mu, double tolerance) {
+bool within_own_cones(const EquilibriumProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& least,
+                      double mu, double tolerance) {
   const GroupRules& rules = problem.rules[static_cast<int>(GroupKind::contact_vertex)];
   for (int k = 0; k < problem.contact_vertex_count; ++k) {
-    const double compression = std::max(0.0, x(4 * k) - kLeastCompression);
+    const double compression = counted_compression(x(4 * k), least(k));
     for (Eigen::Index row = 2; row < rules.rows.rows(); ++row) {
       const double reach = rules.bound_coefficients(row) * mu * compression;
       if (rules.rows(row, 2) * x(4 * k + 2) + rules.rows(row, 3) * x(4 * k + 3) + reach < -tolerance) return false;
@@ -68,6 +96,7 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
   // vertical joints) and never settle.
   double share = kFullStep;
   Eigen::VectorXd strength = Eigen::VectorXd::Zero(vertices), next(vertices), last_step = Eigen::VectorXd::Zero(vertices);
+  const Eigen::VectorXd least = least_compressions(structure, analysis.problem());
   EquilibriumResult result;
   int iterations = 0, factorizations = 0;
   AnalysisTimings timings;
@@ -84,8 +113,7 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     // without an answer or with floating blocks, nothing to go on.
     if (!std::isfinite(mu) || vertices == 0 || has_no_answer(result.status) || !result.floating_blocks.empty()) break;
     const Eigen::VectorXd& x = analysis.solution().x;
-    // Soft: a threshold that switched would make the rounds dither there.
-    for (int k = 0; k < vertices; ++k) next(k) = mu * std::max(0.0, x(4 * k) - kLeastCompression);
+    for (int k = 0; k < vertices; ++k) next(k) = mu * counted_compression(x(4 * k), least(k));
     // Scaled forces are in mean block weights: the tolerance is absolute.
     const double change = (next - strength).lpNorm<Eigen::Infinity>();
     if (change <= settings.round_tolerance) break;
@@ -94,7 +122,7 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     // equilibrium of the kind the fixed point is, without prestress (each
     // round's least-energy forces) and within Coulomb's cone of their own
     // compressions. Later rounds would only polish the strengths.
-    if (result.stable && within_own_cones(analysis.problem(), x, mu, settings.round_tolerance)) break;
+    if (result.stable && within_own_cones(analysis.problem(), x, least, mu, settings.round_tolerance)) break;
     if (round >= settings.max_rounds) {
       result.status = SolverStatus::max_iterations;
       result.stable = false;
@@ -125,6 +153,124 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
   result.timings = timings;
   result.seconds = seconds_since(start);
   return result;
+}
+
+MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings) {
+  MethodComparison out;
+  AnalysisSettings equilibrium = settings;
+  equilibrium.method = AnalysisMethod::equilibrium;
+  out.equilibrium = analyze_equilibrium(structure, equilibrium);
+  out.kinematic = analyze_kinematic(structure, settings);
+  const EquilibriumResult& e = out.equilibrium;
+  const EquilibriumResult& k = out.kinematic;
+  if (e.vertex_forces.size() != k.vertex_forces.size()) return out;  // floating or without answers
+  std::vector<MethodComparison::Borrowed> per(e.interfaces.size());
+  double weight = 0.0;
+  for (int i = 0; i < structure.size(); ++i) {
+    if (!structure.is_support(i)) weight += kGravity * structure.block(i).mass();
+  }
+  for (size_t v = 0; v < e.vertex_forces.size(); ++v) {
+    MethodComparison::Borrowed& entry = per[e.vertex_interface[v]];
+    entry.friction += e.vertex_forces[v].tail<2>().norm();
+    entry.available += settings.problem.friction * k.vertex_forces[v](0);
+  }
+  for (size_t i = 0; i < per.size(); ++i) {
+    per[i].interface = static_cast<int>(i);
+    if (per[i].friction - per[i].available > 1e-6 * weight) out.borrowed.push_back(per[i]);
+  }
+  std::sort(out.borrowed.begin(), out.borrowed.end(), [](const auto& x, const auto& y) {
+    return x.friction - x.available > y.friction - y.available;
+  });
+  return out;
+}
+
+namespace {
+
+// The structure with the load that lambda multiplies, times lambda.
+Structure loaded(const Structure& structure, const LoadFactorSettings& load, double lambda) {
+  Structure out = structure;
+  if (load.pattern == LoadPattern::point_loads) {
+    out.clear_loads();
+    for (PointLoad p : structure.loads()) {
+      p.force *= lambda;
+      out.add_load(p);
+    }
+    return out;
+  }
+  const Vec3 direction = load.direction.normalized();
+  for (int i = 0; i < structure.size(); ++i) {
+    if (structure.is_support(i)) continue;
+    const Block& block = structure.block(i);
+    out.add_load({i, lambda * block.mass() * kGravity * direction, block.centroid()});
+  }
+  return out;
+}
+
+}  // namespace
+
+KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
+                                          const AnalysisSettings& settings, double tolerance) {
+  if (!(tolerance > 0.0 && tolerance < 1.0)) {
+    throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+  }
+  const auto start = Clock::now();
+  KinematicLoadFactor out;
+  LoadFactorSettings bound = load;
+  bound.problem = settings.problem;
+  const LoadFactor upper = load_factor(structure, bound);
+  out.equilibrium_factor = upper.factor;
+  auto finish = [&](const std::string& status, double factor) {
+    out.status = status;
+    out.factor = factor;
+    out.seconds = seconds_since(start);
+    return out;
+  };
+  if (upper.status != "optimal" && upper.status != "unbounded") return finish(upper.status, upper.factor);
+  // Each analysis: stands (1), falls (0), or no verdict (-1).
+  auto stands = [&](double lambda, EquilibriumResult* keep) {
+    ++out.analyses;
+    EquilibriumResult r = analyze_kinematic(loaded(structure, load, lambda), settings);
+    const int verdict = r.stable ? 1 : (r.status == SolverStatus::converged ? 0 : -1);
+    if (keep) *keep = std::move(r);
+    return verdict;
+  };
+  const double kNaN = std::numeric_limits<double>::quiet_NaN();
+  EquilibriumResult at_zero;
+  const int zero = stands(0.0, &at_zero);
+  if (zero < 0) return finish("no verdict", kNaN);
+  if (zero == 0) {
+    out.failure = std::move(at_zero);
+    return finish("unstable", kNaN);
+  }
+  double low = 0.0, high = upper.factor;
+  if (!std::isfinite(high)) {  // find a multiple that fails, doubling from the weight itself
+    constexpr double kLargestFactor = 1e6;
+    high = 1.0;
+    for (;; high *= 2.0) {
+      const int verdict = stands(high, &out.failure);
+      if (verdict < 0) return finish("no verdict", kNaN);
+      if (verdict == 0) break;
+      low = high;
+      if (high >= kLargestFactor) return finish("unbounded", std::numeric_limits<double>::infinity());
+    }
+  } else {
+    const int verdict = stands(high, &out.failure);
+    if (verdict < 0) return finish("no verdict", kNaN);
+    if (verdict == 1) return finish("optimal", high);  // the upper bound itself stands
+  }
+  while (high - low > tolerance * std::max(high, 1e-12)) {
+    const double middle = 0.5 * (low + high);
+    EquilibriumResult r;
+    const int verdict = stands(middle, &r);
+    if (verdict < 0) return finish("no verdict", kNaN);
+    if (verdict == 1) {
+      low = middle;
+    } else {
+      high = middle;
+      out.failure = std::move(r);
+    }
+  }
+  return finish("optimal", low);
 }
 
 }  // namespace ashlar

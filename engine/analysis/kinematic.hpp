@@ -35,7 +35,11 @@
 // sliding; or frictionless): the QP is then the same.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "analysis/equilibrium.hpp"
+#include "analysis/load_factor.hpp"
 
 namespace ashlar {
 
@@ -43,5 +47,44 @@ namespace ashlar {
 // result's method is kinematic and `rounds` the equilibrium solves made;
 // its forces, tension and mechanism are the last round's.
 EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSettings& settings);
+
+// Both methods on one structure (settings.method is ignored), and where
+// they differ.
+struct MethodComparison {
+  EquilibriumResult equilibrium, kinematic;
+  // Interfaces whose friction in the equilibrium method's forces exceeds mu
+  // times the compression the kinematic method finds there: friction that
+  // rests on normal force no load presses in (N), by how much it exceeds,
+  // largest first. Interfaces within 1e-6 of the total weight are left out.
+  struct Borrowed {
+    int interface = -1;              // index into structure.interfaces(contact)
+    double friction = 0.0;           // sum over its vertices of |friction|, equilibrium method
+    double available = 0.0;          // mu x the sum of its compressions, kinematic method
+  };
+  std::vector<Borrowed> borrowed;
+};
+MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings);
+
+// The load factor by the kinematic method: the largest lambda for which the
+// structure with the body force lambda x weight x direction on every free
+// block (or lambda x its point loads) still stands kinematically, found by
+// bisection to `tolerance` (relative) below the equilibrium method's factor
+// (load_factor), which bounds it: what stands kinematically stands by
+// equilibrium too.
+struct KinematicLoadFactor {
+  // "optimal"; "unbounded" (stands under any multiple the equilibrium
+  // method allows: an infinite factor); "unstable" (falls with no load:
+  // factor 0 is not reached, NaN); or the equilibrium method's status when
+  // it has no factor ("infeasible", "floating", ...); "no verdict" when a
+  // kinematic analysis did not settle (NaN).
+  std::string status = "optimal";
+  double factor = 0.0;
+  double equilibrium_factor = 0.0;   // load_factor's, the upper bound
+  int analyses = 0;                  // kinematic analyses made
+  EquilibriumResult failure;         // the analysis just above the factor: its mechanism
+  double seconds = 0.0;
+};
+KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
+                                          const AnalysisSettings& settings, double tolerance = 1e-3);
 
 }  // namespace ashlar

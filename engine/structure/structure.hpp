@@ -53,6 +53,7 @@ public:
   // Throws InvalidArgument for a bad block index, a support block (loads
   // on fixed ground do nothing) or a non-finite value.
   void add_load(const PointLoad& load);
+  void clear_loads() { loads_.clear(); }
   // Adds a cable and returns its 0-based index. Throws InvalidArgument for a
   // bad block index, an end point off its block, a zero length, a negative
   // mass or a non-positive tension bound.

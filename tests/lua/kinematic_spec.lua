@@ -1,0 +1,196 @@
+-- The kinematic method (method = "kinematic") against physics: closed-form
+-- cases where rigid-block equilibrium is known to be wrong (friction from
+-- normal forces nothing presses in) and cases where both methods must agree.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+local support = require "spec_support"
+
+local function both(s, friction)
+  return ashlar.analyze(s, { friction = friction }), ashlar.analyze(s, { friction = friction, method = "kinematic" })
+end
+
+-- A block set between two walls (supports), nothing under it.
+local function clamped()
+  local s = ashlar.structure()
+  s:add(ashlar.box{ size = { 1, 1, 2 }, center = { -0.5, 0, 1 } }, { support = true, name = "left" })
+  s:add(ashlar.box{ size = { 1, 1, 2 }, center = { 1.5, 0, 1 } }, { support = true, name = "right" })
+  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0.5, 0, 1.5 } }, { name = "clamped" })
+  return s
+end
+
+-- A wedge (height 0.6 m, 0.4 m wide at the bottom) seated in a V whose faces
+-- are 15 degrees from vertical, the wedge wider at the top.
+local function wedge()
+  local h, bottom = 0.6, 0.4
+  local top = bottom + 2 * h * math.tan(math.rad(15))
+  local s = ashlar.structure()
+  local y = { 0, 1, 0 }
+  s:add(ashlar.prism({ { -bottom / 2, 0, 0 }, { -top / 2, 0, h }, { -2, 0, h }, { -2, 0, 0 } }, y), { support = true })
+  s:add(ashlar.prism({ { bottom / 2, 0, 0 }, { 2, 0, 0 }, { 2, 0, h }, { top / 2, 0, h } }, y), { support = true })
+  s:add(ashlar.prism({ { -bottom / 2, 0, 0 }, { bottom / 2, 0, 0 }, { top / 2, 0, h }, { -top / 2, 0, h } }, y))
+  return s
+end
+
+-- A flat arch of five 0.5 m voussoirs, 0.4 m deep, between two fixed
+-- abutments: joints vertical, or converging to a point `c` metres below
+-- its soffit.
+local function flat_arch(c)
+  local depth, count, width = 0.4, 5, 0.5
+  local function top(x) return c and x * (1 + depth / c) or x end
+  local s = ashlar.structure()
+  local y, x0 = { 0, 1, 0 }, -count * width / 2
+  s:add(ashlar.prism({ { x0, 0, 0 }, { top(x0), 0, depth }, { x0 - 1.5, 0, depth }, { x0 - 1.5, 0, 0 } }, y),
+    { support = true })
+  s:add(ashlar.prism({ { -x0, 0, 0 }, { -x0 + 1.5, 0, 0 }, { -x0 + 1.5, 0, depth }, { top(-x0), 0, depth } }, y),
+    { support = true })
+  for k = 0, count - 1 do
+    local a, b = x0 + k * width, x0 + (k + 1) * width
+    s:add(ashlar.prism({ { a, 0, 0 }, { b, 0, 0 }, { top(b), 0, depth }, { top(a), 0, depth } }, y))
+  end
+  return s
+end
+
+-- A block on a slab tilted by theta about y: it slides down -x.
+local function on_incline(theta)
+  local s = ashlar.structure()
+  s:add(ashlar.box{ size = { 4, 2, 0.5 }, center = { 0, 0, -0.25 } }, { support = true })
+  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 0.25 } })
+  return ashlar.tilt(s, theta, { origin = { 0, 0, 0 } })
+end
+
+describe("the kinematic method", function()
+  it("lets a block clamped between two walls fall, whatever the friction", function()
+    for _, mu in ipairs{ 0.3, 0.9 } do
+      local equilibrium, kinematic = both(clamped(), mu)
+      assert.is_true(equilibrium.stable)  -- squeezed by normal forces nothing creates
+      assert.is_false(kinematic.stable)
+      assert.equal("kinematic", kinematic.method)
+      assert.equal("converged", kinematic.status)
+      -- It falls straight down, sliding along both walls.
+      local m = kinematic.mechanism[3]
+      assert.near(-1, m.velocity[3], 1e-6)
+      assert.near(0, m.velocity[1], 1e-6)
+      for k = 1, 3 do assert.near(0, m.rotation[k], 1e-6) end
+      assert.equal(2, #kinematic.limit)
+      for _, joint in ipairs(kinematic.limit) do assert.equal("sliding", joint.mode) end
+      -- Its whole weight is carried by virtual forces.
+      assert.near(1, kinematic.infeasibility, 1e-3)
+    end
+  end)
+
+  it("keeps a wedge seated in a V at any friction", function()
+    for _, mu in ipairs{ 0, 0.3, 0.9 } do
+      local equilibrium, kinematic = both(wedge(), mu)
+      assert.is_true(equilibrium.stable, "mu " .. mu)
+      assert.is_true(kinematic.stable, "mu " .. mu)
+    end
+  end)
+
+  it("lets a flat arch with vertical joints fall, and keeps one whose joints converge below it", function()
+    for _, mu in ipairs{ 0.3, 0.6, 0.9 } do
+      local equilibrium, kinematic = both(flat_arch(nil), mu)
+      assert.is_true(equilibrium.stable)
+      assert.is_false(kinematic.stable, "vertical joints, mu " .. mu)
+      -- All five voussoirs drop together, sliding along the abutments.
+      for i = 3, 7 do assert.near(-1, kinematic.mechanism[i].velocity[3], 1e-6) end
+      equilibrium, kinematic = both(flat_arch(1.5), mu)
+      assert.is_true(equilibrium.stable)
+      assert.is_true(kinematic.stable, "converging joints, mu " .. mu)
+    end
+  end)
+
+  it("keeps a block on an incline iff tan theta <= mu, as the equilibrium method does", function()
+    for _, mu in ipairs{ 0.3, 0.6 } do
+      for _, case in ipairs{ { -2, true }, { 2, false } } do
+        local theta = math.atan(mu) + math.rad(case[1])
+        local equilibrium, kinematic = both(on_incline(theta), mu)
+        assert.equal(case[2], equilibrium.stable)
+        assert.equal(case[2], kinematic.stable)
+        if not case[2] then  -- it slides down the slope
+          local v = kinematic.mechanism[2].velocity
+          local along = { math.cos(theta), 0, -math.sin(theta) }  -- tilting about +y lowers +x
+          local length = math.sqrt(v[1] ^ 2 + v[2] ^ 2 + v[3] ^ 2)
+          assert.near(1, (v[1] * along[1] + v[3] * along[3]) / length, 1e-3)
+        end
+      end
+    end
+  end)
+
+  it("tips a stack at the same overhang as the equilibrium method", function()
+    -- Two unit blocks on a support's edge, the harmonic overhangs 1/4 and
+    -- 3/4 scaled by f: stands for f < 1, tips for f > 1.
+    for _, case in ipairs{ { 0.98, true }, { 1.02, false } } do
+      local f = case[1]
+      local s = ashlar.structure()
+      s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { -0.5, 0, -0.25 } }, { support = true })
+      s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { f * 0.25 - 0.5, 0, 0.1 } })
+      s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { f * 0.75 - 0.5, 0, 0.3 } })
+      local equilibrium, kinematic = both(s, 0.6)
+      assert.equal(case[2], equilibrium.stable)
+      assert.equal(case[2], kinematic.stable)
+    end
+  end)
+
+  it("finds a semicircular arch's minimum thickness where the equilibrium method does", function()
+    -- 16 polyhedral voussoirs: t/R = 0.10708 (docs/DESIGN verification).
+    for _, mu in ipairs{ math.huge, 10, 0.7 } do
+      for _, case in ipairs{ { 0.104, false }, { 0.110, true } } do
+        local s = models.arch{ radius = 5, thickness = 5 * case[1], voussoirs = 16 }
+        local equilibrium, kinematic = both(s, mu)
+        assert.equal(case[2], equilibrium.stable)
+        assert.equal(case[2], kinematic.stable, ("t/R %g, mu %g"):format(case[1], mu))
+      end
+    end
+  end)
+
+  it("agrees with the equilibrium method on the model library's defaults", function()
+    for _, name in ipairs{ "arch", "barrel_vault", "buttressed_vault", "column", "dome", "flying_buttress", "h_frame",
+                           "post_and_lintel", "stack", "wall" } do
+      local equilibrium, kinematic = both(models[name]{}, 0.7)
+      assert.equal(equilibrium.stable, kinematic.stable, name)
+      assert.equal("converged", kinematic.status, name)
+    end
+  end)
+
+  it("says which interfaces the equilibrium method's friction borrowed", function()
+    local s = clamped()
+    local c = ashlar.compare_methods(s, { friction = 0.6 })
+    assert.is_true(c.equilibrium.stable)
+    assert.is_false(c.kinematic.stable)
+    assert.equal("kinematic", c.kinematic.method)
+    -- Each wall holds half the weight by friction, on no compression.
+    local weight = 9.81 * s:block(3):mass()
+    assert.equal(2, #c.borrowed)
+    for _, b in ipairs(c.borrowed) do
+      assert.equal(3, b.b)
+      assert.near(weight / 2, b.friction, 1e-6 * weight)
+      assert.is_true(b.available < 1e-2 * weight)
+    end
+    assert.equal(0, #ashlar.compare_methods(wedge(), { friction = 0.6 }).borrowed)
+  end)
+
+  it("gives a load factor: a block sliding on a floor at mu, a clamped block not standing at all", function()
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 3, 3, 0.5 }, center = { 0, 0, -0.25 } }, { support = true })
+    s:add(ashlar.box{ size = { 1, 1, 0.3 }, center = { 0, 0, 0.15 } })  -- squat: slides before it tips
+    local factor = ashlar.load_factor(s, { friction = 0.5, method = "kinematic", tolerance = 1e-3 })
+    assert.equal("optimal", factor.status)
+    assert.equal("kinematic", factor.method)
+    assert.near(0.5, factor.equilibrium_factor, 1e-6)
+    assert.is_true(factor.factor <= 0.5 * (1 + 1e-9) and factor.factor >= 0.5 * (1 - 2e-3), tostring(factor.factor))
+    local falls = ashlar.load_factor(clamped(), { friction = 0.6, method = "kinematic" })
+    assert.equal("unstable", falls.status)
+    assert.is_true(falls.factor ~= falls.factor)  -- NaN
+    assert.near(-1, falls.mechanism[3].velocity[3], 1e-6)
+  end)
+
+  it("names what is wrong with its options", function()
+    local s = clamped()
+    support.expect_error({ "method: expected \"equilibrium\" or \"kinematic\", got \"dynamic\"" }, ashlar.analyze, s,
+      { method = "dynamic" })
+    local r = ashlar.analyze(s, {})
+    support.expect_error({ "warm_start: not with method = \"kinematic\"" }, ashlar.analyze, s,
+      { method = "kinematic", warm_start = r })
+    support.expect_error({ "tolerance: only with method = \"kinematic\"" }, ashlar.load_factor, s, { tolerance = 0.1 })
+  end)
+end)
