@@ -80,13 +80,19 @@ int w_friction_demand(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance"});
-    const EquilibriumOptions problem = analysis_settings(options).problem;
-    const double tolerance = options.positive("tolerance", 1e-6);
+    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance", "method"});
+    AnalysisSettings analysis = analysis_settings(options);
+    analysis.solver = InteriorPointSettings{};  // "tolerance" is the demand's
+    read_method(options, analysis);
+    const EquilibriumOptions& problem = analysis.problem;
+    const bool kinematic = analysis.method == AnalysisMethod::kinematic;
+    const double tolerance = options.positive("tolerance", kinematic ? 1e-3 : 1e-6);
     if (tolerance >= 1.0) throw ArgError(2, "tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
-    const FrictionDemand demand = friction_demand(s, problem, tolerance);
+    const FrictionDemand demand =
+        kinematic ? kinematic_friction_demand(s, analysis, tolerance) : friction_demand(s, problem, tolerance);
     const std::vector<Interface>& interfaces = s.interfaces(problem.contact);
-    lua_createtable(L, 0, 7);
+    lua_createtable(L, 0, 8);
+    set_string(L, "method", method_name(analysis.method));
     set_field(L, "friction", demand.friction);
     set_field(L, "lower", demand.lower);
     set_string(L, "status", demand.status.c_str());

@@ -273,4 +273,56 @@ KinematicLoadFactor kinematic_load_factor(const Structure& structure, const Load
   return finish("optimal", low);
 }
 
+FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
+                                         double tolerance) {
+  if (!(tolerance > 0.0 && tolerance < 1.0)) {
+    throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+  }
+  const auto start = Clock::now();
+  FrictionDemand out = friction_demand(structure, settings.problem, tolerance);
+  if (out.status != "optimal") return out;  // it falls even without sliding, or Clp failed
+  out.programs = 0;
+  out.iterations = 0;
+  out.critical.clear();
+  auto finish = [&](const std::string& status, double friction) {
+    out.status = status;
+    out.friction = friction;
+    out.seconds = seconds_since(start);
+    return out;
+  };
+  // Each analysis: stands (1), falls (0), or no verdict (-1); a fall keeps
+  // its moving interfaces as the critical ones.
+  auto stands = [&](double mu) {
+    ++out.programs;
+    AnalysisSettings at = settings;
+    at.problem.friction = mu;
+    const EquilibriumResult r = analyze_kinematic(structure, at);
+    out.iterations += r.iterations;
+    if (r.stable) return 1;
+    if (r.status != SolverStatus::converged) return -1;
+    out.critical.clear();
+    for (const LimitInterface& joint : r.limit) out.critical.push_back(joint.interface);
+    return 0;
+  };
+  constexpr double kLargestFriction = 1e3;
+  double low = out.lower, high = std::max(out.friction, 1e-3);
+  for (int verdict = stands(high); verdict != 1; verdict = stands(high)) {
+    if (verdict < 0) return finish("no verdict", std::numeric_limits<double>::quiet_NaN());
+    low = high;
+    if (high >= kLargestFriction) {
+      out.lower = low;
+      return finish("unbounded", std::numeric_limits<double>::infinity());
+    }
+    high = std::min(kLargestFriction, 2.0 * high);
+  }
+  while (high - low > tolerance * high) {
+    const double middle = 0.5 * (low + high);
+    const int verdict = stands(middle);
+    if (verdict < 0) return finish("no verdict", std::numeric_limits<double>::quiet_NaN());
+    (verdict == 1 ? high : low) = middle;
+  }
+  out.lower = low;
+  return finish("optimal", high);
+}
+
 }  // namespace ashlar

@@ -84,6 +84,16 @@ struct KinematicLoadFactor {
   EquilibriumResult failure;         // the analysis just above the factor: its mechanism
   double seconds = 0.0;
 };
+// The least friction coefficient under which the kinematic method finds the
+// structure standing, by bisection to `tolerance` (relative) from the
+// equilibrium method's demand (friction_demand), which it cannot be below.
+// Status as friction_demand's, and "unbounded" when it stands only without
+// sliding (friction +inf; a block clamped between walls), "no verdict" when
+// an analysis did not settle. `programs` counts kinematic analyses,
+// `critical` the interfaces that move at `lower`.
+FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
+                                         double tolerance = 1e-3);
+
 KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
                                           const AnalysisSettings& settings, double tolerance = 1e-3);
 

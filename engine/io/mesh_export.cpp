@@ -48,6 +48,22 @@ void check_options(const Structure& structure, const ExportOptions& options) {
   }
   check_result_of_structure(structure, options.result, options.forces, options.thrust,
                             options.contact, "export");
+  if (!(options.mechanism_scale >= 0.0) || !std::isfinite(options.mechanism_scale)) {
+    throw InvalidArgument("export: mechanism must be a finite distance >= 0 (m), got " +
+                          std::to_string(options.mechanism_scale));
+  }
+  if (options.mechanism_scale > 0.0 && (!options.result || options.result->mechanism.empty())) {
+    throw InvalidArgument(std::string("export: mechanism needs ") +
+                          (options.result ? "an unstable result: this one stands, it has no mechanism"
+                                          : "the result of an analysis (result = r) that found the structure unstable"));
+  }
+}
+
+// Block i as the mechanism moves it, its fastest centroid `scale` metres.
+Block moved_by_mechanism(const Block& block, const BlockMotion& motion, double scale) {
+  const double angle = scale * motion.rotation.norm();
+  const Block turned = angle > 0.0 ? block.rotated(motion.rotation, angle, block.centroid()) : block;
+  return turned.translated(scale * motion.velocity);
 }
 
 void add_objects(const Structure& structure, const ExportOptions& options, SceneWriter& writer) {
@@ -56,7 +72,12 @@ void add_objects(const Structure& structure, const ExportOptions& options, Scene
   const double opacity = options.block_opacity.value_or(glyphs_inside ? 0.35 : 1.0);
   for (int i = 0; i < structure.size(); ++i) {
     const Rgb color = options.block_colors.empty() ? Rgb{} : options.block_colors[i];
-    writer.add_object(structure.name(i), block_mesh(structure.block(i)), color, false, opacity);
+    const bool moves = options.mechanism_scale > 0.0 && !structure.is_support(i);
+    const Block& block = structure.block(i);
+    writer.add_object(structure.name(i),
+                      block_mesh(moves ? moved_by_mechanism(block, options.result->mechanism[i], options.mechanism_scale)
+                                       : block),
+                      color, false, opacity);
   }
   if (options.interfaces) {
     std::map<std::string, int> uses;

@@ -82,6 +82,11 @@ struct ExportOptions {
   // materials). Unset: opaque, except 0.35 when forces, the thrust line or
   // load traces are drawn, since they run inside the blocks.
   std::optional<double> block_opacity;
+  // How the result's mechanism moves the blocks: each free block drawn
+  // displaced by its virtual motion (a rigid motion: rotation about its
+  // centroid, then translation), scaled so that the fastest centroid moves
+  // this far (m). 0: blocks where they are. Needs an unstable result.
+  double mechanism_scale = 0.0;
 };
 
 // Format from the extension: .glb, .gltf (glTF 2.0), .obj, .ply, .stl.

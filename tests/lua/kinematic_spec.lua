@@ -184,6 +184,48 @@ describe("the kinematic method", function()
     assert.near(-1, falls.mechanism[3].velocity[3], 1e-6)
   end)
 
+  it("gives a friction demand: tan theta on an incline, none finite for a clamped block", function()
+    local s = ashlar.tilt((function()
+      local flat = ashlar.structure()
+      flat:add(ashlar.box{ size = { 4, 2, 0.5 }, center = { 0, 0, -0.25 } }, { support = true })
+      flat:add(ashlar.box{ size = { 1, 1, 0.3 }, center = { 0, 0, 0.15 } })  -- squat: slides before it tips
+      return flat
+    end)(), math.rad(20), { origin = { 0, 0, 0 } })
+    local demand = ashlar.friction_demand(s, { method = "kinematic", tolerance = 1e-4 })
+    assert.equal("optimal", demand.status)
+    assert.equal("kinematic", demand.method)
+    assert.near(math.tan(math.rad(20)), demand.friction, 2e-4 * math.tan(math.rad(20)))
+    assert.is_true(demand.lower <= math.tan(math.rad(20)))
+    local clamped_demand = ashlar.friction_demand(clamped(), { method = "kinematic" })
+    assert.equal("unbounded", clamped_demand.status)
+    assert.equal(math.huge, clamped_demand.friction)
+    -- The equilibrium method: any friction at all, squeezed.
+    assert.is_true(ashlar.friction_demand(clamped(), {}).friction < 1e-6)
+  end)
+
+  it("draws its mechanism: blocks moved rigidly, the fastest centroid by the scale", function()
+    -- The harmonic stack past its overhang: the top blocks tip (rotate).
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { -0.5, 0, -0.25 } }, { support = true, name = "support" })
+    s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { 1.02 * 0.25 - 0.5, 0, 0.1 } }, { name = "lower" })
+    s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { 1.02 * 0.75 - 0.5, 0, 0.3 } }, { name = "upper" })
+    local r = ashlar.analyze(s, { friction = 0.6, method = "kinematic" })
+    assert.is_false(r.stable)
+    local path = os.tmpname() .. ".obj"
+    ashlar.export(s, path, { result = r, mechanism = 0.3 })
+    local drawn = ashlar.import(path)
+    os.remove(path)
+    for i = 1, 3 do
+      local before, after = s:block(i), drawn:block(drawn:find(s:name(i)))
+      local v = r.mechanism[i].velocity
+      assert.near(before:volume(), after:volume(), 1e-6)  -- rigid (single precision)
+      for k = 1, 3 do assert.near(before:centroid()[k] + 0.3 * v[k], after:centroid()[k], 1e-6) end
+    end
+    assert.is_true(math.abs(r.mechanism[3].rotation[2]) > 0.1)  -- it turns, not only slides
+    support.expect_error({ "mechanism needs an unstable result" }, ashlar.export, clamped(), os.tmpname() .. ".obj",
+      { result = ashlar.analyze(clamped(), {}), mechanism = 0.1 })
+  end)
+
   it("names what is wrong with its options", function()
     local s = clamped()
     support.expect_error({ "method: expected \"equilibrium\" or \"kinematic\", got \"dynamic\"" }, ashlar.analyze, s,
