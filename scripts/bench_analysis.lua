@@ -145,38 +145,7 @@ local CHARTS = {
     },
   },
 }
-local TERMINALS = {
-  { extension = "png", command = "set terminal pngcairo size 1000,700 font 'sans,12'" },
-  { extension = "svg", command = "set terminal svg size 1000,700 dynamic font 'sans,12'" },
-}
-
--- A log-log chart of `rows`, drawn by gnuplot into a temporary name and
--- renamed when done.
-local function draw_chart(chart, rows, path, terminal)
-  local script = { terminal, ("set output %q"):format(path .. ".tmp"), ("set title %q"):format(chart.title),
-    "set xlabel 'blocks'", ("set ylabel %q"):format(chart.ylabel), "set logscale xy", "set xrange [70:30000]",
-    "set format x '10^{%T}'", "set format y '10^{%T}'", "set mxtics 10", "set mytics 10",
-    "set grid xtics ytics mxtics mytics", "set key top left box opaque" }
-  local plots = {}
-  for index, line in ipairs(chart.series) do
-    local points = {}
-    for _, row in ipairs(rows) do
-      local value = tonumber(row[line.column])
-      if row.structure == line.kind and value then points[#points + 1] = row.blocks .. " " .. value end
-    end
-    if #points > 0 then
-      script[#script + 1] = ("$series%d << EOD\n%s\nEOD"):format(index, table.concat(points, "\n"))
-      plots[#plots + 1] = ("$series%d using 1:2 with linespoints lw 2 ps 1.2 %s title %q"):format(index,
-        line.style, line.title)
-    end
-  end
-  script[#script + 1] = "plot " .. table.concat(plots, ", \\\n  ")
-  script[#script + 1] = "unset output"
-  local gnuplot = assert(io.popen("gnuplot", "w"))
-  gnuplot:write(table.concat(script, "\n"), "\n")
-  assert(gnuplot:close(), "gnuplot failed on " .. path)
-  assert(os.rename(path .. ".tmp", path))
-end
+local log_chart = dofile((arg[0]:match("^(.*)/") or ".") .. "/log_chart.lua")
 
 local folder = arg[1] or "."
 local interpreter = arg[-1] or "ashlar"
@@ -238,10 +207,9 @@ local csv_path = folder .. "/analysis_scaling.csv"
 write_atomically(csv_path, table.concat(csv_lines, "\n") .. "\n")
 local written = { csv_path }
 for _, chart in ipairs(CHARTS) do
-  for _, terminal in ipairs(TERMINALS) do
-    local path = ("%s/%s.%s"):format(folder, chart.name, terminal.extension)
-    draw_chart(chart, rows, path, terminal.command)
-    written[#written + 1] = path
+  log_chart.draw_all(chart, rows, folder .. "/" .. chart.name)
+  for _, terminal in ipairs(log_chart.terminals) do
+    written[#written + 1] = ("%s/%s.%s"):format(folder, chart.name, terminal.extension)
   end
 end
 print(("wrote %s in %.0f s"):format(table.concat(written, ", "), ashlar.clock() - started))

@@ -9,55 +9,11 @@ local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
 local folder = arg[1] or "."
-local Y = { 0, 1, 0 }
-
-local function clamped()
-  local s = ashlar.structure()
-  s:add(ashlar.box{ size = { 1, 1, 2 }, center = { -0.5, 0, 1 } }, { support = true })
-  s:add(ashlar.box{ size = { 1, 1, 2 }, center = { 1.5, 0, 1 } }, { support = true })
-  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0.5, 0, 1.5 } })
-  return s
-end
-
-local function wedge()
-  local h, bottom = 0.6, 0.4
-  local top = bottom + 2 * h * math.tan(math.rad(15))
-  local s = ashlar.structure()
-  s:add(ashlar.prism({ { -bottom / 2, 0, 0 }, { -top / 2, 0, h }, { -2, 0, h }, { -2, 0, 0 } }, Y), { support = true })
-  s:add(ashlar.prism({ { bottom / 2, 0, 0 }, { 2, 0, 0 }, { 2, 0, h }, { top / 2, 0, h } }, Y), { support = true })
-  s:add(ashlar.prism({ { -bottom / 2, 0, 0 }, { bottom / 2, 0, 0 }, { top / 2, 0, h }, { -top / 2, 0, h } }, Y))
-  return s
-end
-
-local function flat_arch(c)
-  local depth, count, width = 0.4, 5, 0.5
-  local function top(x) return c and x * (1 + depth / c) or x end
-  local s, x0 = ashlar.structure(), -count * width / 2
-  s:add(ashlar.prism({ { x0, 0, 0 }, { top(x0), 0, depth }, { x0 - 1.5, 0, depth }, { x0 - 1.5, 0, 0 } }, Y),
-    { support = true })
-  s:add(ashlar.prism({ { -x0, 0, 0 }, { -x0 + 1.5, 0, 0 }, { -x0 + 1.5, 0, depth }, { top(-x0), 0, depth } }, Y),
-    { support = true })
-  for k = 0, count - 1 do
-    local a, b = x0 + k * width, x0 + (k + 1) * width
-    s:add(ashlar.prism({ { a, 0, 0 }, { b, 0, 0 }, { top(b), 0, depth }, { top(a), 0, depth } }, Y))
-  end
-  return s
-end
-
-local function incline(theta)
-  local s = ashlar.structure()
-  s:add(ashlar.box{ size = { 4, 2, 0.5 }, center = { 0, 0, -0.25 } }, { support = true })
-  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 0.25 } })
-  return ashlar.tilt(s, theta, { origin = { 0, 0, 0 } })
-end
-
-local function stack(f)
-  local s = ashlar.structure()
-  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { -0.5, 0, -0.25 } }, { support = true })
-  s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { f * 0.25 - 0.5, 0, 0.1 } })
-  s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { f * 0.75 - 0.5, 0, 0.3 } })
-  return s
-end
+local here = arg[0]:match("^(.*)/") or "."
+local log_chart = dofile(here .. "/log_chart.lua")
+local cases_of = dofile(here .. "/kinematic_cases.lua")
+local clamped, wedge, flat_arch, incline, stack = cases_of.clamped, cases_of.wedge, cases_of.flat_arch,
+  cases_of.incline, cases_of.stack
 
 -- "falls: block 3 (0, 0, -1); 1-3 sliding, 2-3 sliding": the fastest block's
 -- velocity and the interfaces that move.
@@ -145,7 +101,7 @@ end
 
 print("\nTime against block count (friction 0.7; seconds of the whole analysis)")
 local rows = { "structure,blocks,equilibrium_s,kinematic_s,rounds,equilibrium_stable,kinematic_stable" }
-local series = { wall = {}, vault = {} }
+local chart_rows = {}
 print(("%-6s %7s %13s %11s %7s"):format("", "blocks", "equilibrium s", "kinematic s", "rounds"))
 local sizes = {
   wall = { 10, 32, 100 },
@@ -167,7 +123,7 @@ for _, kind in ipairs{ "wall", "vault" } do
     print(("%-6s %7d %13.2f %11.2f %7d"):format(kind, #s, e.seconds, k.seconds, k.rounds))
     rows[#rows + 1] = ("%s,%d,%.4f,%.4f,%d,%s,%s"):format(kind, #s, e.seconds, k.seconds, k.rounds, tostring(e.stable),
       tostring(k.stable))
-    series[kind][#series[kind] + 1] = { #s, e.seconds, k.seconds }
+    chart_rows[#chart_rows + 1] = { structure = kind, blocks = #s, equilibrium_s = e.seconds, kinematic_s = k.seconds }
   end
 end
 local csv = folder .. "/kinematic_scaling.csv"
@@ -176,27 +132,14 @@ file:write(table.concat(rows, "\n"), "\n")
 file:close()
 assert(os.rename(csv .. ".tmp", csv))
 
--- Log-log chart of both methods' times, drawn by gnuplot (written whole).
-for _, terminal in ipairs{ { "png", "pngcairo size 1000,700 font 'sans,12'" }, { "svg", "svg size 1000,700 dynamic font 'sans,12'" } } do
-  local path = folder .. "/kinematic_scaling." .. terminal[1]
-  local script = { "set terminal " .. terminal[2], ("set output %q"):format(path .. ".tmp"),
-    "set title 'Analysis time against block count: equilibrium and kinematic methods'", "set xlabel 'blocks'",
-    "set ylabel 'seconds (whole analysis)'", "set logscale xy", "set grid", "set key top left box opaque" }
-  local plots = {}
-  for _, kind in ipairs{ "wall", "vault" } do
-    for column, method in ipairs{ "equilibrium", "kinematic" } do
-      local points = {}
-      for _, p in ipairs(series[kind]) do points[#points + 1] = p[1] .. " " .. p[column + 1] end
-      local name = ("$%s_%s"):format(kind, method)
-      script[#script + 1] = ("%s << EOD\n%s\nEOD"):format(name, table.concat(points, "\n"))
-      plots[#plots + 1] = ("%s using 1:2 with linespoints lw 2 title '%s, %s'"):format(name, kind, method)
-    end
-  end
-  script[#script + 1] = "plot " .. table.concat(plots, ", ")
-  script[#script + 1] = "unset output"
-  local gnuplot = assert(io.popen("gnuplot", "w"))
-  gnuplot:write(table.concat(script, "\n"), "\n")
-  assert(gnuplot:close(), "gnuplot failed on " .. path)
-  assert(os.rename(path .. ".tmp", path))
-end
+log_chart.draw_all({
+  title = "Analysis time against block count: equilibrium and kinematic methods",
+  ylabel = "seconds (whole analysis)",
+  series = {
+    { kind = "wall", column = "equilibrium_s", title = "running-bond wall, equilibrium", style = "lc rgb '#1f77b4' pt 7" },
+    { kind = "wall", column = "kinematic_s", title = "running-bond wall, kinematic", style = "lc rgb '#1f77b4' pt 5 dt 2" },
+    { kind = "vault", column = "equilibrium_s", title = "barrel vault, equilibrium", style = "lc rgb '#d62728' pt 7" },
+    { kind = "vault", column = "kinematic_s", title = "barrel vault, kinematic", style = "lc rgb '#d62728' pt 5 dt 2" },
+  },
+}, chart_rows, folder .. "/kinematic_scaling")
 print("wrote " .. csv .. " and kinematic_scaling.png / .svg")

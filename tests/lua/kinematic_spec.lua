@@ -9,54 +9,10 @@ local function both(s, friction)
   return ashlar.analyze(s, { friction = friction }), ashlar.analyze(s, { friction = friction, method = "kinematic" })
 end
 
--- A block set between two walls (supports), nothing under it.
-local function clamped()
-  local s = ashlar.structure()
-  s:add(ashlar.box{ size = { 1, 1, 2 }, center = { -0.5, 0, 1 } }, { support = true, name = "left" })
-  s:add(ashlar.box{ size = { 1, 1, 2 }, center = { 1.5, 0, 1 } }, { support = true, name = "right" })
-  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0.5, 0, 1.5 } }, { name = "clamped" })
-  return s
-end
-
--- A wedge (height 0.6 m, 0.4 m wide at the bottom) seated in a V whose faces
--- are 15 degrees from vertical, the wedge wider at the top.
-local function wedge()
-  local h, bottom = 0.6, 0.4
-  local top = bottom + 2 * h * math.tan(math.rad(15))
-  local s = ashlar.structure()
-  local y = { 0, 1, 0 }
-  s:add(ashlar.prism({ { -bottom / 2, 0, 0 }, { -top / 2, 0, h }, { -2, 0, h }, { -2, 0, 0 } }, y), { support = true })
-  s:add(ashlar.prism({ { bottom / 2, 0, 0 }, { 2, 0, 0 }, { 2, 0, h }, { top / 2, 0, h } }, y), { support = true })
-  s:add(ashlar.prism({ { -bottom / 2, 0, 0 }, { bottom / 2, 0, 0 }, { top / 2, 0, h }, { -top / 2, 0, h } }, y))
-  return s
-end
-
--- A flat arch of five 0.5 m voussoirs, 0.4 m deep, between two fixed
--- abutments: joints vertical, or converging to a point `c` metres below
--- its soffit.
-local function flat_arch(c)
-  local depth, count, width = 0.4, 5, 0.5
-  local function top(x) return c and x * (1 + depth / c) or x end
-  local s = ashlar.structure()
-  local y, x0 = { 0, 1, 0 }, -count * width / 2
-  s:add(ashlar.prism({ { x0, 0, 0 }, { top(x0), 0, depth }, { x0 - 1.5, 0, depth }, { x0 - 1.5, 0, 0 } }, y),
-    { support = true })
-  s:add(ashlar.prism({ { -x0, 0, 0 }, { -x0 + 1.5, 0, 0 }, { -x0 + 1.5, 0, depth }, { top(-x0), 0, depth } }, y),
-    { support = true })
-  for k = 0, count - 1 do
-    local a, b = x0 + k * width, x0 + (k + 1) * width
-    s:add(ashlar.prism({ { a, 0, 0 }, { b, 0, 0 }, { top(b), 0, depth }, { top(a), 0, depth } }, y))
-  end
-  return s
-end
-
--- A block on a slab tilted by theta about y: it slides down -x.
-local function on_incline(theta)
-  local s = ashlar.structure()
-  s:add(ashlar.box{ size = { 4, 2, 0.5 }, center = { 0, 0, -0.25 } }, { support = true })
-  s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 0.25 } })
-  return ashlar.tilt(s, theta, { origin = { 0, 0, 0 } })
-end
+-- The structures, shared with scripts/compare_methods.lua (specs run in tests/lua).
+local cases = dofile("../../scripts/kinematic_cases.lua")
+local clamped, wedge, flat_arch, on_incline, stack = cases.clamped, cases.wedge, cases.flat_arch, cases.incline,
+  cases.stack
 
 describe("the kinematic method", function()
   it("lets a block clamped between two walls fall, whatever the friction", function()
@@ -117,14 +73,8 @@ describe("the kinematic method", function()
   end)
 
   it("tips a stack at the same overhang as the equilibrium method", function()
-    -- Two unit blocks on a support's edge, the harmonic overhangs 1/4 and
-    -- 3/4 scaled by f: stands for f < 1, tips for f > 1.
     for _, case in ipairs{ { 0.98, true }, { 1.02, false } } do
-      local f = case[1]
-      local s = ashlar.structure()
-      s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { -0.5, 0, -0.25 } }, { support = true })
-      s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { f * 0.25 - 0.5, 0, 0.1 } })
-      s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { f * 0.75 - 0.5, 0, 0.3 } })
+      local s = stack(case[1])
       local equilibrium, kinematic = both(s, 0.6)
       assert.equal(case[2], equilibrium.stable)
       assert.equal(case[2], kinematic.stable)
@@ -204,11 +154,7 @@ describe("the kinematic method", function()
   end)
 
   it("draws its mechanism: blocks moved rigidly, the fastest centroid by the scale", function()
-    -- The harmonic stack past its overhang: the top blocks tip (rotate).
-    local s = ashlar.structure()
-    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { -0.5, 0, -0.25 } }, { support = true, name = "support" })
-    s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { 1.02 * 0.25 - 0.5, 0, 0.1 } }, { name = "lower" })
-    s:add(ashlar.box{ size = { 1, 1, 0.2 }, center = { 1.02 * 0.75 - 0.5, 0, 0.3 } }, { name = "upper" })
+    local s = stack(1.02)  -- past its overhang: the top blocks tip (rotate)
     local r = ashlar.analyze(s, { friction = 0.6, method = "kinematic" })
     assert.is_false(r.stable)
     local path = os.tmpname() .. ".obj"
