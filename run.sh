@@ -15,7 +15,7 @@ readonly DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libopenblas0-pthread libcgal-dev libgmp-dev libmpfr-dev
   libassimp-dev liblbfgspp-dev libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev coinor-libclp-dev libcairo2-dev
-  googletest libgtest-dev lua-busted valgrind
+  googletest libgtest-dev lua-busted valgrind libreadline-dev
   nodejs npm gnuplot-nox python3 python3-cvxopt python3-numpy
 )
 # Node.js may come from outside Debian (NodeSource's nodejs bundles npm and

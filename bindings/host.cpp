@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include <lua.hpp>
+#include <readline/history.h>
+#include <readline/readline.h>
 
 #include "core/version.hpp"
 #include "host_state.hpp"
@@ -223,8 +225,17 @@ int run_script(lua_State* L, const CommandLine& command_line) {
   return report(L, status);
 }
 
-// Reads one line without its newline; false at end of input.
+// Reads one line without its newline; false at end of input. At a terminal
+// through readline: line editing, and history for the session.
 bool read_line(const char* prompt, std::string& line) {
+  if (isatty(STDIN_FILENO)) {
+    char* typed = readline(prompt);
+    if (typed == nullptr) return false;
+    line = typed;
+    std::free(typed);
+    if (!line.empty()) add_history(line.c_str());
+    return true;
+  }
   std::fputs(prompt, stdout);
   std::fflush(stdout);
   line.clear();
@@ -321,6 +332,19 @@ int run_host(lua_State* L) {
   ashlar::host::create_arg_table(L, invocation.argv, invocation.script);
 
   if (command_line.show_version) print_version();
+  // -e chunks and the prompt have the library at hand, as scripts have it
+  // after their require.
+  if (!command_line.sandbox.enabled) {
+    for (const auto& [global, module] : {std::pair{"ashlar", "ashlar"}, std::pair{"models", "ashlar.models"}}) {
+      lua_getglobal(L, "require");
+      lua_pushstring(L, module);
+      if (report(L, call_with_traceback(L, 1, 1)) != LUA_OK) {
+        lua_pushboolean(L, false);
+        return 1;
+      }
+      lua_setglobal(L, global);
+    }
+  }
   bool succeeded = run_options(L, command_line);
   if (succeeded && has_script) succeeded = run_script(L, command_line) == LUA_OK;
   if (succeeded) {

@@ -38,7 +38,7 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
     if (lua_type(L, -1) != LUA_TNUMBER || std::isnan(lua_tonumber(L, -1)) ||
         lua_tonumber(L, -1) < 0.0) {
       throw ArgError(arg, "friction: expected a number >= 0 (math.huge: no sliding), got " +
-                              type_name(L, -1));
+                              (lua_type(L, -1) == LUA_TNUMBER ? number_text(lua_tonumber(L, -1)) : type_name(L, -1)));
     }
     problem.friction = lua_tonumber(L, -1);
   }

@@ -40,6 +40,15 @@ describe("argument errors", function()
       function() ashlar.box{ size = { 1, 1, 1 } }:rotated({ 0, 0, 0 }, 1) end)
   end)
 
+  it("shows the value a range check refused", function()
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 1, 1, 1 }, center = { 0, 0, -0.5 } }, { support = true })
+    s:add(ashlar.box{ size = { 1, 1, 1 }, center = { 0, 0, 0.5 } })
+    expect_error({ "friction: expected a number >= 0 (math.huge: no sliding), got -1" }, ashlar.analyze, s, { friction = -1 })
+    expect_error({ "friction: expected a number >= 0 (math.huge: no sliding), got string" }, ashlar.analyze, s,
+      { friction = "high" })
+  end)
+
   it("says which block argument is wrong", function()
     local s = ashlar.structure()
     expect_error({ "bad argument #1 to 'add'", "Block expected, got number" }, function() s:add(5) end)
