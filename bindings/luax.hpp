@@ -18,9 +18,15 @@
 
 #include <lua.hpp>
 
+#include "core/clock.hpp"
 #include "core/interrupt.hpp"
 #include "core/types.hpp"
-#include "sandbox.hpp"
+
+namespace ashlar::sandbox {
+// When a sandboxed script's time is up (sandbox.hpp); the far future outside
+// a sandbox. Declared here so that guard() needs no more of the sandbox.
+Clock::time_point deadline_of(lua_State* L);
+}  // namespace ashlar::sandbox
 
 namespace ashlar::lua {
 

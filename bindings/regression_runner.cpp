@@ -18,7 +18,7 @@
 #include <lua.hpp>
 
 #include "host_state.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "regression_check.hpp"
 #include "regression_golden.hpp"
 

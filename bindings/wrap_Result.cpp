@@ -10,6 +10,7 @@
 #include "analysis/kinematic.hpp"
 #include "analysis/qps_export.hpp"
 #include "luax.hpp"
+#include "sandbox.hpp"
 #include "wrap_Structure.hpp"
 
 namespace ashlar::lua {

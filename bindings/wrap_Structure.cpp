@@ -5,6 +5,7 @@
 
 #include "io/structure_json.hpp"
 #include "luax.hpp"
+#include "sandbox.hpp"
 #include "wrap_Block.hpp"
 
 namespace ashlar::lua {

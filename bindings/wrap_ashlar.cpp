@@ -10,6 +10,7 @@
 #include "io/compas_assembly.hpp"
 #include "io/mesh_io.hpp"
 #include "luax.hpp"
+#include "sandbox.hpp"
 #include "wrap_Block.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"

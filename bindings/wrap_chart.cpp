@@ -8,6 +8,7 @@
 #include "io/chart.hpp"
 #include "io/chart_rows.hpp"
 #include "luax.hpp"
+#include "sandbox.hpp"
 
 namespace ashlar::lua {
 namespace {

@@ -10,6 +10,7 @@
 #include "io/color_map.hpp"
 #include "io/drawing.hpp"
 #include "luax.hpp"
+#include "sandbox.hpp"
 #include "wrap_colors.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"

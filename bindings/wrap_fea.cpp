@@ -6,6 +6,7 @@
 #include "io/fea_export.hpp"
 #include "io/mesh_io.hpp"
 #include "luax.hpp"
+#include "sandbox.hpp"
 #include "wrap_Structure.hpp"
 
 namespace ashlar::lua {

@@ -11,7 +11,7 @@
 -- ashlar chooses its own threads (from 2,000 rows its factorisation is
 -- split in two halves factored on two cores, each with one-threaded BLAS;
 -- its per-group passes run on both cores; see
--- engine/analysis/sparse_cholesky.cpp); cvxopt runs with single-threaded
+-- engine/core/sparse_cholesky.cpp); cvxopt runs with single-threaded
 -- BLAS (OPENBLAS_NUM_THREADS=1), so its figures are per core.
 -- "whole / factor" is the analysis time over the time of one factorisation
 -- of its normal matrix (split or whole, as the analysis ran it): how close

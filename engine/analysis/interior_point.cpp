@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "analysis/sparse_cholesky.hpp"
+#include "core/sparse_cholesky.hpp"
 #include "core/clock.hpp"
 #include "core/interrupt.hpp"
 #include "core/parallel_loop.hpp"

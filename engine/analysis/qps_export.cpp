@@ -42,7 +42,7 @@
 #include <charconv>
 
 #include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 namespace ashlar {
 

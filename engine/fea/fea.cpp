@@ -5,7 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "analysis/sparse_cholesky.hpp"
+#include "core/sparse_cholesky.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 

@@ -25,7 +25,7 @@
 
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 namespace ashlar {
 namespace {

@@ -10,7 +10,7 @@
 #include "core/types.hpp"
 #include "io/axis_ticks.hpp"
 #include "io/image_rect.hpp"
-#include "io/mesh_io.hpp"
+#include "io/color.hpp"
 
 namespace ashlar {
 

@@ -5,7 +5,7 @@
 
 #include "analysis/equilibrium.hpp"
 #include "geometry/block_builders.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/json_document.hpp"
 #include "io/option_checks.hpp"
 

@@ -14,7 +14,7 @@
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
 #include "io/assimp_scene.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/color_map.hpp"
 #include "io/mesh_io.hpp"
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/block.hpp"
+#include "io/color.hpp"
 #include "structure/structure.hpp"
 
 namespace ashlar {
@@ -36,10 +37,6 @@ struct ImportedBlock {
 // world coordinates). Throws IoError for unreadable files and GeometryError
 // naming the object when a mesh is not a closed solid.
 std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOptions& options);
-
-struct Rgb {
-  double r = 0.8, g = 0.8, b = 0.8;  // each in [0, 1]
-};
 
 struct ExportOptions {
   // One colour per block (size() == structure.size()), or empty for the

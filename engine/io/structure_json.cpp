@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/json_document.hpp"
 
 namespace ashlar {

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/union_find.hpp"
 #include "geometry/block.hpp"
 #include "geometry/polygon.hpp"
 
@@ -84,28 +85,6 @@ void check_position(const PositionRef& ref, const DesignPoint& design, const std
                           ")");
   }
 }
-
-class DisjointSets {
-public:
-  explicit DisjointSets(int size) : parent_(size) {
-    for (int i = 0; i < size; ++i) parent_[i] = i;
-  }
-  int find(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  // True when a and b were in different sets.
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent_[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-
-private:
-  std::vector<int> parent_;
-};
 
 // Buckets points in cubic cells of side `cell` for neighbour queries in
 // time proportional to the cells (or the occupied cells) they cover.
@@ -356,11 +335,11 @@ void DesignSpace::weld() {
   weld_tolerance_ = constraints_.weld_tolerance.value_or(kRelativeWeldTolerance * model_size_);
 
   const int count = static_cast<int>(positions.size());
-  DisjointSets welded(count);
+  UnionFind welded(count);
   PointGrid grid(bounds.lo, std::max(weld_tolerance_, 1e-12 * model_size_));
   for (int i = 0; i < count; ++i) {
     grid.for_each_near(positions[i], weld_tolerance_, [&](int j) {
-      if ((positions[j] - positions[i]).norm() <= weld_tolerance_) welded.unite(i, j);
+      if ((positions[j] - positions[i]).norm() <= weld_tolerance_) welded.join(i, j);
     });
     grid.insert(positions[i], i);
   }
@@ -369,7 +348,7 @@ void DesignSpace::weld() {
   std::vector<int> members;
   node_of_position_.resize(count);
   for (int i = 0; i < count; ++i) {
-    int& node = node_of_root[welded.find(i)];
+    int& node = node_of_root[welded.root(i)];
     if (node < 0) {
       node = static_cast<int>(nodes_.size());
       nodes_.push_back(Node{});
@@ -402,11 +381,11 @@ void DesignSpace::weld() {
 
 void DesignSpace::build_variables() {
   const int count = static_cast<int>(nodes_.size());
-  DisjointSets classes(count);
+  UnionFind classes(count);
   for (const auto& group : constraints_.move_together) {
     const int first = node_of_position_[position_index(group.front())];
     for (const PositionRef& ref : group) {
-      classes.unite(first, node_of_position_[position_index(ref)]);
+      classes.join(first, node_of_position_[position_index(ref)]);
     }
   }
   std::vector<char> fixed_node(count, 0);
@@ -419,7 +398,7 @@ void DesignSpace::build_variables() {
     fixed_node[node_of_position_[position_index(ref)]] = 1;
   }
   std::vector<char> fixed_class(count, 0);
-  for (int g = 0; g < count; ++g) fixed_class[classes.find(g)] |= fixed_node[g];
+  for (int g = 0; g < count; ++g) fixed_class[classes.root(g)] |= fixed_node[g];
 
   std::vector<int>& partner = partner_;
   partner.assign(count, -1);
@@ -445,7 +424,7 @@ void DesignSpace::build_variables() {
           partner[g] = h;
         }
       });
-      if (partner[g] < 0 && !fixed_class[classes.find(g)]) {
+      if (partner[g] < 0 && !fixed_class[classes.root(g)]) {
         throw InvalidArgument("mirror: " + describe(nodes_[g].example) + " at (" + number(p.x()) +
                               ", " + number(p.y()) + ", " + number(p.z()) +
                               ") has no mirror image across the plane");
@@ -457,19 +436,19 @@ void DesignSpace::build_variables() {
       std::vector<int> anchor(count, -1);
       for (int g = 0; g < count; ++g) {
         if (partner[g] < 0) continue;
-        int& first = anchor[classes.find(g)];
+        int& first = anchor[classes.root(g)];
         if (first < 0) {
           first = g;
         } else {
-          changed |= classes.unite(partner[g], partner[first]);
+          changed |= classes.join(partner[g], partner[first]);
         }
       }
     }
     std::fill(fixed_class.begin(), fixed_class.end(), 0);
-    for (int g = 0; g < count; ++g) fixed_class[classes.find(g)] |= fixed_node[g];
+    for (int g = 0; g < count; ++g) fixed_class[classes.root(g)] |= fixed_node[g];
     for (int g = 0; g < count; ++g) {
       if (partner[g] < 0) continue;
-      const int a = classes.find(g), b = classes.find(partner[g]);
+      const int a = classes.root(g), b = classes.root(partner[g]);
       fixed_class[a] = fixed_class[b] = fixed_class[a] | fixed_class[b];
     }
   }
@@ -477,9 +456,9 @@ void DesignSpace::build_variables() {
   std::vector<int> first_variable(count, -1);
   for (int g = 0; g < count; ++g) {
     Node& node = nodes_[g];
-    const int own = classes.find(g);
+    const int own = classes.root(g);
     if (fixed_class[own]) continue;
-    const int image = partner[g] < 0 ? own : classes.find(partner[g]);
+    const int image = partner[g] < 0 ? own : classes.root(partner[g]);
     const int owner = std::min(own, image);
     node.variable_count = (constraints_.mirror && own == image) ? 2 : 3;
     if (first_variable[owner] < 0) {
@@ -602,7 +581,7 @@ void DesignSpace::build_plane_groups() {
   }
 
   // Faces with three non-collinear nodes in common lie in one plane.
-  DisjointSets merged(face_count);
+  UnionFind merged(face_count);
   std::vector<std::vector<int>> faces_of_node(node_count);
   for (int f = 0; f < face_count; ++f) {
     for (int node : set.nodes[f]) faces_of_node[node].push_back(f);
@@ -615,7 +594,7 @@ void DesignSpace::build_plane_groups() {
       }
     }
     for (const auto& [g, nodes] : common) {
-      if (spans_plane(nodes)) merged.unite(f, g);
+      if (spans_plane(nodes)) merged.join(f, g);
     }
   }
   // So do coplanar faces whose equations are dependent at the start: a
@@ -624,10 +603,10 @@ void DesignSpace::build_plane_groups() {
   // are singular where the two meet. Flat is the design's reading.
   for (bool changed = true; changed;) {
     std::vector<int> root(face_count);
-    for (int f = 0; f < face_count; ++f) root[f] = merged.find(f);
+    for (int f = 0; f < face_count; ++f) root[f] = merged.root(f);
     form_groups(set, root);
     changed = false;
-    for (const auto& [f, g] : dependent_coplanar_faces()) changed |= merged.unite(f, g);
+    for (const auto& [f, g] : dependent_coplanar_faces()) changed |= merged.join(f, g);
   }
 }
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/types.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "test_support.hpp"
 
 struct GltfFile {

@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/axis_ticks.hpp"
 #include "io/chart.hpp"
 #include "io/chart_rows.hpp"

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/compas_assembly.hpp"
 #include "structure/structure_transform.hpp"
 #include "test_support.hpp"

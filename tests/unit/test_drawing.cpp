@@ -9,7 +9,7 @@
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/drawing.hpp"
 #include "test_support.hpp"
 

@@ -16,7 +16,7 @@
 #include "fea/fea.hpp"
 #include "fea/fea_mesh.hpp"
 #include "fea/hex_element.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/fea_export.hpp"
 #include "io/mesh_io.hpp"
 #include "gltf_file.hpp"

@@ -9,7 +9,7 @@
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"
 #include "gltf_file.hpp"

@@ -14,7 +14,7 @@
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/color_map.hpp"
 #include "io/force_glyphs.hpp"
 #include "io/mesh_io.hpp"

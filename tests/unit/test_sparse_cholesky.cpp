@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "analysis/sparse_cholesky.hpp"
+#include "core/sparse_cholesky.hpp"
 
 using ashlar::SparseCholesky;
 using ashlar::SparseCholeskyOptions;

@@ -16,7 +16,7 @@
 
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "io/structure_json.hpp"
 #include "test_support.hpp"
 

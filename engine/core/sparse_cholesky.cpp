@@ -1,4 +1,4 @@
-#include "analysis/sparse_cholesky.hpp"
+#include "core/sparse_cholesky.hpp"
 
 #include <cholmod.h>
 #include <dlfcn.h>

@@ -2,7 +2,7 @@
 // beside the target (same file system, so rename() is atomic), is fsync'ed,
 // then renamed over the target. A reader sees the old file or the new one,
 // never a part; a crash leaves at most a stray "<name>.tmp<pid>-<n>" file.
-#include "io/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
