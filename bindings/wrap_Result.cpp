@@ -24,6 +24,7 @@ constexpr const char* kResultMeta = "ashlar.Result";
 struct AnalysisRecord {
   EquilibriumResult result;
   std::vector<Vec3> thrust;
+  std::vector<std::vector<Vec3>> thrust_branches;
   int block_count = 0;
 };
 
@@ -246,6 +247,18 @@ int w_Result_thrust_line(lua_State* L) {
   });
 }
 
+int w_Result_thrust_lines(lua_State* L) {
+  return guard(L, [&] {
+    const std::vector<std::vector<Vec3>>& branches = check_record(L, 1)->thrust_branches;
+    lua_createtable(L, static_cast<int>(branches.size()), 0);
+    for (size_t k = 0; k < branches.size(); ++k) {
+      push_points(L, branches[k]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    return 1;
+  });
+}
+
 int w_Result_index(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
@@ -254,6 +267,7 @@ int w_Result_index(lua_State* L) {
     if (!key) return 0;
     auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
     if (is("thrust_line")) lua_pushcfunction(L, w_Result_thrust_line);
+    else if (is("thrust_lines")) lua_pushcfunction(L, w_Result_thrust_lines);
     else if (is("stable")) lua_pushboolean(L, r.stable);
     else if (is("infeasibility")) lua_pushnumber(L, r.infeasibility);
     else if (is("penalty")) lua_pushnumber(L, r.penalty);
@@ -327,6 +341,7 @@ void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult
   auto record = std::make_shared<AnalysisRecord>();
   record->result = std::move(result);
   record->thrust = thrust_line(structure, record->result);
+  record->thrust_branches = thrust_polylines(structure, record->result);
   record->block_count = structure.size();
   void* memory = lua_newuserdatauv(L, sizeof(Box<AnalysisRecord>), 1);
   new (memory) Box<AnalysisRecord>{std::move(record)};

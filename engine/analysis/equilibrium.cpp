@@ -1,5 +1,6 @@
 #include "analysis/equilibrium.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/equilibrium_analysis.hpp"
@@ -7,6 +8,14 @@
 #include "core/error.hpp"
 
 namespace ashlar {
+
+namespace {
+
+// Interfaces whose normal force is under this fraction of the largest are
+// left out of the thrust line: round-off, blocks that merely touch.
+constexpr double kNegligibleThrust = 1e-3;
+
+}  // namespace
 
 void check_analysis_settings(const AnalysisSettings& settings) {
   const InteriorPointSettings& solver = settings.solver;
@@ -71,61 +80,91 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   return result;
 }
 
-std::vector<Vec3> thrust_line(const Structure& structure, const EquilibriumResult& result) {
-  const int n = structure.size();
-  std::vector<std::vector<int>> touching(n);
-  for (size_t i = 0; i < result.interfaces.size(); ++i) {
+std::vector<std::vector<Vec3>> thrust_polylines(const Structure& structure,
+                                                const EquilibriumResult& result) {
+  // The graph: a node per compressed interface, an edge per pair of them on
+  // one free block.
+  const int count = static_cast<int>(result.interfaces.size());
+  double largest = 0.0;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (std::isfinite(f.normal_force)) largest = std::max(largest, f.normal_force);
+  }
+  std::vector<bool> compressed(count, false);
+  std::vector<std::vector<int>> compressed_of_block(structure.size());
+  for (int i = 0; i < count; ++i) {
     const InterfaceForces& f = result.interfaces[i];
-    if (structure.is_support(f.a) && structure.is_support(f.b)) continue;
-    touching[f.a].push_back(static_cast<int>(i));
-    touching[f.b].push_back(static_cast<int>(i));
-  }
-  std::vector<int> order;
-  bool chain = true;
-  int start = -1;
-  for (int i = 0; i < n && chain; ++i) {
-    if (structure.is_support(i)) continue;
-    if (touching[i].size() > 2) chain = false;
-    for (int f : touching[i]) {
-      const InterfaceForces& contact = result.interfaces[f];
-      if (start < 0 && structure.is_support(contact.a == i ? contact.b : contact.a)) start = f;
+    compressed[i] = f.normal_force > kNegligibleThrust * largest && std::isfinite(f.normal_force) &&
+                    f.center_of_pressure.allFinite();
+    if (!compressed[i]) continue;
+    for (const int block : {f.a, f.b}) {
+      if (!structure.is_support(block)) compressed_of_block[block].push_back(i);
     }
   }
-  if (chain && start >= 0) {
-    // Walk from a support through blocks with two interfaces each.
-    std::vector<bool> used(result.interfaces.size(), false);
-    int f = start;
-    const InterfaceForces& first = result.interfaces[f];
-    int block = structure.is_support(first.a) ? first.b : first.a;
-    while (f >= 0 && !used[f]) {
-      used[f] = true;
-      order.push_back(f);
-      if (structure.is_support(block)) break;
-      int next = -1;
-      for (int g : touching[block]) {
-        if (!used[g]) next = g;
+  struct Edge {
+    int to, id;
+  };
+  std::vector<std::vector<Edge>> edges(count);
+  int edge_count = 0;
+  for (const std::vector<int>& nodes : compressed_of_block) {
+    for (size_t p = 0; p < nodes.size(); ++p) {
+      for (size_t q = p + 1; q < nodes.size(); ++q) {
+        edges[nodes[p]].push_back({nodes[q], edge_count});
+        edges[nodes[q]].push_back({nodes[p], edge_count});
+        ++edge_count;
       }
-      if (next < 0) break;
-      const InterfaceForces& contact = result.interfaces[next];
-      block = contact.a == block ? contact.b : contact.a;
-      f = next;
     }
-    size_t reachable = 0;
-    for (size_t i = 0; i < result.interfaces.size(); ++i) {
-      const InterfaceForces& c = result.interfaces[i];
-      reachable += !(structure.is_support(c.a) && structure.is_support(c.b));
+  }
+  // Walks from a node along unused edges, through nodes with two edges.
+  std::vector<bool> used(edge_count, false);
+  const auto walk = [&](int node) {
+    std::vector<Vec3> polyline{result.interfaces[node].center_of_pressure};
+    while (true) {
+      const auto next = std::find_if(edges[node].begin(), edges[node].end(),
+                                     [&](const Edge& e) { return !used[e.id]; });
+      if (next == edges[node].end()) break;
+      used[next->id] = true;
+      node = next->to;
+      polyline.push_back(result.interfaces[node].center_of_pressure);
+      if (edges[node].size() != 2) break;
     }
-    chain = order.size() == reachable;
+    return polyline;
+  };
+  const auto has_unused = [&](int node) {
+    return std::any_of(edges[node].begin(), edges[node].end(),
+                       [&](const Edge& e) { return !used[e.id]; });
+  };
+  std::vector<std::vector<Vec3>> polylines;
+  // Ends and branch points first, so that open lines are never cut; then
+  // whatever is left is closed loops.
+  for (const bool loops : {false, true}) {
+    for (int node = 0; node < count; ++node) {
+      if (!loops && edges[node].size() == 2) continue;
+      while (has_unused(node)) polylines.push_back(walk(node));
+    }
   }
-  if (!chain || start < 0) {
-    order.clear();
-    for (size_t i = 0; i < result.interfaces.size(); ++i) order.push_back(static_cast<int>(i));
+  for (int node = 0; node < count; ++node) {
+    if (compressed[node] && edges[node].empty()) {
+      polylines.push_back({result.interfaces[node].center_of_pressure});
+    }
   }
-  std::vector<Vec3> points;
-  for (int f : order) {
-    if (result.interfaces[f].normal_force > 0.0) points.push_back(result.interfaces[f].center_of_pressure);
-  }
-  return points;
+  return polylines;
+}
+
+std::vector<Vec3> thrust_line(const Structure& structure, const EquilibriumResult& result) {
+  const std::vector<std::vector<Vec3>> polylines = thrust_polylines(structure, result);
+  if (polylines.empty()) return {};
+  // A chain from a support: from that end, as the line is walked.
+  std::vector<Vec3> line = *std::max_element(polylines.begin(), polylines.end(), [](const auto& x, const auto& y) {
+    return x.size() < y.size();
+  });
+  const auto near_support = [&](const Vec3& p) {
+    for (const InterfaceForces& f : result.interfaces) {
+      if ((structure.is_support(f.a) || structure.is_support(f.b)) && f.center_of_pressure == p) return true;
+    }
+    return false;
+  };
+  if (!near_support(line.front()) && near_support(line.back())) std::reverse(line.begin(), line.end());
+  return line;
 }
 
 }  // namespace ashlar

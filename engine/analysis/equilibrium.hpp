@@ -163,10 +163,22 @@ void check_free_block(const Structure& structure, int block, const std::string& 
 void check_analysed_block(const EquilibriumProblem& problem, const Structure& structure, int block,
                           const std::string& caller);
 
-// Centres of pressure along the structure: when the contact graph of the
-// free blocks is a chain from support to support (an arch, a column), in
-// chain order; otherwise in interface order. Interfaces without compression
-// are skipped.
+// The line of thrust as polylines (m) to draw: a segment joins the centres
+// of pressure of every two compressed interfaces of one free block, and
+// segments are joined end to end through blocks with two such interfaces.
+// For a chain of blocks (an arch, a column) that is one polyline through the
+// points of thrust_line(structure, result), in their order or the reverse;
+// where a block has three or more (a pier under a flyer and a pinnacle) the
+// line branches there. An interface in compression with no other on its
+// blocks is a polyline of one point. Interfaces whose normal force is under
+// 1e-3 of the largest (round-off, blocks that merely touch) are left out.
+// `result` must be an analysis of `structure`.
+std::vector<std::vector<Vec3>> thrust_polylines(const Structure& structure,
+                                                const EquilibriumResult& result);
+
+// The longest of thrust_polylines: for a chain of blocks (an arch, a column)
+// the whole line, from the end at a support when one end is; for a branching
+// structure its longest branch (thrust_polylines gives every branch).
 std::vector<Vec3> thrust_line(const Structure& structure, const EquilibriumResult& result);
 
 }  // namespace ashlar

@@ -34,8 +34,8 @@ constexpr int kLegendTicks = 5;
 constexpr double kFacingViewer = 1e-6;
 // Arrow sizes, as in the mesh export: the largest arrow is this fraction of
 // the mean free-block size. Forces smaller than this fraction of the largest
-// (solver round-off, blocks that merely touch) get no arrow, and no part in
-// the thrust line.
+// (solver round-off, blocks that merely touch) get no arrow (the thrust
+// line leaves them out likewise: thrust_polylines).
 constexpr double kLargestArrowOfBlockSize = 0.25;
 constexpr double kNegligibleForce = 1e-3;
 
@@ -536,75 +536,6 @@ double scale_bar_length(double at_most) {
   return power;
 }
 
-std::vector<std::vector<Vec3>> thrust_polylines(const Structure& structure,
-                                                const EquilibriumResult& result) {
-  // The graph: a node per compressed interface, an edge per pair of them on
-  // one free block.
-  const int count = static_cast<int>(result.interfaces.size());
-  double largest = 0.0;
-  for (const InterfaceForces& f : result.interfaces) {
-    if (std::isfinite(f.normal_force)) largest = std::max(largest, f.normal_force);
-  }
-  std::vector<bool> compressed(count, false);
-  std::vector<std::vector<int>> compressed_of_block(structure.size());
-  for (int i = 0; i < count; ++i) {
-    const InterfaceForces& f = result.interfaces[i];
-    compressed[i] = f.normal_force > kNegligibleForce * largest && std::isfinite(f.normal_force) &&
-                    f.center_of_pressure.allFinite();
-    if (!compressed[i]) continue;
-    for (const int block : {f.a, f.b}) {
-      if (!structure.is_support(block)) compressed_of_block[block].push_back(i);
-    }
-  }
-  struct Edge {
-    int to, id;
-  };
-  std::vector<std::vector<Edge>> edges(count);
-  int edge_count = 0;
-  for (const std::vector<int>& nodes : compressed_of_block) {
-    for (size_t p = 0; p < nodes.size(); ++p) {
-      for (size_t q = p + 1; q < nodes.size(); ++q) {
-        edges[nodes[p]].push_back({nodes[q], edge_count});
-        edges[nodes[q]].push_back({nodes[p], edge_count});
-        ++edge_count;
-      }
-    }
-  }
-  // Walks from a node along unused edges, through nodes with two edges.
-  std::vector<bool> used(edge_count, false);
-  const auto walk = [&](int node) {
-    std::vector<Vec3> polyline{result.interfaces[node].center_of_pressure};
-    while (true) {
-      const auto next = std::find_if(edges[node].begin(), edges[node].end(),
-                                     [&](const Edge& e) { return !used[e.id]; });
-      if (next == edges[node].end()) break;
-      used[next->id] = true;
-      node = next->to;
-      polyline.push_back(result.interfaces[node].center_of_pressure);
-      if (edges[node].size() != 2) break;
-    }
-    return polyline;
-  };
-  const auto has_unused = [&](int node) {
-    return std::any_of(edges[node].begin(), edges[node].end(),
-                       [&](const Edge& e) { return !used[e.id]; });
-  };
-  std::vector<std::vector<Vec3>> polylines;
-  // Ends and branch points first, so that open lines are never cut; then
-  // whatever is left is closed loops.
-  for (const bool loops : {false, true}) {
-    for (int node = 0; node < count; ++node) {
-      if (!loops && edges[node].size() == 2) continue;
-      while (has_unused(node)) polylines.push_back(walk(node));
-    }
-  }
-  for (int node = 0; node < count; ++node) {
-    if (compressed[node] && edges[node].empty()) {
-      polylines.push_back({result.interfaces[node].center_of_pressure});
-    }
-  }
-  return polylines;
-}
 
 ImageRect elevation_area(const ElevationOptions& options) {
   check_size(options.width, options.height, "draw");

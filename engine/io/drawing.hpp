@@ -77,18 +77,7 @@ struct ElevationOptions {
   Rgb thrust_color{0.93, 0.26, 0.05};
 };
 
-// The line of thrust as polylines (m) to draw: a segment joins the centres
-// of pressure of every two compressed interfaces of one free block, and
-// segments are joined end to end through blocks with two such interfaces.
-// For a chain of blocks (an arch, a column) that is one polyline through the
-// points of thrust_line(structure, result), in their order or the reverse;
-// where a block has three or more (a pier under a flyer and a pinnacle) the
-// line branches there. An interface in compression with no other on its
-// blocks is a polyline of one point. Interfaces whose normal force is under
-// 1e-3 of the largest (round-off, blocks that merely touch) are left out.
-// `result` must be an analysis of `structure`.
-std::vector<std::vector<Vec3>> thrust_polylines(const Structure& structure,
-                                                const EquilibriumResult& result);
+
 
 // The rectangle (px) that draw_elevation fits the structure into: inside
 // the margins, below the title when there is one, above the scale bar.

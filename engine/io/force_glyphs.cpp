@@ -180,12 +180,15 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
   if (!traces.empty()) glyphs.push_back({"load traces", std::move(traces), options.trace_color});
   if (!options.result) return glyphs;
   if (options.forces) add_force_arrows(*options.result, options, block_size, glyphs);
-  if (options.thrust) {
-    std::vector<Vec3> points = thrust_line(structure, *options.result);
-    const auto not_finite = [](const Vec3& p) { return !finite(p); };
-    points.erase(std::remove_if(points.begin(), points.end(), not_finite), points.end());
-    GlyphFaces tube = tube_faces(points, kThrustRadiusOfBlockSize * block_size, kGlyphSides);
-    if (!tube.empty()) glyphs.push_back({"thrust line", std::move(tube), options.thrust_color});
+  if (options.thrust) {  // every branch, as the drawings show it
+    GlyphFaces tubes;
+    for (std::vector<Vec3> points : thrust_polylines(structure, *options.result)) {
+      const auto not_finite = [](const Vec3& p) { return !finite(p); };
+      points.erase(std::remove_if(points.begin(), points.end(), not_finite), points.end());
+      GlyphFaces tube = tube_faces(points, kThrustRadiusOfBlockSize * block_size, kGlyphSides);
+      tubes.insert(tubes.end(), std::make_move_iterator(tube.begin()), std::make_move_iterator(tube.end()));
+    }
+    if (!tubes.empty()) glyphs.push_back({"thrust line", std::move(tubes), options.thrust_color});
   }
   return glyphs;
 }

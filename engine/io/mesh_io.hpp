@@ -55,7 +55,7 @@ struct ExportOptions {
   // proportional to the resultant's size. Interfaces whose resultant is
   // below `negligible_force` of the largest get none.
   bool forces = false;
-  // The thrust line (thrust_line(structure, *result)) as a thin tube, node
+  // The thrust line, every branch of it (thrust_polylines(structure, *result)), as thin tubes in one node
   // "thrust line"; none when it has fewer than two points.
   bool thrust = false;
   // Arrow length per newton (m/N); 0 scales the largest arrow to a quarter
