@@ -93,7 +93,7 @@ struct RefineSettings {
   int start = 4;            // first count, >= 1 and <= max
   double growth = 2.0;      // from one count to the next, >= 1
   int max = 1024;           // finest count evaluated
-  int confirm = 1;          // consecutive settled changes needed to stop, >= 1
+  int confirm = 2;          // consecutive settled changes needed to stop, >= 1: one agreement can be luck
 };
 
 struct RefineStep {

@@ -196,7 +196,7 @@ describe("refine", function()
       assert.equal(made[n], s)
       assert.equal("integer", math.type(n))
       return f(n)
-    end, { start = 4, tolerance = 1e-3 })
+    end, { start = 4, tolerance = 1e-3, confirm = 1 })
     -- Changes: 4.6 %, 1.2 %, 0.29 %, 0.073 %: stop at 64. From 64's value,
     -- 32 is 0.073 % off, 16 0.37 %: 32 is the coarsest adequate count.
     assert.is_true(r.converged)
@@ -210,14 +210,15 @@ describe("refine", function()
       assert.is_true(h.seconds >= 0)
     end
     assert.is_true(r.seconds > 0)
-    -- Two settled changes in a row: on to 128, and 32 is still the coarsest.
-    local confirmed = ashlar.refine(model, function(_, n) return f(n) end, { start = 4, tolerance = 1e-3, confirm = 2 })
+    -- Two settled changes in a row (the default): on to 128, and 32 is
+    -- still the coarsest.
+    local confirmed = ashlar.refine(model, function(_, n) return f(n) end, { start = 4, tolerance = 1e-3 })
     assert.equal(6, #confirmed.history); assert.equal(32, confirmed.count); assert.equal(f(128), confirmed.reference)
   end)
 
   it("does not take a lucky coarse count followed by a poor one", function()
     local values = { [4] = 1.0, [8] = 1.5, [16] = 1.004, [32] = 1.001 }
-    local r = ashlar.refine(model, function(_, n) return values[n] end, { start = 4 })
+    local r = ashlar.refine(model, function(_, n) return values[n] end, { start = 4, confirm = 1 })
     -- 4 is within 1 % of 32's value, but 8 is not: 16 is the coarsest adequate.
     assert.is_true(r.converged)
     assert.equal(16, r.count); assert.equal(1.004, r.value); assert.equal(1.001, r.reference)

@@ -209,9 +209,17 @@ TEST(ParameterSearch, ThresholdPropagatesCriterionErrors) {
 // (1/n^2 - 1/(4n^2)) / (1 + 1/(4n^2)) = 3 / (4n^2 + 1): 3/65, 3/257, then
 // 3/1025 <= 1 % at 32. Against the finest (1 + 1/1024), 16 differs by
 // 3/1025 and 8 by 15/1025 = 1.46 %, so 16 is adequate.
+// One settled change stops the refinement (confirm = 1; the default asks two).
+RefineSettings stop_at_first_agreement() {
+  RefineSettings settings;
+  settings.confirm = 1;
+  return settings;
+}
+
 TEST(ParameterSearch, RefineSettlingMetric) {
   const auto metric = [](int n) { return 1.0 + 1.0 / (static_cast<double>(n) * n); };
-  const Refinement r = refine_count(RefineSettings{}, metric);
+  EXPECT_EQ(RefineSettings{}.confirm, 2);  // one agreement can be luck
+  const Refinement r = refine_count(stop_at_first_agreement(), metric);
   EXPECT_TRUE(r.converged);
   ASSERT_EQ(r.history.size(), 4u);
   const int counts[] = {4, 8, 16, 32};
@@ -275,7 +283,7 @@ TEST(ParameterSearch, RefineNonSettlingMetric) {
 // from which every value is within 1 % is 16 (0.4 %).
 TEST(ParameterSearch, RefineLuckyCoarseCount) {
   const std::map<int, double> values = {{4, 1.0}, {8, 1.5}, {16, 1.004}, {32, 1.0}};
-  const Refinement r = refine_count(RefineSettings{}, [&](int n) { return values.at(n); });
+  const Refinement r = refine_count(stop_at_first_agreement(), [&](int n) { return values.at(n); });
   EXPECT_TRUE(r.converged);
   ASSERT_EQ(r.history.size(), 4u);
   EXPECT_DOUBLE_EQ(r.history[3].change, 0.004);
@@ -287,7 +295,7 @@ TEST(ParameterSearch, RefineLuckyCoarseCount) {
 // A zero value is matched only by zero: 1 then 0 is an infinite change.
 TEST(ParameterSearch, RefineZeroValues) {
   const std::map<int, double> values = {{4, 1.0}, {8, 0.0}, {16, 0.0}};
-  const Refinement r = refine_count(RefineSettings{}, [&](int n) { return values.at(n); });
+  const Refinement r = refine_count(stop_at_first_agreement(), [&](int n) { return values.at(n); });
   EXPECT_TRUE(r.converged);
   ASSERT_EQ(r.history.size(), 3u);
   EXPECT_EQ(r.history[1].change, std::numeric_limits<double>::infinity());
