@@ -189,6 +189,13 @@ void set_field(lua_State* L, const char* key, double value) {
   lua_setfield(L, -2, key);
 }
 
+void set_field(lua_State* L, const char* key, int value) { set_field(L, key, static_cast<lua_Integer>(value)); }
+
+void set_field(lua_State* L, const char* key, lua_Integer value) {
+  lua_pushinteger(L, value);
+  lua_setfield(L, -2, key);
+}
+
 void set_field(lua_State* L, const char* key, const Vec3& value) {
   push_vec3(L, value);
   lua_setfield(L, -2, key);

@@ -85,6 +85,9 @@ void push_points(lua_State* L, const std::vector<Vec3>& points);
 
 // Fields of the table on top of the stack.
 void set_field(lua_State* L, const char* key, double value);
+// Counts and indices as Lua integers (15086, not 15086.0).
+void set_field(lua_State* L, const char* key, int value);
+void set_field(lua_State* L, const char* key, lua_Integer value);
 void set_field(lua_State* L, const char* key, const Vec3& value);
 void set_boolean(lua_State* L, const char* key, bool value);
 void set_string(lua_State* L, const char* key, const char* value);
