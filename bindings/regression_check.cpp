@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/text.hpp"
 #include "luax.hpp"
 
 namespace ashlar::regression {
@@ -24,16 +25,6 @@ std::string format_short(double number) {
   return text;
 }
 
-// The fewest digits that read back as the same double: 0.1446 as typed in a
-// script, not 0.14460000000000001.
-std::string format_shortest(double number) {
-  char text[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, number);
-    if (std::strtod(text, nullptr) == number) break;
-  }
-  return text;
-}
 
 std::string format_option(double number) {
   char text[32];
@@ -71,7 +62,7 @@ struct ToleranceNames {
 
 std::string number_mismatch(double expected, double got, const Tolerance& tolerance,
                             const std::string& label, const ToleranceNames& names) {
-  std::string text = label + " " + format_shortest(expected) + ", got " + format_shortest(got) +
+  std::string text = label + " " + shortest_number(expected) + ", got " + shortest_number(got) +
                      ": relative difference " + format_short(relative_difference(expected, got));
   if (tolerance.absolute > 0.0) text += ", difference " + format_short(std::fabs(got - expected));
   text += std::string(" > ") + names.relative + " " + format_option(tolerance.relative);
@@ -280,7 +271,7 @@ std::string quote(const std::string& text) {
 }
 
 std::string format_value(const Value& value) {
-  if (const auto* number = std::get_if<double>(&value)) return format_shortest(*number);
+  if (const auto* number = std::get_if<double>(&value)) return shortest_number(*number);
   if (const auto* boolean = std::get_if<bool>(&value)) return *boolean ? "true" : "false";
   if (const auto* text = std::get_if<std::string>(&value)) return quote(*text);
   // Long lists are cut: a message names the element that differs anyway.
@@ -288,7 +279,7 @@ std::string format_value(const Value& value) {
   const auto& list = std::get<std::vector<double>>(value);
   std::string out = "[";
   for (size_t i = 0; i < list.size() && i < kShownElements; ++i)
-    out += (i ? ", " : "") + format_shortest(list[i]);
+    out += (i ? ", " : "") + shortest_number(list[i]);
   if (list.size() > kShownElements) out += ", ... (" + std::to_string(list.size()) + " numbers)";
   return out + "]";
 }

@@ -1,6 +1,7 @@
 // Small text helpers for messages and stored names.
 #pragma once
 
+#include <charconv>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,14 @@ inline std::string message_number(double value) {
   text.precision(3);
   text << value;
   return text.str();
+}
+
+// The shortest text that reads back as the same double: "0.2", not
+// "0.20000000000000001"; "inf", "-inf" and "nan" for those.
+inline std::string shortest_number(double value) {
+  char buffer[32];
+  const std::to_chars_result end = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, end.ptr);
 }
 
 }  // namespace ashlar

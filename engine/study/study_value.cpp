@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar::study {
 
@@ -21,9 +22,7 @@ std::string to_text(const Value& value) {
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
           return std::to_string(v);
         } else if constexpr (std::is_same_v<T, double>) {
-          char buffer[32];
-          std::snprintf(buffer, sizeof buffer, "%.17g", v);
-          return buffer;
+          return shortest_number(v);
         } else {
           return v;
         }
