@@ -76,8 +76,8 @@ Value checked_value(lua_State* L, int idx, const std::string& what) {
   std::string problem;
   Value value = to_value(L, idx, problem);
   if (!problem.empty()) throw ArgError(1, what + " " + problem);
-  if (const auto* d = std::get_if<double>(&value); d && !std::isfinite(*d))
-    throw ArgError(1, what + " is not finite");
+  // ±inf are values (friction = math.huge: no sliding); NaN is none.
+  if (const auto* d = std::get_if<double>(&value); d && std::isnan(*d)) throw ArgError(1, what + " is NaN");
   return value;
 }
 

@@ -121,7 +121,8 @@ std::string cell_kind(const ChartCell& cell) {
   return cell.type == ChartCell::Type::text ? "a string (\"" + cell.text + "\")" : "a " + cell.text;
 }
 
-// x and y cells: finite numbers or booleans.
+// x and y cells: numbers or booleans (points with a value that is not
+// finite are skipped, as rows without one).
 void check_plotted(const ChartCell* cell, const std::string& column, const char* role, size_t row) {
   if (!cell) return;
   const std::string where = std::string("chart: ") + role + ": row " + std::to_string(row + 1);
@@ -129,13 +130,10 @@ void check_plotted(const ChartCell* cell, const std::string& column, const char*
     throw InvalidArgument(where + " has " + cell_kind(*cell) + " in column '" + column +
                           "'; plotted columns take numbers or booleans");
   }
-  if (!std::isfinite(cell->number)) {
-    throw InvalidArgument(where + " has " + column + " = " + number_text(cell->number) +
-                          "; plotted values must be finite");
-  }
 }
 
-// Series cells: finite numbers, booleans or strings.
+// Series cells: numbers but NaN (math.huge is a value: no sliding),
+// booleans or strings.
 void check_series_value(const ChartCell* cell, const std::string& column, size_t row) {
   if (!cell) return;
   const std::string where = "chart: series: row " + std::to_string(row + 1);
@@ -143,9 +141,8 @@ void check_series_value(const ChartCell* cell, const std::string& column, size_t
     throw InvalidArgument(where + " has a " + cell->text + " in column '" + column +
                           "'; series columns take numbers, booleans or strings");
   }
-  if (cell->type == ChartCell::Type::number && !std::isfinite(cell->number)) {
-    throw InvalidArgument(where + " has " + column + " = " + number_text(cell->number) +
-                          "; series values must be finite");
+  if (cell->type == ChartCell::Type::number && std::isnan(cell->number)) {
+    throw InvalidArgument(where + " has " + column + " = nan; series values must be numbers, booleans or strings");
   }
 }
 
@@ -185,7 +182,7 @@ RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns
     for (size_t r = 0; r < rows.size(); ++r) {
       const ChartCell* x_cell = find_cell(rows[r], columns.x);
       const ChartCell* y_cell = find_cell(rows[r], y);
-      if (!x_cell || !y_cell) {
+      if (!x_cell || !y_cell || !std::isfinite(x_cell->number) || !std::isfinite(y_cell->number)) {
         skipped[r] = true;
         continue;
       }

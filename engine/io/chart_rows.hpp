@@ -34,7 +34,7 @@ struct RowSeries {
   // them, sorted by x (rows with equal x keep their order). Lines without
   // any point are left out.
   std::vector<ChartSeries> series;
-  int skipped = 0;  // rows left out of at least one line: x or a y column nil
+  int skipped = 0;  // rows left out of at least one line: x or a y column nil, inf or NaN
 };
 
 // Builds the lines of a chart from rows. Booleans count as 0 and 1. A line's
@@ -45,9 +45,9 @@ struct RowSeries {
 // before "case 10"), then nil (rows without the column).
 // Throws InvalidArgument (messages begin "chart: ", rows counted from 1)
 // for no y column, a column named twice, a column that no row has (naming
-// those present), a string or another non-number in an x or y column, a
-// non-finite number, a table or the like in a series column, or no row with
-// both x and a y.
+// those present), a string or another non-number in an x or y column, NaN,
+// a table or the like in a series column, or no row with both x and a y.
+// Points whose x or y is inf or NaN are skipped and counted.
 RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns& columns);
 
 }  // namespace ashlar

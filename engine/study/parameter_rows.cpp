@@ -154,8 +154,8 @@ ParameterRows checked(ParameterRows rows) {
     for (std::size_t i : order) {
       if (std::holds_alternative<std::monostate>(row[i]))
         throw InvalidArgument("params: row " + std::to_string(r + 1) + " has no value for '" + rows.names[i] + "'");
-      if (const auto* d = std::get_if<double>(&row[i]); d && !std::isfinite(*d))
-        throw InvalidArgument("params: row " + std::to_string(r + 1) + ": '" + rows.names[i] + "' is not finite");
+      if (const auto* d = std::get_if<double>(&row[i]); d && std::isnan(*d))
+        throw InvalidArgument("params: row " + std::to_string(r + 1) + ": '" + rows.names[i] + "' is NaN");
       reordered.push_back(row[i]);
     }
     sorted.rows.push_back(std::move(reordered));

@@ -159,10 +159,16 @@ describe("ashlar.chart", function()
       { data = { { t = 1, infeasibility = 0 }, { t = {}, infeasibility = 0 } } })
     expect_error({ "chart: series: row 1 has a function in column 'f'" }, chart,
       { data = { { t = 1, infeasibility = 0, f = print } }, series = "f" })
-    expect_error({ "chart: y: row 2 has infeasibility = inf; plotted values must be finite" }, chart,
-      { data = { { t = 1, infeasibility = 0 }, { t = 2, infeasibility = math.huge } } })
-    expect_error({ "chart: x: row 1 has t = ", "nan; plotted values must be finite" }, chart,
-      { data = { { t = 0 / 0, infeasibility = 0 } } })
+    -- Points whose x or y is not finite are skipped and counted.
+    local elsewhere = os.tmpname() .. ".png"
+    local skipping = ashlar.chart{ path = elsewhere, x = "t", y = "infeasibility",
+      data = { { t = 1, infeasibility = 0 }, { t = 2, infeasibility = math.huge }, { t = 0 / 0, infeasibility = 0 },
+               { t = 3, infeasibility = 1 } } }
+    os.remove(elsewhere)
+    assert.equal(2, skipping.skipped)
+    assert.equal(2, skipping.series[1].points)
+    expect_error({ "chart: series: row 1 has mu = nan" }, chart,
+      { data = { { t = 1, infeasibility = 0, mu = 0 / 0 } }, series = "mu" })
     expect_error({ "chart: log_x takes values > 0 only, got series 'infeasibility' point 1 (x = -1, y = 0)" },
       chart, { data = { { t = -1, infeasibility = 0 }, { t = 1, infeasibility = 1 } }, log_x = true })
     expect_error({ "chart: nothing to plot: no row has both x ('t') and y ('infeasibility'); 3 rows skipped" },

@@ -129,6 +129,31 @@ describe("ashlar.study in one state", function()
     support.remove_folder(folder)
   end)
 
+  it("takes math.huge as a parameter: kept, reopened, written and charted", function()
+    local folder = support.temp_folder()
+    local calls = 0
+    local function run_it(p) calls = calls + 1; return { infeasibility = p.mu == math.huge and 0 or 0.2 / p.mu } end
+    local db = folder .. "/mu.sqlite"
+    local study = ashlar.study{ name = "mu", params = { mu = { 0.2, 0.5, math.huge } }, run = run_it, db = db,
+                                workers = 1, progress = false }
+    local rows = study:rows()
+    assert.equal(math.huge, rows[3].mu)
+    assert.equal(0, rows[3].infeasibility)
+    ashlar.study{ name = "mu", params = { mu = { 0.2, 0.5, math.huge } }, run = run_it, db = db, workers = 1, progress = false }
+    assert.equal(3, calls)  -- the reopened study found all three, math.huge included
+    study:csv(folder .. "/mu.csv")
+    local text = support.read_file(folder .. "/mu.csv")
+    assert.truthy(text:find("\n0.2,1,", 1, true))  -- shortest numbers: 0.2, not 0.20000000000000001
+    assert.truthy(text:find("\ninf,0,", 1, true))
+    -- Charted against mu, math.huge has no place on the axis: skipped, counted.
+    local chart = study:chart{ path = folder .. "/mu.png", x = "mu", y = "infeasibility" }
+    assert.equal(1, chart.skipped)
+    assert.equal(2, chart.series[1].points)
+    expect_error({ "is NaN" }, ashlar.study, { name = "nan", params = { mu = { 0 / 0 } }, run = run_it,
+                                             workers = 1, progress = false })
+    support.remove_folder(folder)
+  end)
+
   it("keeps results in a database and runs only new rows when reopened", function()
     local folder = support.temp_folder()
     local calls = 0
