@@ -6,6 +6,7 @@
 #include "analysis/equilibrium_analysis.hpp"
 #include "analysis/kinematic.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar {
 
@@ -19,15 +20,15 @@ constexpr double kNegligibleThrust = 1e-3;
 
 void check_analysis_settings(const AnalysisSettings& settings) {
   const InteriorPointSettings& solver = settings.solver;
-  if (solver.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
+  if (solver.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1, got " + std::to_string(solver.max_iterations));
   if (!(solver.tolerance > 0.0) || !std::isfinite(solver.tolerance)) {
-    throw InvalidArgument("tolerance must be a finite number > 0");
+    throw InvalidArgument("tolerance must be a finite number > 0, got " + shortest_number(solver.tolerance));
   }
   if (!(solver.step_fraction > 0.0 && solver.step_fraction < 1.0)) {
-    throw InvalidArgument("step_fraction must lie strictly between 0 and 1");
+    throw InvalidArgument("step_fraction must lie strictly between 0 and 1, got " + shortest_number(solver.step_fraction));
   }
   if (!(settings.stable_tolerance > 0.0) || !std::isfinite(settings.stable_tolerance)) {
-    throw InvalidArgument("stable_tolerance must be a finite number > 0");
+    throw InvalidArgument("stable_tolerance must be a finite number > 0, got " + shortest_number(settings.stable_tolerance));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "core/union_find.hpp"
 
 namespace ashlar {
@@ -13,17 +14,18 @@ namespace {
 
 void check_options(const EquilibriumOptions& options) {
   if (std::isnan(options.friction) || options.friction < 0.0) {
-    throw InvalidArgument("friction must be a number >= 0 (math.huge for no sliding)");
+    throw InvalidArgument("friction must be a number >= 0 (math.huge for no sliding), got " +
+                          shortest_number(options.friction));
   }
   if (options.friction_sides < 3 || options.friction_sides > 1024) {
     throw InvalidArgument("friction_sides must be an integer from 3 to 1024, got " +
                           std::to_string(options.friction_sides));
   }
   if (!std::isfinite(options.tension_weight) || options.tension_weight < 0.0) {
-    throw InvalidArgument("tension_weight must be a finite number >= 0");
+    throw InvalidArgument("tension_weight must be a finite number >= 0, got " + shortest_number(options.tension_weight));
   }
   if (!std::isfinite(options.force_weight) || options.force_weight < 0.0) {
-    throw InvalidArgument("force_weight must be a finite number >= 0");
+    throw InvalidArgument("force_weight must be a finite number >= 0, got " + shortest_number(options.force_weight));
   }
 }
 

@@ -10,6 +10,7 @@
 #include "analysis/load_factor.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar {
 namespace {
@@ -77,7 +78,7 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     throw InvalidArgument("max_rounds must be an integer >= 1, got " + std::to_string(settings.max_rounds));
   }
   if (!(settings.round_tolerance > 0.0) || !std::isfinite(settings.round_tolerance)) {
-    throw InvalidArgument("round_tolerance must be a finite number > 0");
+    throw InvalidArgument("round_tolerance must be a finite number > 0, got " + shortest_number(settings.round_tolerance));
   }
   AnalysisSettings strength_settings = settings;
   strength_settings.problem.friction_law = FrictionLaw::given_strength;
