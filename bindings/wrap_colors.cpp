@@ -46,11 +46,23 @@ std::vector<Rgb> mapped_colors(lua_State* L, int color, int arg, int block_count
 }  // namespace
 
 Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what) {
-  const Vec3 v = to_vec3(L, idx, arg, what);
-  if ((v.array() < 0.0).any() || (v.array() > 1.0).any()) {
-    throw ArgError(arg, what + ": colour components must lie in [0, 1]");
+  idx = lua_absindex(L, idx);
+  if (lua_type(L, idx) != LUA_TTABLE || (lua_rawlen(L, idx) != 3 && lua_rawlen(L, idx) != 4)) {
+    throw ArgError(arg, what + ": expected a colour {r, g, b} or {r, g, b, a}, got " + type_name(L, idx) +
+                            (lua_type(L, idx) == LUA_TTABLE ? " of " + std::to_string(lua_rawlen(L, idx)) + " values" : ""));
   }
-  return {v.x(), v.y(), v.z()};
+  double c[4] = {0.0, 0.0, 0.0, 1.0};
+  const int count = static_cast<int>(lua_rawlen(L, idx));
+  for (int k = 0; k < count; ++k) {
+    lua_rawgeti(L, idx, k + 1);
+    c[k] = check_number(L, -1, (what + "[" + std::to_string(k + 1) + "]").c_str());
+    lua_pop(L, 1);
+    if (!(c[k] >= 0.0 && c[k] <= 1.0)) {
+      throw ArgError(arg, what + ": colour components must lie in [0, 1], got " + number_text(c[k]) +
+                              " (component " + std::to_string(k + 1) + ")");
+    }
+  }
+  return {c[0], c[1], c[2], c[3]};
 }
 
 // The {lo, hi} table at idx, two finite numbers; `what` names it.
@@ -75,7 +87,7 @@ std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int bloc
   }
   const int color = lua_gettop(L);
   if (lua_type(L, color) != LUA_TTABLE) {
-    throw ArgError(arg, "color: expected {r, g, b}, a list of {r, g, b} per block, or "
+    throw ArgError(arg, "color: expected {r, g, b} (or {r, g, b, a}), a list of them per block, or "
                         "{values = {...}, map = name, range = {lo, hi}}, got " +
                             type_name(L, color));
   }

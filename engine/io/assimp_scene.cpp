@@ -336,7 +336,7 @@ SceneWriter::~SceneWriter() = default;
 void SceneWriter::add_object(const std::string& name, const FlatMesh& mesh, const Rgb& color,
                              bool two_sided, double opacity) {
   const auto index = static_cast<unsigned>(scene_->meshes.size());
-  scene_->materials.push_back(make_material(name, color, opacity, two_sided));
+  scene_->materials.push_back(make_material(name, color, opacity * color.a, two_sided));
   scene_->meshes.push_back(to_ai_mesh(mesh, name, index, y_up_));
   auto node = std::make_unique<aiNode>(name);
   node->mNumMeshes = 1;

@@ -100,7 +100,7 @@ CairoContext measuring_context() {
 }
 
 void set_color(cairo_t* cr, const Rgb& color) {
-  cairo_set_source_rgb(cr, color.r, color.g, color.b);
+  cairo_set_source_rgba(cr, color.r, color.g, color.b, color.a);
 }
 
 void set_font(cairo_t* cr, double size) {

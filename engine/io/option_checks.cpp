@@ -8,11 +8,11 @@
 namespace ashlar {
 
 void check_color(const Rgb& color, const std::string& what, const std::string& caller) {
-  for (const double component : {color.r, color.g, color.b}) {
+  for (const double component : {color.r, color.g, color.b, color.a}) {
     if (!(component >= 0.0 && component <= 1.0)) {
       std::ostringstream message;
       message << caller << ": " << what << " must have components in [0, 1], got (" << color.r
-              << ", " << color.g << ", " << color.b << ")";
+              << ", " << color.g << ", " << color.b << ", " << color.a << ")";
       throw InvalidArgument(message.str());
     }
   }

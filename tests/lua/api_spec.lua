@@ -254,6 +254,26 @@ describe("utilities", function()
   end)
 end)
 
+describe("colours", function()
+  it("take an opacity as a fourth component", function()
+    local dir = tmpdir()
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 2, 2, 0.5 }, center = { 0, 0, -0.25 } }, { support = true })
+    s:add(ashlar.box{ size = { 1, 1, 1 }, center = { 0, 0, 0.5 } })
+    ashlar.export(s, dir .. "/c.obj", { color = { { 0.5, 0.5, 0.5 }, { 0.1, 0.5, 0.9, 0.3 } } })
+    local mtl = assert(io.open(dir .. "/c.mtl")):read("a")
+    local dissolves = {}
+    for d in mtl:gmatch("\nd ([%d.]+)") do dissolves[#dissolves + 1] = tonumber(d) end
+    table.sort(dissolves)
+    assert.equal(2, #dissolves)
+    assert.near(0.3, dissolves[1], 1e-6)  -- the translucent block
+    assert.near(1.0, dissolves[2], 1e-6)  -- the opaque one
+    ashlar.export(s, dir .. "/c.gltf", { color = { 0.1, 0.5, 0.9, 0.3 } })
+    local gltf = assert(io.open(dir .. "/c.gltf")):read("a")
+    assert.truthy(gltf:find('"BLEND"', 1, true))
+  end)
+end)
+
 describe("export of an analysis", function()
   it("exports forces and a thrust line", function()
     local dir = tmpdir()

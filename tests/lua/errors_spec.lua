@@ -89,7 +89,10 @@ describe("argument errors", function()
     s:add(ashlar.box{ size = { 1, 1, 1 } })
     expect_error({ "/nonexistent/dir/s.json" }, function() s:save("/nonexistent/dir/s.json") end)
     expect_error({ ".xyz", "glb" }, ashlar.export, s, os.tmpname() .. ".xyz")
-    expect_error({ "color: colour components must lie in [0, 1]" }, ashlar.export, s, "x.glb", { color = { 2, 0, 0 } })
+    expect_error({ "color: colour components must lie in [0, 1], got 2 (component 1)" }, ashlar.export, s, "x.glb",
+      { color = { 2, 0, 0 } })
+    expect_error({ "color: expected a colour {r, g, b} or {r, g, b, a}, got table of 5 values" }, ashlar.export, s,
+      "x.glb", { color = { 0, 0, 0, 1, 1 } })
     expect_error({ "color.values: needs one value per block (1), got 2" }, ashlar.export, s, "x.glb",
       { color = { values = { 1, 2 } } })
     expect_error({ "support: expected a name pattern" }, ashlar.import, "x.obj", { support = 3 })
