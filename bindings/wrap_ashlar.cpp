@@ -61,7 +61,7 @@ int w_export(lua_State* L) {
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"format", "color", "interfaces", "tolerance", "result", "forces",
                                      "thrust", "force_scale", "opacity", "cable_color", "traces",
-                                     "trace_color", "mechanism"});
+                                     "trace_color", "mechanism", "edges"});
     const std::optional<std::string> format = options.string("format");
     if (format && *format != "compas") {
       throw ArgError(3, "format: expected \"compas\" (other formats follow the file's extension), got \"" +
@@ -80,7 +80,7 @@ int w_export(lua_State* L) {
       }
       lua_pop(L, 1);
       for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
-                              "traces", "trace_color", "mechanism"}) {
+                              "traces", "trace_color", "mechanism", "edges"}) {
         if (options.has(key)) {
           throw ArgError(3, std::string(key) + ": does not apply to a COMPAS assembly (.json), which holds blocks, "
                                                "supports, interfaces and, with result, their forces");
@@ -106,6 +106,7 @@ int w_export(lua_State* L) {
     exported.thrust = options.boolean("thrust").value_or(false);
     exported.force_scale = options.positive("force_scale", 0.0, true);
     exported.mechanism_scale = options.positive("mechanism", 0.0, true);
+    exported.edges = options.boolean("edges").value_or(false);
     if (options.push("cable_color") != LUA_TNIL) {
       exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
     }

@@ -1,9 +1,12 @@
 #include "io/force_glyphs.hpp"
 
+#include <set>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <set>
 
 #include "analysis/equilibrium.hpp"
 
@@ -111,6 +114,10 @@ constexpr double kTraceRadiusOfBlockSize = 0.006;
 // Thicker than the thrust line so that a cable reads as a member.
 constexpr double kCableRadiusOfBlockSize = 0.02;
 constexpr int kGlyphSides = 6;
+// Block edges: thin square tubes, so that blocks read as masonry in any
+// viewer (line primitives are not drawn by every one).
+constexpr double kEdgeRadiusOfBlockSize = 0.004;
+constexpr int kEdgeSides = 4;
 
 bool finite(const Vec3& v) { return v.allFinite(); }
 
@@ -163,6 +170,23 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
                                            const ExportOptions& options) {
   std::vector<NamedGlyph> glyphs;
   const double block_size = mean_free_block_size(structure);
+  if (options.edges) {
+    GlyphFaces edges;
+    for (int i = 0; i < structure.size(); ++i) {
+      const Block& block = structure.block(i);
+      std::set<std::pair<int, int>> drawn;
+      for (const FaceLoop& face : block.faces()) {
+        for (std::size_t k = 0; k < face.size(); ++k) {
+          const int p = face[k], q = face[(k + 1) % face.size()];
+          if (!drawn.insert({std::min(p, q), std::max(p, q)}).second) continue;
+          GlyphFaces tube = tube_faces({block.vertices()[p], block.vertices()[q]},
+                                       kEdgeRadiusOfBlockSize * block_size, kEdgeSides);
+          edges.insert(edges.end(), std::make_move_iterator(tube.begin()), std::make_move_iterator(tube.end()));
+        }
+      }
+    }
+    if (!edges.empty()) glyphs.push_back({"edges", std::move(edges), options.edge_color});
+  }
   for (std::size_t c = 0; c < structure.cables().size(); ++c) {
     const Cable& cable = structure.cables()[c];
     GlyphFaces tube = tube_faces({cable.from.point, cable.to.point},
