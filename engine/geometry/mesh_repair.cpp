@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/point_grid.hpp"
 #include "geometry/block_builders.hpp"
 #include "geometry/polygon.hpp"
 
@@ -30,20 +31,6 @@ constexpr double kPlaneTolerance = 1e-9;
 constexpr double kCollinear = 1e-9;
 
 using DirectedEdge = std::pair<int, int>;
-
-struct CellKey {
-  std::int64_t x, y, z;
-  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
-};
-
-struct CellKeyHash {
-  size_t operator()(const CellKey& k) const {
-    const auto mix = [](std::uint64_t h, std::int64_t v) {
-      return (h ^ static_cast<std::uint64_t>(v)) * 0x100000001b3ULL;
-    };
-    return static_cast<size_t>(mix(mix(mix(0xcbf29ce484222325ULL, k.x), k.y), k.z));
-  }
-};
 
 void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
                  double weld_tolerance, const std::string& what) {
@@ -74,9 +61,9 @@ void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
   }
 }
 
-// Maps every vertex to an earlier kept vertex within `tolerance`, or keeps
-// it: the first vertex of a cluster represents it, so callers can list the
-// points they want kept first. A hash grid with cells no smaller than the
+// Maps every vertex to the earliest kept vertex within `tolerance`, or
+// keeps it: the first vertex of a cluster represents it, so callers can list
+// the points they want kept first. A grid with cells no smaller than the
 // tolerance finds the candidates among 27 cells.
 std::vector<int> weld(const std::vector<Vec3>& vertices, double tolerance) {
   double largest = 0.0;
@@ -84,34 +71,17 @@ std::vector<int> weld(const std::vector<Vec3>& vertices, double tolerance) {
   // Cells bigger than the tolerance stay correct; this floor keeps the cell
   // indices far inside int64 when the tolerance is 0 or tiny.
   const double cell = std::max({tolerance, 1e-15 * largest, std::numeric_limits<double>::min()});
-  const auto key_of = [cell](const Vec3& p) {
-    return CellKey{static_cast<std::int64_t>(std::floor(p.x() / cell)),
-                   static_cast<std::int64_t>(std::floor(p.y() / cell)),
-                   static_cast<std::int64_t>(std::floor(p.z() / cell))};
-  };
-  std::unordered_map<CellKey, std::vector<int>, CellKeyHash> grid;
+  PointGrid grid(Vec3::Zero(), cell);
   std::vector<int> representative(vertices.size());
   for (size_t i = 0; i < vertices.size(); ++i) {
     const Vec3& p = vertices[i];
-    const CellKey home = key_of(p);
     int found = -1;
-    for (int dx = -1; dx <= 1 && found < 0; ++dx) {
-      for (int dy = -1; dy <= 1 && found < 0; ++dy) {
-        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
-          const auto cell_points = grid.find({home.x + dx, home.y + dy, home.z + dz});
-          if (cell_points == grid.end()) continue;
-          for (int candidate : cell_points->second) {
-            if ((vertices[candidate] - p).norm() <= tolerance) {
-              found = candidate;
-              break;
-            }
-          }
-        }
-      }
-    }
+    grid.for_each_near(p, tolerance, [&](int candidate) {
+      if ((found < 0 || candidate < found) && (vertices[candidate] - p).norm() <= tolerance) found = candidate;
+    });
     if (found < 0) {
       found = static_cast<int>(i);
-      grid[home].push_back(found);
+      grid.insert(p, found);
     }
     representative[i] = found;
   }
