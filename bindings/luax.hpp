@@ -19,6 +19,7 @@
 #include <lua.hpp>
 
 #include "core/clock.hpp"
+#include "core/enum_names.hpp"
 #include "core/interrupt.hpp"
 #include "core/types.hpp"
 
@@ -114,6 +115,16 @@ public:
   // A finite number > 0 (or >= 0 when zero_allowed).
   double positive(const char* key, double fallback, bool zero_allowed = false) const;
   std::optional<Vec3> vec3(const char* key) const;
+  // An enum option: its name in `names`, or an error "key: 'x' is not one
+  // of a, b".
+  template <class Enum, std::size_t Count>
+  std::optional<Enum> choice(const char* key, const EnumNames<Enum, Count>& names) const {
+    const std::optional<std::string> text = string(key);
+    if (!text) return std::nullopt;
+    const std::optional<Enum> value = names.parse(*text);
+    if (!value) fail(key, "'" + *text + "' is not one of " + names.list());
+    return value;
+  }
   std::optional<std::string> string(const char* key) const;
   // A whole number in [least, most]; otherwise an error "key: expected
   // <expected>, got <value>".

@@ -49,11 +49,7 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
     problem.friction_sides = static_cast<int>(check_integer(L, -1, "friction_sides"));
   }
   lua_pop(L, 1);
-  if (const std::optional<std::string> model = options.string("friction_model")) {
-    if (*model == "pyramid") problem.friction_model = FrictionModel::pyramid;
-    else if (*model == "box") problem.friction_model = FrictionModel::box;
-    else throw ArgError(arg, "friction_model: '" + *model + "' is not one of pyramid, box");
-  }
+  problem.friction_model = options.choice("friction_model", kFrictionModelNames).value_or(problem.friction_model);
   problem.tension_weight = options.positive("tension_weight", problem.tension_weight, true);
   problem.force_weight = options.positive("force_weight", problem.force_weight);
   problem.contact = contact_options(options, "contact_tolerance", "contact_angle", "contact_min_area");
@@ -68,12 +64,7 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
 
 // The analysis method option ("equilibrium" or "kinematic") into settings.
 void read_method(const OptionTable& options, AnalysisSettings& settings) {
-  if (const std::optional<std::string> method = options.string("method")) {
-    if (*method == method_name(AnalysisMethod::kinematic)) settings.method = AnalysisMethod::kinematic;
-    else if (*method != method_name(AnalysisMethod::equilibrium)) {
-      throw ArgError(options.arg(), "method: expected \"equilibrium\" or \"kinematic\", got \"" + *method + "\"");
-    }
-  }
+  settings.method = options.choice("method", kAnalysisMethodNames).value_or(settings.method);
 }
 
 namespace {
@@ -215,20 +206,6 @@ void push_vertices(lua_State* L, const EquilibriumResult& result) {
   }
 }
 
-const char* mode_name(LimitMode mode) {
-  switch (mode) {
-    case LimitMode::hinge:
-      return "hinge";
-    case LimitMode::sliding:
-      return "sliding";
-    case LimitMode::hinge_sliding:
-      return "hinge_sliding";
-    case LimitMode::separation:
-      return "separation";
-  }
-  return "?";
-}
-
 void push_cables(lua_State* L, const EquilibriumResult& result) {
   lua_createtable(L, static_cast<int>(result.cables.size()), 0);
   for (size_t c = 0; c < result.cables.size(); ++c) {
@@ -291,7 +268,7 @@ int w_Result_index(lua_State* L) {
         lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
       }
     } else if (is("method")) {
-      lua_pushstring(L, method_name(r.method));
+      lua_pushstring(L, kAnalysisMethodNames.name(r.method));
     } else if (is("rounds")) {
       lua_pushinteger(L, r.rounds);
     } else if (is("mechanism")) {
@@ -368,7 +345,7 @@ void push_limit(lua_State* L, const std::vector<LimitInterface>& limit,
     set_field(L, "interface", entry.interface + 1);
     set_index_field(L, "a", ends[0]);
     set_index_field(L, "b", ends[1]);
-    set_string(L, "mode", mode_name(entry.mode));
+    set_string(L, "mode", kLimitModeNames.name(entry.mode));
     set_field(L, "pivot", entry.pivot);
     set_field(L, "opening", entry.opening);
     set_field(L, "slip", entry.slip);

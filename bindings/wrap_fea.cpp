@@ -40,11 +40,7 @@ FeaSettings fea_settings(const OptionTable& options) {
   settings.max_relax_iterations = static_cast<int>(
       options.whole("max_relax_iterations", 0, 100000, "a whole number from 0 to 100000")
           .value_or(settings.max_relax_iterations));
-  if (std::optional<std::string> release = options.string("release")) {
-    if (*release == "all") settings.release = FeaRelease::All;
-    else if (*release == "largest") settings.release = FeaRelease::Largest;
-    else throw ArgError(options.arg(), "release: '" + *release + "' is not one of all, largest");
-  }
+  settings.release = options.choice("release", kFeaReleaseNames).value_or(settings.release);
   settings.tension_tolerance = options.positive("tension_tolerance", settings.tension_tolerance, true);
   settings.max_displacement = options.positive("max_displacement", settings.max_displacement);
   settings.stresses = options.boolean("stresses").value_or(settings.stresses);

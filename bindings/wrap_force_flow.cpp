@@ -26,11 +26,7 @@ ForceFlowOptions flow_options(const OptionTable& options) {
   flow.traces = integer_option(options, "traces", flow.traces, 1);
   flow.seed = static_cast<std::uint64_t>(
       integer_option(options, "seed", static_cast<int>(flow.seed), 0));
-  if (const std::optional<std::string> start = options.string("start")) {
-    if (*start == "centroid") flow.start = TraceStart::centroid;
-    else if (*start == "random") flow.start = TraceStart::random;
-    else throw ArgError(options.arg(), "start: '" + *start + "' is not one of centroid, random");
-  }
+  flow.start = options.choice("start", kTraceStartNames).value_or(flow.start);
   flow.max_steps = integer_option(options, "max_steps", flow.max_steps, 1);
   flow.turn_back = options.boolean("turn_back").value_or(flow.turn_back);
   return flow;

@@ -24,11 +24,7 @@ int w_load_factor(lua_State* L) {
     read_method(options, analysis);
     LoadFactorSettings settings;
     settings.problem = analysis.problem;
-    if (const std::optional<std::string> load = options.string("load")) {
-      if (*load == "body_force") settings.pattern = LoadPattern::body_force;
-      else if (*load == "point_loads") settings.pattern = LoadPattern::point_loads;
-      else throw ArgError(2, "load: '" + *load + "' is not one of body_force, point_loads");
-    }
+    settings.pattern = options.choice("load", kLoadPatternNames).value_or(settings.pattern);
     if (const std::optional<Vec3> direction = options.vec3("direction")) {
       if (settings.pattern == LoadPattern::point_loads) {
         throw ArgError(2, "direction: not with load = 'point_loads' (the loads have their own)");
@@ -39,7 +35,7 @@ int w_load_factor(lua_State* L) {
       const KinematicLoadFactor factor =
           kinematic_load_factor(s, settings, analysis, options.positive("tolerance", 1e-3));
       lua_createtable(L, 0, 8);
-      set_string(L, "method", method_name(AnalysisMethod::kinematic));
+      set_string(L, "method", kAnalysisMethodNames.name(AnalysisMethod::kinematic));
       set_field(L, "factor", factor.factor);
       set_string(L, "status", factor.status.c_str());
       set_boolean(L, "stable", factor.status == "optimal" ? factor.factor >= 0.0 : factor.status == "unbounded");
@@ -92,7 +88,7 @@ int w_friction_demand(lua_State* L) {
         kinematic ? kinematic_friction_demand(s, analysis, tolerance) : friction_demand(s, problem, tolerance);
     const std::vector<Interface>& interfaces = s.interfaces(problem.contact);
     lua_createtable(L, 0, 8);
-    set_string(L, "method", method_name(analysis.method));
+    set_string(L, "method", kAnalysisMethodNames.name(analysis.method));
     set_field(L, "friction", demand.friction);
     set_field(L, "lower", demand.lower);
     set_string(L, "status", demand.status.c_str());

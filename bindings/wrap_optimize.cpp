@@ -56,11 +56,7 @@ std::shared_ptr<Structure> with_design(const Structure& s, const DesignPoint& de
 
 OptimizeSettings optimize_settings(const OptionTable& options) {
   OptimizeSettings settings;
-  if (const std::optional<std::string> method = options.string("method")) {
-    if (*method == "lbfgs") settings.method = OptimizeMethod::lbfgs;
-    else if (*method == "gradient") settings.method = OptimizeMethod::gradient;
-    else throw ArgError(options.arg(), "method: '" + *method + "' is not one of lbfgs, gradient");
-  }
+  settings.method = options.choice("method", kOptimizeMethodNames).value_or(settings.method);
   lua_State* L = options.state();
   if (options.push("max_iterations") != LUA_TNIL) {
     const lua_Integer n = check_integer(L, -1, "max_iterations");

@@ -60,10 +60,6 @@ void check_analysed_block(const EquilibriumProblem& problem, const Structure& st
   }
 }
 
-const char* method_name(AnalysisMethod method) {
-  return method == AnalysisMethod::kinematic ? "kinematic" : "equilibrium";
-}
-
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start,
                                       EquilibriumProblem* problem_out) {

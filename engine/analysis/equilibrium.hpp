@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "analysis/equilibrium_problem.hpp"
 #include "analysis/interior_point.hpp"
 #include "analysis/mechanism.hpp"
@@ -137,8 +138,8 @@ struct EquilibriumResult {
   InteriorPointSolution solution;              // scaled; for warm starts (filled by analyze_equilibrium)
 };
 
-// The names used in scripts: "equilibrium", "kinematic".
-const char* method_name(AnalysisMethod method);
+inline constexpr EnumNames<AnalysisMethod, 2> kAnalysisMethodNames{
+    {{{AnalysisMethod::equilibrium, "equilibrium"}, {AnalysisMethod::kinematic, "kinematic"}}}};
 
 // Runs the analysis (the method of `settings`). Throws InvalidArgument for bad settings; every outcome
 // (unstable, not converged, floating blocks) is reported in the result.

@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/types.hpp"
 #include "structure/structure.hpp"
 
@@ -49,6 +50,8 @@ enum class FrictionModel {
   pyramid,  // inscribed pyramid, friction_sides sides, one edge along u (safe side)
   box,      // |f_u| <= mu c and |f_v| <= mu c (the thesis; up to sqrt 2 too generous)
 };
+inline constexpr EnumNames<FrictionModel, 2> kFrictionModelNames{
+    {{{FrictionModel::pyramid, "pyramid"}, {FrictionModel::box, "box"}}}};
 
 // How friction is bounded at a contact vertex.
 enum class FrictionLaw {

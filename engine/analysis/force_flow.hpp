@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "analysis/equilibrium.hpp"
 
 namespace ashlar {
@@ -29,6 +30,8 @@ enum class TraceStart {
   centroid,  // every trace starts at the block's centroid (figure 10a)
   random,    // each at its own point, uniform in the block's volume (figure 10b)
 };
+inline constexpr EnumNames<TraceStart, 2> kTraceStartNames{
+    {{{TraceStart::centroid, "centroid"}, {TraceStart::random, "random"}}}};
 
 struct ForceFlowOptions {
   int traces = 200;          // >= 1; each carries the block's weight / traces

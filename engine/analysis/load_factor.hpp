@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "analysis/equilibrium_problem.hpp"
 #include "analysis/mechanism.hpp"
 
@@ -26,6 +27,8 @@ enum class LoadPattern {
                 // (a uniform acceleration lambda * g; a tilt by atan(lambda))
   point_loads,  // the structure's point loads (live); the weights stay (dead)
 };
+inline constexpr EnumNames<LoadPattern, 2> kLoadPatternNames{
+    {{{LoadPattern::body_force, "body_force"}, {LoadPattern::point_loads, "point_loads"}}}};
 
 struct LoadFactorSettings {
   EquilibriumOptions problem;            // friction, cone approximation, contact detection

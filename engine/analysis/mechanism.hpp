@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "analysis/equilibrium_problem.hpp"
 #include "core/types.hpp"
 #include "structure/structure.hpp"
@@ -18,6 +19,10 @@ enum class LimitMode {
   hinge_sliding,  // both
   separation,     // lifts off as a whole
 };
+inline constexpr EnumNames<LimitMode, 4> kLimitModeNames{{{{LimitMode::hinge, "hinge"},
+                                                           {LimitMode::sliding, "sliding"},
+                                                           {LimitMode::hinge_sliding, "hinge_sliding"},
+                                                           {LimitMode::separation, "separation"}}}};
 
 struct LimitInterface {
   int interface = -1;          // index into Structure::interfaces(options.contact)

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/types.hpp"
 #include "fea/fea_mesh.hpp"
 #include "fea/hex_element.hpp"
@@ -34,6 +35,7 @@ enum class FeaRelease {
   Largest,  // those of the interface carrying the most tension, and of any
             // within 1e-6 of it (symmetric structures stay symmetric)
 };
+inline constexpr EnumNames<FeaRelease, 2> kFeaReleaseNames{{{{FeaRelease::All, "all"}, {FeaRelease::Largest, "largest"}}}};
 
 struct FeaSettings {
   Elasticity material;           // Young's modulus 20 GPa, Poisson 0.2

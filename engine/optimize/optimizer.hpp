@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "optimize/design_space.hpp"
 
 namespace ashlar {
@@ -34,6 +35,8 @@ enum class OptimizeMethod {
   lbfgs,
   gradient,  // steepest descent with an Armijo backtracking line search
 };
+inline constexpr EnumNames<OptimizeMethod, 2> kOptimizeMethodNames{
+    {{{OptimizeMethod::lbfgs, "lbfgs"}, {OptimizeMethod::gradient, "gradient"}}}};
 
 // One accepted iterate; iteration 0 is the initial design.
 struct OptimizeStep {
