@@ -1,9 +1,9 @@
 #include "analysis/kinematic.hpp"
 
 #include <algorithm>
-#include <string>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "analysis/equilibrium_analysis.hpp"

@@ -14,25 +14,30 @@
 // unknown compression but by a given shear strength per contact vertex
 // (FrictionLaw::given_strength: the joint behaves as cohesive, which has no
 // dilatancy), then sets each strength to mu times the compression that
-// round found. The first round starts with no strength at all (no
-// prestress). Each round's QP picks, among the equilibria with least
-// tension and excess friction, the one of least sum of squared forces: the
-// forces of contacts with equal springs at every vertex, which is how an
-// unstressed structure takes up its loads. The rounds end when no strength
-// changes (a fixed point: friction is within mu times the very compression
-// it rests on, and that compression is what the loads press in).
+// round found. In that QP joints carry no tension, and what they cannot
+// carry goes to virtual forces and torques on the blocks at the price of the
+// kinetic energy of the motion they would start (plus an exact linear
+// penalty): a round is one step of frictional contact dynamics from rest
+// (Gauss's least constraint), so its compressions are those the loads press
+// into the joints, and among equilibria it picks the least sum of squared
+// forces (contacts with equal springs). The first round has no strength at
+// all (no prestress); compressions under 1 % of the lighter block's weight
+// do not count (the solver's rounding, which friction could otherwise turn
+// into self-made arching). The rounds end when no strength changes (a fixed
+// point: friction is within mu times the very compression it rests on), or
+// at a stable round whose friction is within mu times its own compressions.
 //
 // Verdict: stable when the rounds settled and the last QP's forces balance
-// every block without tension or excess friction (as the equilibrium method
-// decides). It is certain in that model: such forces exist and arise from an
-// unstressed state under elastic contacts with Coulomb slip. "Unstable" is
-// the fixed point the rounds reach from no prestress, a local answer: an
-// iteration from another starting point, or another spring law, could find
-// another. Rounds that do not settle within max_rounds give status
-// max_iterations and no verdict (stable false).
+// every block without virtual loads or excess friction (as the equilibrium
+// method decides). It is certain in that model: such forces exist and arise
+// from an unstressed state. "Unstable" is the fixed point the rounds reach
+// from no prestress, a local answer: an iteration from another starting
+// point, or another spring law, could find another. Rounds that do not
+// settle within max_rounds give status max_iterations and no verdict
+// (stable false).
 //
-// Both methods agree where friction does not matter (mu infinite: no
-// sliding; or frictionless): the QP is then the same.
+// Both methods agree where friction does not decide (mu infinite: no
+// sliding; or frictionless joints).
 #pragma once
 
 #include <string>
