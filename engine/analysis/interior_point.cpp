@@ -120,21 +120,7 @@ Eigen::Matrix<double, D, 4> divide_by_factor(const Eigen::Matrix<double, D, 4>& 
 }  // namespace
 
 const char* status_name(SolverStatus status) {
-  switch (status) {
-    case SolverStatus::converged:
-      return "converged";
-    case SolverStatus::inaccurate:
-      return "inaccurate";
-    case SolverStatus::max_iterations:
-      return "max_iterations";
-    case SolverStatus::numerical_error:
-      return "numerical_error";
-    case SolverStatus::interrupted:
-      return "interrupted";
-    case SolverStatus::certified:
-      return "certified";
-  }
-  return "numerical_error";
+  return kSolverStatusNames.name(status);
 }
 
 EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)

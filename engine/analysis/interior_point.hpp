@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "analysis/equilibrium_problem.hpp"
 #include "core/parallel_loop.hpp"
 
@@ -44,6 +45,12 @@ enum class SolverStatus {
   interrupted,      // Ctrl-C or a sandboxed script's deadline (ashlar::stop_requested)
   certified,        // stopped at forces that prove stability (InteriorPointSettings::certify_below)
 };
+inline constexpr EnumNames<SolverStatus, 6> kSolverStatusNames{{{{SolverStatus::converged, "converged"},
+                                                                 {SolverStatus::inaccurate, "inaccurate"},
+                                                                 {SolverStatus::max_iterations, "max_iterations"},
+                                                                 {SolverStatus::numerical_error, "numerical_error"},
+                                                                 {SolverStatus::interrupted, "interrupted"},
+                                                                 {SolverStatus::certified, "certified"}}}};
 
 // "converged", "inaccurate", "max_iterations", "numerical_error", "interrupted"
 // or "certified".

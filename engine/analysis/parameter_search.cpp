@@ -20,13 +20,7 @@ double relative_difference(double value, double reference) {
 }  // namespace
 
 const char* threshold_status_name(ThresholdStatus status) {
-  switch (status) {
-    case ThresholdStatus::converged: return "converged";
-    case ThresholdStatus::stable_at_lower: return "stable_at_lower";
-    case ThresholdStatus::unstable_at_upper: return "unstable_at_upper";
-    case ThresholdStatus::max_analyses: return "max_analyses";
-  }
-  return "converged";
+  return kThresholdStatusNames.name(status);
 }
 
 Threshold find_threshold(double start, const ThresholdSettings& settings,

@@ -27,6 +27,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "analysis/interior_point.hpp"
 
 namespace ashlar {
@@ -35,6 +36,11 @@ namespace ashlar {
 // The smallest value at which a model stands.
 
 enum class ThresholdStatus { converged, stable_at_lower, unstable_at_upper, max_analyses };
+inline constexpr EnumNames<ThresholdStatus, 4> kThresholdStatusNames{
+    {{{ThresholdStatus::converged, "converged"},
+      {ThresholdStatus::stable_at_lower, "stable_at_lower"},
+      {ThresholdStatus::unstable_at_upper, "unstable_at_upper"},
+      {ThresholdStatus::max_analyses, "max_analyses"}}}};
 
 // "converged", "stable_at_lower", "unstable_at_upper" or "max_analyses".
 const char* threshold_status_name(ThresholdStatus status);

@@ -12,12 +12,7 @@
 namespace ashlar {
 
 const char* fea_status_name(FeaStatus status) {
-  switch (status) {
-    case FeaStatus::CompressionOnly: return "compression_only";
-    case FeaStatus::Tension: return "tension";
-    case FeaStatus::Mechanism: return "mechanism";
-  }
-  return "unknown";
+  return kFeaStatusNames.name(status);
 }
 
 namespace {

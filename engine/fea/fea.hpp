@@ -64,6 +64,9 @@ enum class FeaStatus {
   Tension,          // tension remains (relax off, or the iteration limit)
   Mechanism,        // the active ties do not hold every block
 };
+inline constexpr EnumNames<FeaStatus, 3> kFeaStatusNames{{{{FeaStatus::CompressionOnly, "compression_only"},
+                                                           {FeaStatus::Tension, "tension"},
+                                                           {FeaStatus::Mechanism, "mechanism"}}}};
 const char* fea_status_name(FeaStatus status);
 
 // One tied contact node.

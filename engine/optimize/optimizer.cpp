@@ -461,14 +461,7 @@ void report_outcome(Outcome&& outcome, int evaluations, Result& result) {
 }  // namespace
 
 const char* status_name(OptimizeStatus status) {
-  switch (status) {
-    case OptimizeStatus::stable: return "stable";
-    case OptimizeStatus::converged: return "converged";
-    case OptimizeStatus::max_iterations: return "max_iterations";
-    case OptimizeStatus::line_search_failed: return "line_search_failed";
-    case OptimizeStatus::evaluation_failed: return "evaluation_failed";
-  }
-  return "unknown";
+  return kOptimizeStatusNames.name(status);
 }
 
 OptimizeResult optimize_design(const DesignSpace& space, const DesignObjective& objective,

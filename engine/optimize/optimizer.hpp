@@ -74,6 +74,12 @@ enum class OptimizeStatus {
   line_search_failed,  // no step was accepted (e.g. rejected designs block every one)
   evaluation_failed,   // the objective threw, or returned a non-finite value
 };
+inline constexpr EnumNames<OptimizeStatus, 5> kOptimizeStatusNames{
+    {{{OptimizeStatus::stable, "stable"},
+      {OptimizeStatus::converged, "converged"},
+      {OptimizeStatus::max_iterations, "max_iterations"},
+      {OptimizeStatus::line_search_failed, "line_search_failed"},
+      {OptimizeStatus::evaluation_failed, "evaluation_failed"}}}};
 // "stable", "converged", "max_iterations", "line_search_failed",
 // "evaluation_failed".
 const char* status_name(OptimizeStatus status);
