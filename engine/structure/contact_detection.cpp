@@ -228,19 +228,7 @@ private:
       }
       if (gap > tol_) return;
     }
-    size_t longest = 0;
-    double longest_length = -1.0;
-    for (size_t i = 0; i < contact.vertices.size(); ++i) {
-      const double length =
-          (contact.vertices[(i + 1) % contact.vertices.size()] - contact.vertices[i]).norm();
-      if (length > longest_length) {
-        longest_length = length;
-        longest = i;
-      }
-    }
-    contact.u = (contact.vertices[(longest + 1) % contact.vertices.size()] -
-                 contact.vertices[longest]).normalized();
-    contact.v = contact.normal.cross(contact.u);
+    set_frame_along_longest_edge(contact);
     out.push_back(std::move(contact));
   }
 

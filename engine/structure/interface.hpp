@@ -26,4 +26,18 @@ struct Interface {
   bool is_explicit = false;
 };
 
+// Sets u along the polygon's longest edge (the first of equal ones) and
+// v = normal x u: the frame every interface gets, detected or explicit.
+// Needs the normal and at least two vertices.
+inline void set_frame_along_longest_edge(Interface& contact) {
+  const std::vector<Vec3>& p = contact.vertices;
+  const auto edge = [&](size_t i) { return Vec3(p[(i + 1) % p.size()] - p[i]); };
+  size_t longest = 0;
+  for (size_t i = 1; i < p.size(); ++i) {
+    if (edge(i).norm() > edge(longest).norm()) longest = i;
+  }
+  contact.u = edge(longest).normalized();
+  contact.v = contact.normal.cross(contact.u);
+}
+
 }  // namespace ashlar

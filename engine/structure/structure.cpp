@@ -222,15 +222,7 @@ Interface Structure::explicit_interface(int a, int b, std::vector<Vec3> polygon,
   contact.area = signed_area(flat);
   contact.center = frame.lift(area_centroid(flat));
   for (const Vec2& q : flat) contact.vertices.push_back(frame.lift(q));
-  size_t longest = 0;
-  for (size_t i = 1; i < contact.vertices.size(); ++i) {
-    const auto length = [&](size_t j) {
-      return (contact.vertices[(j + 1) % contact.vertices.size()] - contact.vertices[j]).norm();
-    };
-    if (length(i) > length(longest)) longest = i;
-  }
-  contact.u = (contact.vertices[(longest + 1) % contact.vertices.size()] - contact.vertices[longest]).normalized();
-  contact.v = contact.normal.cross(contact.u);
+  set_frame_along_longest_edge(contact);
   contact.is_explicit = true;
   return contact;
 }
