@@ -353,6 +353,19 @@ void push_limit(lua_State* L, const std::vector<LimitInterface>& limit,
   }
 }
 
+std::shared_ptr<const EquilibriumResult> result_option(lua_State* L, const OptionTable& options) {
+  std::shared_ptr<const EquilibriumResult> result;
+  if (options.push("result") != LUA_TNIL) {
+    result = luax_testResult(L, -1);
+    if (!result) {
+      throw ArgError(options.arg(), "result: expected a Result of ashlar.analyze (not closed), got " +
+                                        type_name(L, -1));
+    }
+  }
+  lua_pop(L, 1);
+  return result;
+}
+
 std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx) {
   Box<AnalysisRecord>* box = test_boxed<AnalysisRecord>(L, idx, kResultMeta);
   if (!box || !box->ptr) return nullptr;

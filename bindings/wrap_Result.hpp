@@ -25,6 +25,9 @@ AnalysisSettings analysis_settings(const OptionTable& options);
 // The engine result held by the Result at idx, for the caller to keep while
 // it uses it (see check_boxed), or nullptr if it is not an open Result.
 std::shared_ptr<const EquilibriumResult> luax_testResult(lua_State* L, int idx);
+// The `result` option of `options` (nil: none), for the caller to keep while
+// it uses it; an error unless it is an open Result.
+std::shared_ptr<const EquilibriumResult> result_option(lua_State* L, const OptionTable& options);
 void register_Result(lua_State* L);
 // A new Result of `structure` holding `result`.
 void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult result);

@@ -70,15 +70,8 @@ int w_export(lua_State* L) {
     if (format || file_extension(path) == "json") {
       CompasExportOptions compas;
       compas.contact.tolerance = options.positive("tolerance", 0.0, true);
-      std::shared_ptr<const EquilibriumResult> result;
-      if (options.push("result") != LUA_TNIL) {
-        result = luax_testResult(L, -1);
-        if (!result) {
-          throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " + type_name(L, -1));
-        }
-        compas.result = result.get();
-      }
-      lua_pop(L, 1);
+      const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
+      compas.result = result.get();
       for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
                               "traces", "trace_color", "mechanism", "edges"}) {
         if (options.has(key)) {
@@ -93,15 +86,8 @@ int w_export(lua_State* L) {
     exported.block_colors = block_colors(L, options, s.size());
     exported.interfaces = options.boolean("interfaces").value_or(false);
     exported.contact.tolerance = options.positive("tolerance", 0.0, true);
-    std::shared_ptr<const EquilibriumResult> result;
-    if (options.push("result") != LUA_TNIL) {
-      result = luax_testResult(L, -1);
-      exported.result = result.get();
-      if (!result) {
-        throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " +
-                              type_name(L, -1));
-      }
-    }
+    const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
+    exported.result = result.get();
     exported.forces = options.boolean("forces").value_or(false);
     exported.thrust = options.boolean("thrust").value_or(false);
     exported.force_scale = options.positive("force_scale", 0.0, true);

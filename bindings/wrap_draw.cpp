@@ -52,15 +52,8 @@ int w_draw(lua_State* L) {
     ElevationOptions drawing;
     drawing.block_colors = block_colors(L, options, s.size());
     drawing.contact.tolerance = options.positive("tolerance", 0.0, true);
-    std::shared_ptr<const EquilibriumResult> result;
-    if (options.push("result") != LUA_TNIL) {
-      result = luax_testResult(L, -1);
-      drawing.result = result.get();
-      if (!result) {
-        throw ArgError(3, "result: expected a Result of ashlar.analyze (not closed), got " +
-                              type_name(L, -1));
-      }
-    }
+    const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
+    drawing.result = result.get();
     // Drawing a result mostly means drawing its line of thrust.
     drawing.thrust = options.boolean("thrust").value_or(drawing.result != nullptr);
     drawing.forces = options.boolean("forces").value_or(false);
