@@ -243,6 +243,7 @@ int Structure::add_interface(int a, int b, const std::vector<std::vector<Vec3>>&
                              std::to_string(k + 1);
     added.push_back(explicit_interface(a, b, polygons[k], normal, what));
   }
+  for (const Interface& contact : added) explicit_pairs_.insert({contact.a, contact.b});
   explicit_.insert(explicit_.end(), added.begin(), added.end());
   cache_.valid = false;
   overlap_cache_.valid = false;
@@ -251,8 +252,7 @@ int Structure::add_interface(int a, int b, const std::vector<std::vector<Vec3>>&
 
 bool Structure::has_explicit_pair(int a, int b) const {
   if (a > b) std::swap(a, b);
-  return std::any_of(explicit_.begin(), explicit_.end(),
-                     [&](const Interface& contact) { return contact.a == a && contact.b == b; });
+  return explicit_pairs_.count({a, b}) > 0;
 }
 
 void Structure::require_detected_interfaces(const std::string& caller) const {

@@ -4,8 +4,10 @@
 
 #include <limits>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "geometry/block.hpp"
@@ -138,6 +140,7 @@ private:
   std::vector<PointLoad> loads_;
   std::vector<Cable> cables_;
   std::vector<Interface> explicit_;
+  std::set<std::pair<int, int>> explicit_pairs_;  // (a, b), a < b, of explicit_: a lookup per detected contact
   std::unordered_map<std::string, int> index_by_name_;
   bool planar_ = false;
 
