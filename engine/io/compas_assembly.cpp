@@ -232,17 +232,24 @@ private:
   CompasAssembly out_;
 };
 
+// Appends a member whose key the object does not have yet: ordered_json's
+// operator[] searches every key first, which made the nodes and edges of a
+// large assembly quadratic to build.
+json& append_member(json& object, std::string key, json value) {
+  return object.get_ref<json::object_t&>().emplace_back(std::move(key), std::move(value)).second;
+}
+
 json mesh_json(const Structure& structure, int i) {
   const Block& block = structure.block(i);
   json vertex = json::object();
   for (size_t k = 0; k < block.vertices().size(); ++k) {
     const Vec3& p = block.vertices()[k];
-    vertex[std::to_string(k)] = {{"x", p.x()}, {"y", p.y()}, {"z", p.z()}};
+    append_member(vertex, std::to_string(k), {{"x", p.x()}, {"y", p.y()}, {"z", p.z()}});
   }
   json face = json::object(), facedata = json::object();
   for (size_t f = 0; f < block.faces().size(); ++f) {
-    face[std::to_string(f)] = block.faces()[f];
-    facedata[std::to_string(f)] = json::object();
+    append_member(face, std::to_string(f), block.faces()[f]);
+    append_member(facedata, std::to_string(f), json::object());
   }
   json data;
   data["attributes"] = {{"name", structure.name(i)}, {"node", i}};
@@ -304,9 +311,12 @@ std::string compas_assembly_json(const Structure& structure, const CompasExportO
   }
   json nodes = json::object();
   for (int i = 0; i < structure.size(); ++i) {
-    nodes[std::to_string(i)] = {{"block", mesh_json(structure, i)}, {"is_support", structure.is_support(i)}};
+    append_member(nodes, std::to_string(i), {{"block", mesh_json(structure, i)}, {"is_support", structure.is_support(i)}});
   }
+  // Interfaces come sorted by (a, b): each edge's entries are appended in turn.
   json edges = json::object();
+  json* neighbours = nullptr;
+  json* pair = nullptr;
   for (size_t k = 0; k < interfaces.size(); ++k) {
     const Interface& contact = interfaces[k];
     json points = json::array();
@@ -327,9 +337,13 @@ std::string compas_assembly_json(const Structure& structure, const CompasExportO
     json entry = {{"dtype", "compas_assembly.datastructures/Interface"},
                   {"data", {{"points", std::move(points)}, {"size", contact.area}, {"frame", std::move(frame)},
                             {"forces", std::move(forces)}, {"mesh", nullptr}}}};
-    json& pair = edges[std::to_string(contact.a)][std::to_string(contact.b)];
-    if (pair.is_null()) pair = {{"interfaces", json::array()}};
-    pair["interfaces"].push_back(std::move(entry));
+    if (k == 0 || contact.a != interfaces[k - 1].a) {
+      neighbours = &append_member(edges, std::to_string(contact.a), json::object());
+    }
+    if (k == 0 || contact.a != interfaces[k - 1].a || contact.b != interfaces[k - 1].b) {
+      pair = &append_member(*neighbours, std::to_string(contact.b), {{"interfaces", json::array()}});
+    }
+    (*pair)["interfaces"].push_back(std::move(entry));
   }
   json graph;
   graph["attributes"] = json::object();
