@@ -155,10 +155,10 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
     return static_cast<int>(std::lower_bound(upper[j].begin(), upper[j].end(), i) -
                             upper[j].begin());
   };
-  slots_.resize(problem.groups.size());
+  pattern_slots_.resize(problem.groups.size());
   for (size_t k = 0; k < problem.groups.size(); ++k) {
     const ForceGroup& v = problem.groups[k];
-    VertexSlots& slot = slots_[k];
+    VertexSlots& slot = pattern_slots_[k];
     slot.row_a = v.row_a;
     slot.row_b = v.row_b;
     if (v.row_a >= 0) slot.aa = rank(v.row_a / d, v.row_a / d);
@@ -172,7 +172,132 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   if (problem.row_count > 0) {
     cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices);
   }
+  slots_ = pattern_slots_;
   partition_columns(blocks);
+}
+
+namespace {
+
+// Whether contact vertices p and q are twins (interior_point.hpp): the same
+// rules, bodies and bound, and the same effect on the D balance rows to
+// rounding. Effects are scaled, O(1) per unit force.
+bool are_twins(const ForceGroup& p, const ForceGroup& q, int d) {
+  constexpr double kSameEffect = 1e-13;
+  auto same = [&](const Eigen::Matrix<double, 6, 4>& e, const Eigen::Matrix<double, 6, 4>& f) {
+    return (e.topRows(d) - f.topRows(d)).lpNorm<Eigen::Infinity>() <=
+           kSameEffect * (1.0 + e.topRows(d).lpNorm<Eigen::Infinity>());
+  };
+  return p.kind == GroupKind::contact_vertex && q.kind == GroupKind::contact_vertex &&
+         p.row_a == q.row_a && p.row_b == q.row_b && p.bound == q.bound &&
+         (p.row_a < 0 || same(p.on_a, q.on_a)) && (p.row_b < 0 || same(p.on_b, q.on_b));
+}
+
+}  // namespace
+
+void EquilibriumSolver::find_twins(const EquilibriumProblem& problem, bool merge) {
+  // Twins come from one interface (its vertices are consecutive groups); a
+  // vertex is compared with the classes begun among the kTwinWindow groups
+  // before it, so that a polygon of many vertices costs O(vertices).
+  constexpr int kTwinWindow = 16;
+  const int n = merge ? static_cast<int>(problem.groups.size()) : 0;
+  Twins twins;
+  twins.merged_of.resize(n);
+  int run_start = 0;
+  for (int k = 0; k < n; ++k) {
+    const ForceGroup& group = problem.groups[k];
+    if (k == 0 || group.source != problem.groups[k - 1].source ||
+        group.kind != problem.groups[k - 1].kind) {
+      run_start = k;
+    }
+    int twin = -1;
+    for (int j = std::max(run_start, k - kTwinWindow); j < k && twin < 0; ++j) {
+      const int merged = twins.merged_of[j];
+      if (twins.first_member[merged] == j && are_twins(problem.groups[j], group, block_rows_)) twin = merged;
+    }
+    if (twin >= 0) {
+      twins.merged_of[k] = twin;
+      twins.count[twin] += 1.0;
+    } else {
+      twins.merged_of[k] = static_cast<int>(twins.first_member.size());
+      twins.first_member.push_back(k);
+      twins.count.push_back(1.0);
+    }
+  }
+  if (static_cast<int>(twins.first_member.size()) == n) twins = Twins{};
+  if (twins.merged_of == twins_.merged_of) return;
+  twins_ = std::move(twins);
+  if (twins_.merged_of.empty()) {
+    slots_ = pattern_slots_;
+  } else {
+    slots_.resize(twins_.first_member.size());
+    for (size_t j = 0; j < slots_.size(); ++j) slots_[j] = pattern_slots_[twins_.first_member[j]];
+  }
+  partition_columns(size_ / block_rows_);
+}
+
+EquilibriumProblem EquilibriumSolver::merge_twins(const EquilibriumProblem& problem) const {
+  EquilibriumProblem merged = problem;
+  // In place: a class's first member is never before its own index.
+  const int classes = static_cast<int>(twins_.first_member.size());
+  merged.contact_vertex_count = 0;
+  for (int j = 0; j < classes; ++j) {
+    ForceGroup& group = merged.groups[j];
+    group = merged.groups[twins_.first_member[j]];
+    group.on_a *= twins_.count[j];
+    group.on_b *= twins_.count[j];
+    if (group.kind == GroupKind::contact_vertex) ++merged.contact_vertex_count;
+  }
+  merged.groups.resize(classes);
+  merged.groups.shrink_to_fit();
+  return merged;
+}
+
+std::vector<int> EquilibriumSolver::merged_first_rows(const std::vector<int>& full_first_row) const {
+  std::vector<int> starts(twins_.first_member.size() + 1, 0);
+  for (size_t j = 0; j < twins_.first_member.size(); ++j) {
+    const int k = twins_.first_member[j];
+    starts[j + 1] = starts[j] + full_first_row[k + 1] - full_first_row[k];
+  }
+  return starts;
+}
+
+void EquilibriumSolver::merge_solution(const InteriorPointSolution& full, const std::vector<int>& full_first_row,
+                                       InteriorPointSolution& merged) const {
+  const int classes = static_cast<int>(twins_.first_member.size());
+  merged.x.resize(4 * classes);
+  merged.y = full.y;
+  const std::vector<int> starts = merged_first_rows(full_first_row);
+  merged.w.resize(starts.back());
+  merged.z.resize(starts.back());
+  for (int j = 0; j < classes; ++j) {
+    const int k = twins_.first_member[j];
+    const int rows = starts[j + 1] - starts[j];
+    merged.x.segment<4>(4 * j) = full.x.segment<4>(4 * k);
+    merged.w.segment(starts[j], rows) = full.w.segment(full_first_row[k], rows);
+    merged.z.segment(starts[j], rows) = twins_.count[j] * full.z.segment(full_first_row[k], rows);
+  }
+}
+
+void EquilibriumSolver::split_solution(const InteriorPointSolution& merged, const std::vector<int>& full_first_row,
+                                       InteriorPointSolution& full) const {
+  const int n = static_cast<int>(twins_.merged_of.size());
+  const int classes = static_cast<int>(twins_.first_member.size());
+  if (merged.x.size() != 4 * classes) {  // no iterate (the solve stopped before its first)
+    full = InteriorPointSolution{};
+    return;
+  }
+  const std::vector<int> merged_first_row = merged_first_rows(full_first_row);
+  full.x.resize(4 * n);
+  full.y = merged.y;
+  full.w.resize(full_first_row[n]);
+  full.z.resize(full_first_row[n]);
+  for (int k = 0; k < n; ++k) {
+    const int j = twins_.merged_of[k];
+    const int rows = full_first_row[k + 1] - full_first_row[k];
+    full.x.segment<4>(4 * k) = merged.x.segment<4>(4 * j);
+    full.w.segment(full_first_row[k], rows) = merged.w.segment(merged_first_row[j], rows);
+    full.z.segment(full_first_row[k], rows) = merged.z.segment(merged_first_row[j], rows) / twins_.count[j];
+  }
 }
 
 void EquilibriumSolver::partition_columns(int blocks) {
@@ -220,11 +345,11 @@ EquilibriumSolver::~EquilibriumSolver() = default;
 
 bool EquilibriumSolver::fits(const EquilibriumProblem& problem) const {
   if (problem.row_count != size_ || problem.block_rows != block_rows_ ||
-      problem.groups.size() != slots_.size()) {
+      problem.groups.size() != pattern_slots_.size()) {
     return false;
   }
-  for (size_t k = 0; k < slots_.size(); ++k) {
-    if (problem.groups[k].row_a != slots_[k].row_a || problem.groups[k].row_b != slots_[k].row_b) {
+  for (size_t k = 0; k < pattern_slots_.size(); ++k) {
+    if (problem.groups[k].row_a != pattern_slots_[k].row_a || problem.groups[k].row_b != pattern_slots_[k].row_b) {
       return false;
     }
   }
@@ -249,7 +374,7 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
       const int rows = static_cast<int>(rules.rows.rows());
       scaling = z.segment(first_row[k], rows).cwiseQuotient(
           w.segment(first_row[k], rows).cwiseMax(kLeastSlack));
-      phi_factors[k] = factor_phi(rules.hessian, rules.rows, scaling);
+      phi_factors[k] = factor_phi(twin_count(k) * rules.hessian, rules.rows, scaling);
     }
   });
   // Each part adds only into its own range of block columns (so no entry
@@ -325,13 +450,20 @@ bool EquilibriumSolver::factorize_shifted() {
 }
 
 bool EquilibriumSolver::prepare_response(const EquilibriumProblem& problem,
-                                         const InteriorPointSolution& solution) {
+                                         const InteriorPointSolution& solution, bool merge) {
   response_ready_ = false;
   if (!cholesky_) return false;
   const std::vector<int> first_row = problem.inequality_starts();
   const int m_total = first_row.back();
   if (solution.w.size() != m_total || solution.z.size() != m_total) return false;
-  assemble(problem, first_row, solution.w, solution.z, response_phi_);
+  find_twins(problem, merge);
+  if (twins_.merged_of.empty()) {
+    assemble(problem, first_row, solution.w, solution.z, response_phi_);
+  } else {
+    InteriorPointSolution merged;
+    merge_solution(solution, first_row, merged);
+    assemble(merge_twins(problem), merged_first_rows(first_row), merged.w, merged.z, response_phi_);
+  }
   response_ready_ = factorize_shifted();
   return response_ready_;
 }
@@ -343,12 +475,35 @@ Eigen::VectorXd EquilibriumSolver::multiplier_response(const Eigen::VectorXd& de
 
 Eigen::Vector4d EquilibriumSolver::group_response(const EquilibriumProblem& problem, int group,
                                                   const Eigen::VectorXd& multipliers) const {
-  return solve_phi(response_phi_[group], problem.reaction(problem.groups[group], multipliers));
+  const Eigen::Vector4d reaction = problem.reaction(problem.groups[group], multipliers);
+  if (twins_.merged_of.empty()) return solve_phi(response_phi_[group], reaction);
+  // A class of m twins has Phi m times a twin's, and m times its reaction.
+  const int merged = twins_.merged_of[group];
+  return solve_phi(response_phi_[merged], twins_.count[merged] * reaction);
 }
 
 InteriorPointInfo EquilibriumSolver::solve(const EquilibriumProblem& problem,
                                            const InteriorPointSettings& settings,
                                            InteriorPointSolution& solution, bool warm_start) {
+  find_twins(problem, settings.merge_twins);
+  if (twins_.merged_of.empty()) return solve_groups(problem, settings, solution, warm_start);
+  const std::vector<int> first_row = problem.inequality_starts();
+  const bool warm = warm_start && solution.x.size() == problem.variable_count() &&
+                    solution.y.size() == size_ && solution.w.size() == first_row.back() &&
+                    solution.z.size() == first_row.back();
+  InteriorPointSolution merged;
+  if (warm) merge_solution(solution, first_row, merged);
+  InteriorPointInfo info = solve_groups(merge_twins(problem), settings, merged, warm);
+  split_solution(merged, first_row, solution);
+  // The mean complementarity of the problem's rows: the total gap is the
+  // same, over more rows.
+  if (first_row.back() > 0) info.complementarity *= static_cast<double>(merged.w.size()) / first_row.back();
+  return info;
+}
+
+InteriorPointInfo EquilibriumSolver::solve_groups(const EquilibriumProblem& problem,
+                                                  const InteriorPointSettings& settings,
+                                                  InteriorPointSolution& solution, bool warm_start) {
   return block_rows_ == 3 ? solve_rows<3>(problem, settings, solution, warm_start)
                           : solve_rows<6>(problem, settings, solution, warm_start);
 }
@@ -473,7 +628,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 dxk = dir.x.segment<4>(4 * k);
       add_group_effect<D>(v, dxk, rows);
-      out.x.segment<4>(4 * k) = e.x.segment<4>(4 * k) + rules.hessian.cwiseProduct(dxk) -
+      out.x.segment<4>(4 * k) = e.x.segment<4>(4 * k) + twin_count(k) * rules.hessian.cwiseProduct(dxk) -
                                 group_reaction<D>(v, dir.y) - rules.rows.transpose() * ineq(dir.z, k);
       ineq(out.w, k) = ineq(e.w, k) - ineq(dir.w, k);
       ineq(out.w, k).noalias() += rules.rows * dxk;
@@ -517,12 +672,21 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     info.solve_seconds += seconds_since(start);
   };
 
+  // A class of twins has m times each twin's dual residual.
+  auto dual_residual_of = [&](const Eigen::VectorXd& residual) {
+    if (twins_.count.empty()) return residual.size() ? residual.lpNorm<Eigen::Infinity>() : 0.0;
+    double largest = 0.0;
+    for (int k = 0; k < nv; ++k) {
+      largest = std::max(largest, residual.segment<4>(4 * k).lpNorm<Eigen::Infinity>() / twins_.count[k]);
+    }
+    return largest;
+  };
   auto objective_value = [&] {
     double sum = 0.0;
     for (int k = 0; k < nv; ++k) {
       const GroupRules& rules = problem.rules_of(problem.groups[k]);
       const Vector4 xk = x.segment<4>(4 * k);
-      sum += 0.5 * xk.dot(rules.hessian.cwiseProduct(xk)) + rules.linear.dot(xk);
+      sum += twin_count(k) * (0.5 * xk.dot(rules.hessian.cwiseProduct(xk)) + rules.linear.dot(xk));
     }
     return sum;
   };
@@ -569,7 +733,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       const GroupRules& rules = problem.rules_of(v);
       const Vector4 xk = x.segment<4>(4 * k);
       add_group_effect<D>(v, xk, rows);
-      r.x.segment<4>(4 * k) = rules.hessian.cwiseProduct(xk) + rules.linear -
+      r.x.segment<4>(4 * k) = twin_count(k) * (rules.hessian.cwiseProduct(xk) + rules.linear) -
                               group_reaction<D>(v, y) - rules.rows.transpose() * ineq(z, k);
       ineq(r.w, k) = -ineq(w, k);
       ineq(r.w, k).noalias() += rules.rows * xk;
@@ -581,7 +745,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     info.iterations = iteration;
     info.primal_residual = std::max(r.y.size() ? r.y.lpNorm<Eigen::Infinity>() : 0.0,
                                     r.w.size() ? r.w.lpNorm<Eigen::Infinity>() : 0.0);
-    info.dual_residual = r.x.size() ? r.x.lpNorm<Eigen::Infinity>() : 0.0;
+    info.dual_residual = dual_residual_of(r.x);
     info.complementarity = mu;
     const bool best_is_previous = !best.copied && std::isfinite(best.error) && best.iteration == iteration - 1;
     if (!std::isfinite(mu) || !std::isfinite(info.primal_residual) ||
@@ -732,6 +896,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     }
   }
   info.factorizations = cholesky_->factorizations() - factorizations_before;
+  info.groups = nv;
   info.objective = objective_value();
   return info;
 }

@@ -7,6 +7,15 @@
 // blocks) (3 x for planar problems), sparse with the contact graph's pattern. That matrix is analysed
 // once (EquilibriumSolver's constructor) and factorised once per iteration;
 // predictor and corrector share the factorisation.
+//
+// Twins: contact vertices with the same rules, bodies, bound and effect on
+// the balance rows (a planar problem's vertex pairs on either face of the
+// wall, which differ only in y) have one optimum, the same forces at each
+// (the objective is strictly convex in them and symmetric). The solver
+// takes m such twins as one group with effect m A, objective m (1/2 x^T H x
+// + q^T x) and the same inequalities, whose multipliers are m times each
+// twin's, and hands every twin the group's x, w and z / m: the same QP,
+// with half the per-group work on a planar wall.
 #pragma once
 
 #include <Eigen/Core>
@@ -35,6 +44,9 @@ struct InteriorPointSettings {
   // (compression_only_imbalance): stability is proven, the optimum is not
   // needed. 0: always solve to the optimum.
   double certify_below = 0.0;
+  // Solve twin contact vertices (see above) as one group each; false solves
+  // every vertex on its own (the same optimum, for checking the merge).
+  bool merge_twins = true;
 };
 
 enum class SolverStatus {
@@ -65,6 +77,7 @@ struct InteriorPointInfo {
   SolverStatus status = SolverStatus::numerical_error;
   int iterations = 0;
   int factorizations = 0;
+  int groups = 0;                   // force groups solved: the problem's, fewer where twins merged
   double objective = 0.0;           // scaled, as in the QPS export
   double primal_residual = 0.0;     // max |A x - b|, scaled
   double dual_residual = 0.0;       // max |H x + q - A^T y - G^T z|
@@ -103,7 +116,9 @@ public:
   // with Phi the per-group matrices of the last Newton system. Factorises
   // once (false when that fails or `solution` does not fit `problem`); then
   // any number of directions cost a pair of triangular solves each.
-  bool prepare_response(const EquilibriumProblem& problem, const InteriorPointSolution& solution);
+  // `merge` as InteriorPointSettings::merge_twins.
+  bool prepare_response(const EquilibriumProblem& problem, const InteriorPointSolution& solution,
+                        bool merge = true);
   // (A Phi^-1 A^T)^-1 db, row_count long, scaled; db scaled as problem.rhs.
   Eigen::VectorXd multiplier_response(const Eigen::VectorXd& delta_rhs) const;
   // dx of group `group` (scaled, 4) from multiplier_response's answer.
@@ -143,12 +158,39 @@ private:
                                InteriorPointSolution& solution, bool warm_start);
   bool factorize_shifted();
 
+  // The twin classes of `problem` (see the file comment; none unless
+  // `merge`): twins_ and, when they changed, the slots and parts of the
+  // groups the solver works on.
+  void find_twins(const EquilibriumProblem& problem, bool merge);
+  // `problem` with each twin class as one group (find_twins first).
+  EquilibriumProblem merge_twins(const EquilibriumProblem& problem) const;
+  // Where each merged group's inequality rows start (and the total), from
+  // the problem's (EquilibriumProblem::inequality_starts).
+  std::vector<int> merged_first_rows(const std::vector<int>& full_first_row) const;
+  // The number of twins group k of the groups worked on stands for.
+  double twin_count(int k) const { return twins_.count.empty() ? 1.0 : twins_.count[k]; }
+  // One of the problem's solutions in the merged groups' unknowns, and back.
+  void merge_solution(const InteriorPointSolution& full, const std::vector<int>& full_first_row,
+                      InteriorPointSolution& merged) const;
+  void split_solution(const InteriorPointSolution& merged, const std::vector<int>& full_first_row,
+                      InteriorPointSolution& full) const;
+  // solve() of the groups the solver works on, `problem` merged or not.
+  InteriorPointInfo solve_groups(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
+                                 InteriorPointSolution& solution, bool warm_start);
+
   struct VertexSlots {
     int row_a = -1, row_b = -1;     // the group's bodies' first balance rows
     int aa = -1, bb = -1, ab = -1;  // pattern slots of the 6 x 6 blocks, -1 if absent
     bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
   };
-  std::vector<VertexSlots> slots_;
+  std::vector<VertexSlots> pattern_slots_;  // per group of the problem analysed (fits())
+  // The groups the solver works on: the problem's, or its twin classes.
+  struct Twins {
+    std::vector<int> merged_of;     // problem group -> merged group; empty: no twins
+    std::vector<int> first_member;  // merged group -> its first problem group
+    std::vector<double> count;      // merged group -> its number of twins (m)
+  } twins_;
+  std::vector<VertexSlots> slots_;  // per group worked on
   ParallelLoop loop_;  // passes over the groups, on one thread per core
   // The assembly's parts: part p adds into block columns
   // [part_first_column_[p], part_first_column_[p + 1]), for the groups

@@ -270,6 +270,72 @@ TEST(Equilibrium, AnAnswerShortOfTheToleranceIsTheIterateItsFiguresDescribe) {
   }
 }
 
+TEST(Equilibrium, PlanarTwinVerticesAreSolvedAsOneGroup) {
+  // A planar arch's joints are rectangles across its depth: each vertex at
+  // y = -0.5 has a twin at y = 0.5 with the same in-plane effect, and the
+  // solver takes each pair as one group. Solved vertex by vertex (no merge)
+  // the QP is the same, with one optimum (the objective is strictly
+  // convex), so the merged solve split back into twins must be it.
+  Structure arch = semicircular_arch(16, 0.5);
+  arch.set_planar(true);
+  const EquilibriumProblem problem = build_equilibrium_problem(arch, {});
+  ASSERT_EQ(problem.contact_vertex_count, 4 * 17);  // 17 joints of 4 vertices
+  InteriorPointSettings separate;
+  separate.merge_twins = false;
+  EquilibriumSolver solver(problem), reference_solver(problem);
+  InteriorPointSolution twin_solution, reference;
+  const InteriorPointInfo info = solver.solve(problem, {}, twin_solution);
+  const InteriorPointInfo reference_info = reference_solver.solve(problem, separate, reference);
+  ASSERT_EQ(info.status, SolverStatus::converged);
+  ASSERT_EQ(reference_info.status, SolverStatus::converged);
+  EXPECT_EQ(info.groups, 2 * 17);
+  EXPECT_EQ(reference_info.groups, 4 * 17);
+  EXPECT_NEAR(info.objective, reference_info.objective, 1e-9 * std::abs(reference_info.objective));
+  ASSERT_EQ(twin_solution.x.size(), reference.x.size());
+  ASSERT_EQ(twin_solution.z.size(), reference.z.size());
+  // x is unique, but the regularisation is flat (1e-4 / n per unit force
+  // squared), so a gap of 1e-10 leaves it known to about 1e-5.
+  const double unit = reference.x.lpNorm<Eigen::Infinity>();
+  EXPECT_LE((twin_solution.x - reference.x).lpNorm<Eigen::Infinity>(), 1e-5 * unit);
+  // Each twin gets half the group's multipliers: with them the split answer
+  // is stationary for the problem itself, vertex by vertex (the multipliers
+  // are not unique where a vertex has no compression and every friction row
+  // is active, so they are checked through this, not one by one).
+  const std::vector<int> first_row = problem.inequality_starts();
+  for (int k = 0; k < static_cast<int>(problem.groups.size()); ++k) {
+    const ForceGroup& group = problem.groups[k];
+    const GroupRules& rules = problem.rules_of(group);
+    const Eigen::Vector4d xk = twin_solution.x.segment<4>(4 * k);
+    const Eigen::Vector4d stationarity =
+        rules.hessian.cwiseProduct(xk) + rules.linear - problem.reaction(group, twin_solution.y) -
+        rules.rows.transpose() * twin_solution.z.segment(first_row[k], rules.rows.rows());
+    EXPECT_LE(stationarity.lpNorm<Eigen::Infinity>(), 1e-9) << k;
+  }
+  // The response to more weight on the crown voussoir, at the same answer,
+  // vertex by vertex and merged (the twins' Phi is the group's over two).
+  // At different answers it would differ: it holds the active set, and the
+  // multipliers of rows at the edge of it are not unique.
+  ASSERT_TRUE(solver.prepare_response(problem, twin_solution));
+  ASSERT_TRUE(reference_solver.prepare_response(problem, twin_solution, false));
+  Eigen::VectorXd more = Eigen::VectorXd::Zero(problem.row_count);
+  more(problem.row_of_block[8] + problem.vertical_row()) = 1.0;
+  const Eigen::VectorXd y = solver.multiplier_response(more);
+  const Eigen::VectorXd y_reference = reference_solver.multiplier_response(more);
+  for (int k = 0; k < problem.contact_vertex_count; ++k) {
+    const Eigen::Vector4d dx = solver.group_response(problem, k, y);
+    const Eigen::Vector4d dx_reference = reference_solver.group_response(problem, k, y_reference);
+    EXPECT_LE((dx - dx_reference).lpNorm<Eigen::Infinity>(),
+              1e-6 * (1.0 + dx_reference.lpNorm<Eigen::Infinity>())) << k;
+  }
+  // The same arch solved in 3D, where the twins' moments about x differ and
+  // nothing merges, has the same optimum: the pair carries equal forces.
+  Structure general = arch;
+  general.set_planar(false);
+  const EquilibriumResult result_3d = analyze_equilibrium(general, {});
+  ASSERT_EQ(result_3d.status, SolverStatus::converged);
+  EXPECT_NEAR(info.objective, result_3d.objective, 1e-8 * std::abs(result_3d.objective));
+}
+
 TEST(Equilibrium, BadSettingsAreRejected) {
   AnalysisSettings settings;
   settings.problem.friction_sides = 2;
