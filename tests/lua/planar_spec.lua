@@ -27,14 +27,19 @@ describe("planar solve", function()
       local spatial = ashlar.analyze(s, { friction = friction })
       assert.equal(spatial.stable, planar.stable)
       near(planar.infeasibility, spatial.infeasibility, 1e-6 * (1 + spatial.infeasibility), "infeasibility")
-      -- Forces are unique only where the optimum is: compare the resultant
-      -- normal forces relative to the largest one.
+      -- The optimum is unique, but the solves stop at a duality gap of
+      -- 1e-10 (scaled) and the objective only regularises the statically
+      -- indeterminate forces (1e-4 / n per squared unit of force): a force
+      -- the structure does not need is known to sqrt(2e-10 n / 1e-4) mean
+      -- block weights: 7.3e-3 of 40 N on the wall's 27 free blocks, 0.3 N,
+      -- 1.4e-3 of its largest joint force (217 N). Compare relative to the
+      -- largest one.
       local largest = 0
       for _, interface in ipairs(spatial.interfaces) do
         largest = math.max(largest, math.abs(interface.normal_force))
       end
       for k, interface in ipairs(spatial.interfaces) do
-        near(planar.interfaces[k].normal_force, interface.normal_force, 1e-4 * largest, "interface " .. k)
+        near(planar.interfaces[k].normal_force, interface.normal_force, 2e-3 * largest, "interface " .. k)
       end
     end)
   end
