@@ -172,7 +172,6 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   if (problem.row_count > 0) {
     cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices);
   }
-  slots_ = pattern_slots_;
   partition_columns(blocks);
 }
 
@@ -226,12 +225,12 @@ void EquilibriumSolver::find_twins(const EquilibriumProblem& problem, bool merge
   if (static_cast<int>(twins.first_member.size()) == n) twins = Twins{};
   if (twins.merged_of == twins_.merged_of) return;
   twins_ = std::move(twins);
-  if (twins_.merged_of.empty()) {
-    slots_ = pattern_slots_;
-  } else {
-    slots_.resize(twins_.first_member.size());
-    for (size_t j = 0; j < slots_.size(); ++j) slots_[j] = pattern_slots_[twins_.first_member[j]];
+  merged_slots_.clear();
+  if (!twins_.merged_of.empty()) {
+    merged_slots_.resize(twins_.first_member.size());
+    for (size_t j = 0; j < merged_slots_.size(); ++j) merged_slots_[j] = pattern_slots_[twins_.first_member[j]];
   }
+  merged_slots_.shrink_to_fit();
   partition_columns(size_ / block_rows_);
 }
 
@@ -301,13 +300,14 @@ void EquilibriumSolver::split_solution(const InteriorPointSolution& merged, cons
 }
 
 void EquilibriumSolver::partition_columns(int blocks) {
-  const int nv = static_cast<int>(slots_.size());
+  const std::vector<VertexSlots>& slots = worked_slots();
+  const int nv = static_cast<int>(slots.size());
   const int parts = std::min(loop_.parts_for(nv), std::max(blocks, 1));
   const int d = block_rows_;
   // The blocks each group adds: C_a C_a^T in column a, C_b C_b^T in column
   // b, C_a C_b^T in column max(a, b).
   std::vector<long long> adds(blocks + 1, 0);
-  for (const VertexSlots& slot : slots_) {
+  for (const VertexSlots& slot : slots) {
     if (slot.row_a >= 0) ++adds[slot.row_a / d];
     if (slot.row_b >= 0) ++adds[slot.row_b / d];
     if (slot.ab >= 0) ++adds[std::max(slot.row_a, slot.row_b) / d];
@@ -329,7 +329,7 @@ void EquilibriumSolver::partition_columns(int blocks) {
            1;
   };
   for (int k = 0; k < nv; ++k) {
-    const VertexSlots& slot = slots_[k];
+    const VertexSlots& slot = slots[k];
     int touched[3] = {-1, -1, -1};
     if (slot.row_a >= 0) touched[0] = part_of(slot.row_a / d);
     if (slot.row_b >= 0) touched[1] = part_of(slot.row_b / d);
@@ -393,9 +393,10 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
         for (int ri = 0; ri < rows; ++ri) column[ri] += block(ri, cj);
       }
     };
+    const std::vector<VertexSlots>& slots = worked_slots();
     auto add_group = [&](int k) {
       const ForceGroup& v = problem.groups[k];
-      const VertexSlots& slot = slots_[k];
+      const VertexSlots& slot = slots[k];
       const int a = v.row_a / D, b = v.row_b / D;
       const bool ab = slot.ab >= 0 && owned(std::max(a, b));
       // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.

@@ -190,7 +190,10 @@ private:
     std::vector<int> first_member;  // merged group -> its first problem group
     std::vector<double> count;      // merged group -> its number of twins (m)
   } twins_;
-  std::vector<VertexSlots> slots_;  // per group worked on
+  std::vector<VertexSlots> merged_slots_;  // per merged group, when twins merge
+  const std::vector<VertexSlots>& worked_slots() const {
+    return twins_.merged_of.empty() ? pattern_slots_ : merged_slots_;
+  }
   ParallelLoop loop_;  // passes over the groups, on one thread per core
   // The assembly's parts: part p adds into block columns
   // [part_first_column_[p], part_first_column_[p + 1]), for the groups
