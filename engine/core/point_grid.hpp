@@ -1,5 +1,6 @@
-// Points bucketed in cubic cells for neighbour queries: welding mesh
-// vertices, finding design nodes that coincide.
+// Points (or boxes) bucketed in cubic cells for neighbour queries: welding
+// mesh vertices, finding design nodes that coincide, finding the contact
+// features (vertices, edges) near a point of a contact plane.
 #pragma once
 
 #include <array>
@@ -20,6 +21,19 @@ public:
   PointGrid(const Vec3& origin, double cell) : origin_(origin), cell_(cell) {}
 
   void insert(const Vec3& p, int id) { cells_[key(p)].push_back(id); }
+  // `id` in every cell the box [lo, hi] overlaps (once per cell, when the
+  // same id is inserted in a row, as the pieces of one edge are).
+  void insert_box(const Vec3& lo, const Vec3& hi, int id) {
+    const Key first = key(lo), last = key(hi);
+    for (Key k = first; k[0] <= last[0]; ++k[0]) {
+      for (k[1] = first[1]; k[1] <= last[1]; ++k[1]) {
+        for (k[2] = first[2]; k[2] <= last[2]; ++k[2]) {
+          std::vector<int>& ids = cells_[k];
+          if (ids.empty() || ids.back() != id) ids.push_back(id);
+        }
+      }
+    }
+  }
 
   // The ids in the cells that overlap the box [lo, hi]: every point inside
   // the box, and some near it.

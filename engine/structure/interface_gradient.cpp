@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/point_grid.hpp"
 #include "geometry/polygon.hpp"
 
 namespace ashlar {
@@ -107,48 +106,6 @@ double distance_to_segment(const Vec2& x, const Vec2& p0, const Vec2& p1) {
   return (p0 + t * e - x).norm();
 }
 
-// Features bucketed by the square cells of the contact plane that they come
-// within `reach` of, so each contact vertex meets only the features near it.
-class FeatureGrid {
-public:
-  FeatureGrid(double cell, double reach) : cell_(cell), reach_(reach) {}
-
-  void insert(int feature, const Vec2& p0, const Vec2& p1) {
-    // Pieces no longer than a cell touch a bounded number of cells each, so a
-    // long diagonal edge costs its length, not its bounding box.
-    const int pieces = std::max(1, static_cast<int>(std::ceil((p1 - p0).norm() / cell_)));
-    for (int k = 0; k < pieces; ++k) {
-      const Vec2 s0 = p0 + (p1 - p0) * (static_cast<double>(k) / pieces);
-      const Vec2 s1 = p0 + (p1 - p0) * (static_cast<double>(k + 1) / pieces);
-      const Vec2 lo = s0.cwiseMin(s1).array() - reach_, hi = s0.cwiseMax(s1).array() + reach_;
-      for (long long ix = index(lo.x()); ix <= index(hi.x()); ++ix) {
-        for (long long iy = index(lo.y()); iy <= index(hi.y()); ++iy) {
-          std::vector<int>& bucket = cells_[key(ix, iy)];
-          if (bucket.empty() || bucket.back() != feature) bucket.push_back(feature);
-        }
-      }
-    }
-  }
-
-  const std::vector<int>& near(const Vec2& p) const {
-    static const std::vector<int> none;
-    const auto found = cells_.find(key(index(p.x()), index(p.y())));
-    return found == cells_.end() ? none : found->second;
-  }
-
-private:
-  long long index(double coordinate) const {
-    return static_cast<long long>(std::floor(coordinate / cell_));
-  }
-  // Two cells may share a key; that only adds candidates, which are checked anyway.
-  static std::uint64_t key(long long ix, long long iy) {
-    return static_cast<std::uint64_t>(ix) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(iy);
-  }
-
-  double cell_, reach_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-};
-
 std::vector<Feature> contact_features(const Block& a, const Block& b, const ContactFaces& faces,
                                       const PlaneFrame& frame) {
   std::vector<Feature> features;
@@ -193,9 +150,20 @@ struct Provenance {
 class ContactFeatures {
 public:
   ContactFeatures(std::vector<Feature> features, double match)
-      : match_(match), features_(std::move(features)), grid_(grid_cell(features_, match), match) {
+      : match_(match), features_(std::move(features)), cell_(grid_cell(features_, match)), grid_(Vec3::Zero(), cell_) {
+    // Each feature goes into the cells it comes within `match` of, in
+    // pieces no longer than a cell, so that a long diagonal edge costs its
+    // length, not its bounding box; a contact vertex then meets only the
+    // features of its own cell.
     for (size_t i = 0; i < features_.size(); ++i) {
-      grid_.insert(static_cast<int>(i), features_[i].p0, features_[i].p1);
+      const Vec2 p0 = features_[i].p0, p1 = features_[i].p1;
+      const int pieces = std::max(1, static_cast<int>(std::ceil((p1 - p0).norm() / cell_)));
+      for (int k = 0; k < pieces; ++k) {
+        const Vec2 s0 = p0 + (p1 - p0) * (static_cast<double>(k) / pieces);
+        const Vec2 s1 = p0 + (p1 - p0) * (static_cast<double>(k + 1) / pieces);
+        const Vec2 lo = s0.cwiseMin(s1).array() - match, hi = s0.cwiseMax(s1).array() + match;
+        grid_.insert_box(Vec3(lo.x(), lo.y(), 0.0), Vec3(hi.x(), hi.y(), 0.0), static_cast<int>(i));
+      }
     }
   }
 
@@ -204,13 +172,14 @@ public:
     const Feature* nearest_vertex[2] = {nullptr, nullptr};  // of a, of b
     double nearest_distance[2] = {match_, match_};
     std::vector<const Feature*> edges_a, edges_b;
-    for (int i : grid_.near(x)) {
+    const Vec3 at(x.x(), x.y(), 0.0);
+    grid_.for_each_in(at, at, [&](int i) {
       const Feature& feature = features_[i];
       if (feature.edge) {
         if (distance_to_segment(x, feature.p0, feature.p1) <= match_) {
           (feature.of_a ? edges_a : edges_b).push_back(&feature);
         }
-        continue;
+        return;
       }
       const int side = feature.of_a ? 0 : 1;
       const double distance = (feature.p0 - x).norm();
@@ -218,7 +187,7 @@ public:
         nearest_distance[side] = distance;
         nearest_vertex[side] = &feature;
       }
-    }
+    });
     Provenance found;
     if (nearest_vertex[0]) {
       found.kind = Provenance::Kind::vertex_of_a;
@@ -258,7 +227,8 @@ public:
 private:
   double match_;
   std::vector<Feature> features_;
-  FeatureGrid grid_;
+  double cell_;
+  PointGrid grid_;  // in the plane's coordinates (z = 0)
 };
 
 // Face A's plane as the projection uses it: unit normal n and centre c.
