@@ -113,6 +113,7 @@ int w_important_weights(lua_State* L) {
       lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
     }
     lua_setfield(L, -2, "unstable");
+    set_string(L, "status", important.interrupted ? "interrupted" : "done");
     set_field(L, "solves", important.solves);
     set_field(L, "seconds", important.seconds);
     return 1;

@@ -1,9 +1,12 @@
 #include "analysis/equilibrium_program.hpp"
 
+#include <ClpEventHandler.hpp>
 #include <ClpSimplex.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <cmath>
 #include <limits>
+
+#include "core/interrupt.hpp"
 
 namespace ashlar {
 
@@ -110,6 +113,23 @@ void load_program(ClpSimplex& simplex, const EquilibriumProgram& program) {
   simplex.setLogLevel(0);
   simplex.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
                       no_objective.data(), program.row_lower.data(), program.row_upper.data());
+  stop_on_request(simplex);
+}
+
+namespace {
+
+// Clp asks after every iteration; 0 stops it with status 5.
+class StopOnRequest : public ClpEventHandler {
+public:
+  int event(Event which) override { return which == endOfIteration && stop_requested() ? 0 : -1; }
+  ClpEventHandler* clone() const override { return new StopOnRequest(*this); }
+};
+
+}  // namespace
+
+void stop_on_request(ClpSimplex& simplex) {
+  StopOnRequest handler;
+  simplex.passInEventHandler(&handler);  // Clp keeps a clone
 }
 
 const char* clp_failure(int status) {
@@ -118,6 +138,8 @@ const char* clp_failure(int status) {
       return "stopped";
     case 4:
       return "numerical difficulties";
+    case kClpInterrupted:
+      return "interrupted";
     default:
       return "unexpected simplex status";
   }

@@ -59,11 +59,19 @@ double friction_needed(const EquilibriumOptions& options, double c, double f_u, 
 
 EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const EquilibriumOptions& options);
 
-// Loads the program into `simplex` with no objective and Clp's log off.
+// Loads the program into `simplex` with no objective and Clp's log off,
+// stopping on request (stop_on_request).
 void load_program(ClpSimplex& simplex, const EquilibriumProgram& program);
 
-// The status name of a Clp status that is no answer: "stopped" (3),
-// "numerical difficulties" (4), else "unexpected simplex status".
+// Makes `simplex` stop at the end of an iteration once Ctrl-C or the
+// calling thread's sandbox deadline asks (core/interrupt.hpp): its status
+// is then kClpInterrupted.
+void stop_on_request(ClpSimplex& simplex);
+constexpr int kClpInterrupted = 5;  // Clp's "stopped by event handler"
+
+// The status name of a Clp status that is no answer: "stopped" (3, the
+// iteration limit), "numerical difficulties" (4), "interrupted" (5), else
+// "unexpected simplex status".
 const char* clp_failure(int status);
 
 }  // namespace ashlar

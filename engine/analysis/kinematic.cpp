@@ -227,18 +227,22 @@ KinematicLoadFactor kinematic_load_factor(const Structure& structure, const Load
     return out;
   };
   if (upper.status != "optimal" && upper.status != "unbounded") return finish(upper.status, upper.factor);
-  // Each analysis: stands (1), falls (0), or no verdict (-1).
+  // Each analysis: stands (1), falls (0), or no verdict (-1: not
+  // converged, or interrupted, which then ends the search as such).
+  bool interrupted = false;
   auto stands = [&](double lambda, EquilibriumResult* keep) {
     ++out.analyses;
     EquilibriumResult r = analyze_kinematic(loaded(structure, load, lambda), settings);
+    interrupted = r.status == SolverStatus::interrupted;
     const int verdict = r.stable ? 1 : (r.status == SolverStatus::converged ? 0 : -1);
     if (keep) *keep = std::move(r);
     return verdict;
   };
   const double kNaN = std::numeric_limits<double>::quiet_NaN();
+  auto no_verdict = [&] { return finish(interrupted ? "interrupted" : "no verdict", kNaN); };
   EquilibriumResult at_zero;
   const int zero = stands(0.0, &at_zero);
-  if (zero < 0) return finish("no verdict", kNaN);
+  if (zero < 0) return no_verdict();
   if (zero == 0) {
     out.failure = std::move(at_zero);
     return finish("unstable", kNaN);
@@ -249,21 +253,21 @@ KinematicLoadFactor kinematic_load_factor(const Structure& structure, const Load
     high = 1.0;
     for (;; high *= 2.0) {
       const int verdict = stands(high, &out.failure);
-      if (verdict < 0) return finish("no verdict", kNaN);
+      if (verdict < 0) return no_verdict();
       if (verdict == 0) break;
       low = high;
       if (high >= kLargestFactor) return finish("unbounded", std::numeric_limits<double>::infinity());
     }
   } else {
     const int verdict = stands(high, &out.failure);
-    if (verdict < 0) return finish("no verdict", kNaN);
+    if (verdict < 0) return no_verdict();
     if (verdict == 1) return finish("optimal", high);  // the upper bound itself stands
   }
   while (high - low > tolerance * std::max(high, 1e-12)) {
     const double middle = 0.5 * (low + high);
     EquilibriumResult r;
     const int verdict = stands(middle, &r);
-    if (verdict < 0) return finish("no verdict", kNaN);
+    if (verdict < 0) return no_verdict();
     if (verdict == 1) {
       low = middle;
     } else {
@@ -293,22 +297,27 @@ FrictionDemand kinematic_friction_demand(const Structure& structure, const Analy
   };
   // Each analysis: stands (1), falls (0), or no verdict (-1); a fall keeps
   // its moving interfaces as the critical ones.
+  bool interrupted = false;
   auto stands = [&](double mu) {
     ++out.programs;
     AnalysisSettings at = settings;
     at.problem.friction = mu;
     const EquilibriumResult r = analyze_kinematic(structure, at);
     out.iterations += r.iterations;
+    interrupted = r.status == SolverStatus::interrupted;
     if (r.stable) return 1;
     if (r.status != SolverStatus::converged) return -1;
     out.critical.clear();
     for (const LimitInterface& joint : r.limit) out.critical.push_back(joint.interface);
     return 0;
   };
+  auto no_verdict = [&] {
+    return finish(interrupted ? "interrupted" : "no verdict", std::numeric_limits<double>::quiet_NaN());
+  };
   constexpr double kLargestFriction = 1e3;
   double low = out.lower, high = std::max(out.friction, 1e-3);
   for (int verdict = stands(high); verdict != 1; verdict = stands(high)) {
-    if (verdict < 0) return finish("no verdict", std::numeric_limits<double>::quiet_NaN());
+    if (verdict < 0) return no_verdict();
     low = high;
     if (high >= kLargestFriction) {
       out.lower = low;
@@ -319,7 +328,7 @@ FrictionDemand kinematic_friction_demand(const Structure& structure, const Analy
   while (high - low > tolerance * high) {
     const double middle = 0.5 * (low + high);
     const int verdict = stands(middle);
-    if (verdict < 0) return finish("no verdict", std::numeric_limits<double>::quiet_NaN());
+    if (verdict < 0) return no_verdict();
     (verdict == 1 ? high : low) = middle;
   }
   out.lower = low;

@@ -81,7 +81,8 @@ struct KinematicLoadFactor {
   // method allows: an infinite factor); "unstable" (falls with no load:
   // factor 0 is not reached, NaN); or the equilibrium method's status when
   // it has no factor ("infeasible", "floating", ...); "no verdict" when a
-  // kinematic analysis did not settle (NaN).
+  // kinematic analysis did not settle, "interrupted" when one was stopped
+  // (Ctrl-C, a sandbox deadline) (both NaN).
   std::string status = "optimal";
   double factor = 0.0;
   double equilibrium_factor = 0.0;   // load_factor's, the upper bound
@@ -94,7 +95,8 @@ struct KinematicLoadFactor {
 // equilibrium method's demand (friction_demand), which it cannot be below.
 // Status as friction_demand's, and "unbounded" when it stands only without
 // sliding (friction +inf; a block clamped between walls), "no verdict" when
-// an analysis did not settle. `programs` counts kinematic analyses,
+// an analysis did not settle, "interrupted" when one was stopped (both NaN).
+// `programs` counts kinematic analyses,
 // `critical` the interfaces that move at `lower`.
 FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
                                          double tolerance = 1e-3);

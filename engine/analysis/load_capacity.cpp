@@ -12,6 +12,7 @@
 
 #include "analysis/equilibrium_program.hpp"
 #include "core/clock.hpp"
+#include "core/interrupt.hpp"
 
 namespace ashlar {
 
@@ -87,6 +88,7 @@ ClpSimplex recession_program(const CoinPackedMatrix& matrix, const EquilibriumPr
   ClpSimplex rays;
   rays.setLogLevel(0);
   rays.loadProblem(matrix, lower.data(), upper.data(), cost.data(), zero.data(), zero.data());
+  stop_on_request(rays);
   return rays;
 }
 
@@ -94,6 +96,7 @@ struct BlockBounds {
   double min = kNaN, max = kNaN;
   int failure = 0;  // Clp's status when a program failed
   int programs = 0, pivots = 0;
+  bool solved = false;  // false: skipped, the computation was interrupted first
 };
 
 // One worker's programs, on its own copies of the models (a Clp model is
@@ -106,6 +109,7 @@ public:
   // The bounds of the multiple in `column` (fixed at 1 between calls).
   BlockBounds solve(int column) {
     BlockBounds bounds;
+    bounds.solved = true;
     // Least: from the as-built basis, where the multiple 1 is feasible, by
     // the primal simplex (a few dozen pivots).
     capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
@@ -230,8 +234,12 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   programs.reserve(workers);
   for (int w = 0; w < workers; ++w) programs.emplace_back(capacity, rays, as_built == 0 ? &basis : nullptr);
   std::atomic<size_t> next{0};
+  // The helpers answer to the caller's sandbox deadline too; no block is
+  // begun once a stop is asked for.
+  const Clock::time_point deadline = stop_deadline();
   auto work = [&](BlockPrograms& mine) {
-    for (size_t k = next++; k < blocks.size(); k = next++) {
+    const DeadlineScope scope(deadline);
+    for (size_t k = next++; k < blocks.size() && !stop_requested(); k = next++) {
       bounds[k] = mine.solve(multiplier_column[blocks[k]]);
     }
   };
@@ -240,12 +248,18 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   work(programs[0]);
   for (std::thread& thread : helpers) thread.join();
 
+  bool interrupted = false;
   for (size_t k = 0; k < blocks.size(); ++k) {
     result.min[blocks[k]] = bounds[k].min;
     result.max[blocks[k]] = bounds[k].max;
     result.programs += bounds[k].programs;
     result.simplex_iterations += bounds[k].pivots;
     if (bounds[k].failure != 0 && result.status == "optimal") result.status = clp_failure(bounds[k].failure);
+    interrupted = interrupted || !bounds[k].solved || bounds[k].failure == kClpInterrupted;
+  }
+  if (interrupted) {  // the blocks done keep their bounds; no verdict
+    result.status = clp_failure(kClpInterrupted);
+    result.stable = false;
   }
   result.seconds = seconds_since(start);
   return result;

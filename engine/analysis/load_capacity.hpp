@@ -37,6 +37,8 @@ struct LoadCapacity {
   // "optimal", or the failure of the first block (in block order) whose
   // programs failed ("stopped" on the iteration limit, "numerical
   // difficulties"); that block's bounds are NaN, the others stand.
+  // "interrupted" (Ctrl-C or a sandbox deadline): the blocks not done are
+  // NaN, and stable is false (no verdict).
   std::string status = "optimal";
   int programs = 0;            // linear programs solved
   int simplex_iterations = 0;  // simplex pivots and barrier iterations over all of them

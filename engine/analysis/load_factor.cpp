@@ -11,6 +11,7 @@
 #include "analysis/mechanism.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 
 namespace ashlar {
 
@@ -127,6 +128,12 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   AnalysisSettings unloaded;
   unloaded.problem = settings.problem;
   const EquilibriumResult at_rest = analyze_equilibrium(structure, unloaded);
+  if (at_rest.status == SolverStatus::interrupted) {  // Clp's barrier would not hear it
+    result.status = clp_failure(kClpInterrupted);
+    result.factor = kNaN;
+    result.seconds = seconds_since(start);
+    return result;
+  }
   result.stable = at_rest.borderline ? solve_checked(simplex, result.iterations) == 0 : at_rest.stable;
   simplex.setColumnBounds(factor_column, -COIN_DBL_MAX, COIN_DBL_MAX);
   simplex.setObjectiveCoefficient(factor_column, -1.0);
@@ -164,9 +171,10 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
       result.status = "unbounded";
       result.factor = kInfinity;
       break;
-    default:
+    default:  // an interrupted search says so and carries no verdict
       result.status = clp_failure(simplex.status());
       result.factor = kNaN;
+      if (simplex.status() == kClpInterrupted) result.stable = false;
   }
   result.seconds = seconds_since(start);
   return result;
@@ -184,6 +192,9 @@ public:
   // 0: stands, 1: does not, other: Clp's failure status. The scaled
   // unknowns of the equilibrium found go to `unknowns`.
   int stands(double friction, std::vector<Eigen::Vector4d>* unknowns = nullptr) {
+    // A program small enough to end without iterating never asks the
+    // event handler: ask here, so that a stop requested is always heard.
+    if (stop_requested()) return kClpInterrupted;
     options_.friction = friction;
     const EquilibriumProgram program = equilibrium_program(problem_, options_);
     ClpSimplex simplex;
@@ -288,6 +299,9 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
       at_high = unknowns;
     } else if (status == 1) {
       low = middle;
+    } else if (status == kClpInterrupted) {
+      result.lower = low;  // the bracket so far: it stands with `high`
+      return finish(clp_failure(status), high);
     } else {
       return finish(clp_failure(status), kNaN);
     }

@@ -41,7 +41,8 @@ struct LoadFactor {
   // "optimal", "unbounded" (no load is too much: factor = +inf),
   // "infeasible" (no multiple of the load lets it stand: factor NaN),
   // "floating" (a free block with no contact path to a support: NaN),
-  // "stopped" or "numerical difficulties" (Clp failed: NaN).
+  // "stopped" or "numerical difficulties" (Clp failed: NaN), "interrupted"
+  // (Ctrl-C or a sandbox deadline: NaN, and stable false: no verdict).
   std::string status = "optimal";
   double factor = 0.0;  // the largest multiple lambda; negative when it needs a push
   bool stable = false;  // it stands with no load (lambda = 0)
@@ -58,7 +59,8 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
 struct FrictionDemand {
   // "optimal"; "unstable" when it does not stand even without sliding
   // (friction +inf); "floating" (+inf); "stopped" or "numerical
-  // difficulties" (NaN).
+  // difficulties" (NaN); "interrupted" (Ctrl-C or a sandbox deadline: the
+  // bracket found so far, [lower, friction], or NaN before there is one).
   std::string status = "optimal";
   double friction = 0.0;       // the smallest coefficient, to the tolerance (upper end of the bracket)
   double lower = 0.0;          // the largest coefficient found too small

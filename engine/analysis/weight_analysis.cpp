@@ -153,6 +153,10 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
   for (int i = 0; i < structure.size(); ++i) {
     if (problem.problem().row_of_block[i] < 0) continue;
     const NecessaryWeights needed = problem.solve(i, result.solves > 0);
+    if (needed.status == SolverStatus::interrupted) {
+      result.interrupted = true;
+      break;
+    }
     ++result.solves;
     if (!needed.stable) result.unstable_blocks.push_back(i);
     for (int j = 0; j < structure.size(); ++j) {

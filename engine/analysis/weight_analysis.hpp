@@ -59,6 +59,9 @@ struct ImportantWeights {
   // Free blocks whose necessary-weights problem has no compression-only
   // solution (0-based); they add what they found all the same.
   std::vector<int> unstable_blocks;
+  // Every free block done, or stopped by Ctrl-C or a sandbox deadline:
+  // per_volume then sums the `solves` blocks done before (in block order).
+  bool interrupted = false;
   int solves = 0;
   double seconds = 0.0;
 };

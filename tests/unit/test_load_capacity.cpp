@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "analysis/load_capacity.hpp"
+#include "core/interrupt.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -72,4 +73,21 @@ TEST(LoadCapacity, UnstableStructureHasNoMultipleForTheOthers) {
   EXPECT_NEAR(capacity.max[2], 0.0, 1e-9);
   EXPECT_TRUE(std::isnan(capacity.min[1]));
   EXPECT_TRUE(std::isnan(capacity.max[1]));
+}
+
+TEST(LoadCapacity, AnInterruptedComputationCarriesNoVerdict) {
+  // A sandboxed script's deadline already passed: the programs stop at
+  // once, the status says so and nothing is claimed (this arch stands).
+  const Structure s = semicircular_arch(9, 0.8);
+  LoadCapacity capacity;
+  {
+    const DeadlineScope past(Clock::now());
+    capacity = load_capacity(s, AnalysisSettings{});
+  }
+  EXPECT_EQ(capacity.status, "interrupted");
+  EXPECT_FALSE(capacity.stable);
+  for (int j = 0; j < s.size(); ++j) {
+    EXPECT_TRUE(std::isnan(capacity.min[j]) && std::isnan(capacity.max[j])) << j;
+  }
+  EXPECT_TRUE(load_capacity(s, AnalysisSettings{}).stable);
 }

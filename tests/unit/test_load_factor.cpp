@@ -7,6 +7,7 @@
 
 #include "analysis/equilibrium.hpp"
 #include "analysis/load_factor.hpp"
+#include "core/interrupt.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -173,4 +174,22 @@ TEST(FrictionDemand, NoneOnFlatGroundAndNoneEnoughWhenItFalls) {
   EXPECT_TRUE(std::isinf(thin.friction));
   EXPECT_TRUE(contains(error_of([] { friction_demand(stack(1, 1, 1), EquilibriumOptions{}, 0.0); }),
                        "tolerance"));
+}
+
+TEST(LoadFactor, AnInterruptedSearchCarriesNoVerdict) {
+  // Ctrl-C (the flag the host's handler sets) stops Clp after its current
+  // iteration: the answer says so, with no factor and no verdict, though
+  // this stack stands and tips at b/h = 1/3.
+  const Structure s = stack(1, 0.4, 1.2);
+  interrupt_requested() = true;
+  const LoadFactor factor = load_factor(s, lateral(kNoSliding));
+  const FrictionDemand demand = friction_demand(s, lateral(kNoSliding).problem);
+  interrupt_requested() = false;
+  EXPECT_EQ(factor.status, "interrupted");
+  EXPECT_TRUE(std::isnan(factor.factor));
+  EXPECT_FALSE(factor.stable);
+  EXPECT_EQ(demand.status, "interrupted");
+  EXPECT_TRUE(std::isnan(demand.friction));
+  // And without the request, the same calls answer.
+  EXPECT_NEAR(load_factor(s, lateral(kNoSliding)).factor, 0.4 / 1.2, 1e-9);
 }

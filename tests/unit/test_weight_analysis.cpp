@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "analysis/weight_analysis.hpp"
+#include "core/interrupt.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -113,4 +114,20 @@ TEST(NecessaryWeights, TopBlockHoldsTheOverhangingMiddleOne) {
   EXPECT_TRUE(important.unstable_blocks.empty());
   EXPECT_NEAR(important.per_volume[3] * s.block(3).volume(),
               needed.weights[3] + necessary_weights(s, 1, settings).weights[3], 1e-6 * middle);
+}
+
+TEST(ImportantWeights, AnInterruptedComputationSaysSo) {
+  // Ctrl-C before the first block's problem: nothing is summed and nothing
+  // is called unstable (each block's problem would stand on this arch).
+  const Structure s = semicircular_arch(9, 0.8);
+  interrupt_requested() = true;
+  const ImportantWeights important = important_weights(s, AnalysisSettings{});
+  interrupt_requested() = false;
+  EXPECT_TRUE(important.interrupted);
+  EXPECT_EQ(important.solves, 0);
+  EXPECT_TRUE(important.unstable_blocks.empty());
+  for (double w : important.per_volume) EXPECT_EQ(w, 0.0);
+  const ImportantWeights done = important_weights(s, AnalysisSettings{});
+  EXPECT_FALSE(done.interrupted);
+  EXPECT_EQ(done.solves, 9);
 }
