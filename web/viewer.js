@@ -69,6 +69,12 @@ for (const object of scene_data.objects) {
   mesh.name = object.name;
   mesh.userData = { layer: object.layer, info: object.info };
   material.userData.alpha = a;
+  if (object.layer === "interfaces") {
+    // Drawn over the block faces they lie on.
+    material.polygonOffset = true;
+    material.polygonOffsetFactor = -1;
+    material.polygonOffsetUnits = -4;
+  }
   if (object.layer === "blocks") {
     block_materials.push(material);
   } else {
@@ -157,7 +163,7 @@ function reset_view() {
     const toward = p.dot(back);
     distance = Math.max(distance, toward + Math.abs(p.dot(right)) / tan_h, toward + Math.abs(p.dot(up)) / tan_v);
   }
-  distance *= 1.1;  // a margin
+  distance *= 1.25;  // a margin, which also keeps most structures clear of the panels
   camera.position.copy(center).addScaledVector(back, distance);
   camera.near = distance / 100;
   camera.far = distance * 10;
