@@ -70,6 +70,15 @@ function support.render(glb, view)
   assert(os.rename(temporary, png))
 end
 
+-- Runs f, prints `what` with the seconds it took, returns f's result.
+function support.timed(what, f)
+  local clock = require("ashlar").clock
+  local start = clock()
+  local result = f()
+  print(("  %-32s %8.3f s"):format(what, clock() - start))
+  return result
+end
+
 -- Whether pages of the HTML viewer can be photographed (Debian: chromium).
 function support.can_screenshot()
   return os.execute("command -v chromium > /dev/null 2>&1")

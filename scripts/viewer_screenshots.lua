@@ -26,12 +26,7 @@ print("pages in " .. pages)
 local pictures = support.can_screenshot()
 if not pictures then print("chromium not found: only the .html pages are written") end
 
-local function timed(what, f)
-  local start = ashlar.clock()
-  local result = f()
-  print(("  %-40s %7.2f s"):format(what, ashlar.clock() - start))
-  return result
-end
+local timed = support.timed
 
 local function page(name, s, options)
   local html = ("%s/%s.html"):format(pages, name)
