@@ -49,6 +49,20 @@ describe("ashlar.export to HTML", function()
     assert.truthy(bare:find('{"name":"edges","visible":true}', 1, true))
   end)
 
+  it("is the same page from the C module in a stock lua5.4, which carries three.js too", function()
+    local module_dir = os.getenv("ASHLAR_MODULE_DIR")
+    assert.is_not_nil(module_dir, "set ASHLAR_MODULE_DIR to the folder of ashlar.so")
+    local write = 'local ashlar = require "ashlar" local models = require "ashlar.models" '
+                  .. ('ashlar.export(models.arch{ voussoirs = 5 }, %q)'):format(folder .. "/module.html")
+    assert.is_true(os.execute("lua5.4 -e " .. support.quote(("package.cpath = %q .. ';' .. package.cpath")
+                                  :format(module_dir .. "/?.so")) .. " -e " .. support.quote(write)))
+    ashlar.export(models.arch{ voussoirs = 5 }, folder .. "/host.html")
+    local from_module, from_host = read(folder .. "/module.html"), read(folder .. "/host.html")
+    assert.truthy(from_module:find('"three.core":"', 1, true))
+    -- Alike but for the title, the file's name.
+    assert.is_true(from_host:gsub("host%.html", "module.html") == from_module)
+  end)
+
   it("labels a legend for colours mapped from values, and titles the page", function()
     local values = {}
     for i = 1, #s do values[i] = i end
