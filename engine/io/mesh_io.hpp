@@ -42,7 +42,7 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
 // the HTML viewer: its legend and each block's read-out.
 struct ColorScale {
   std::vector<double> values;  // one per block
-  double lo = 0.0, hi = 1.0;   // the range mapped onto the map's ends, lo <= hi
+  double lo = 0.0, hi = 1.0;   // the values mapped onto the map's ends (hi < lo reverses it)
   std::string map = "viridis";
   std::string label;  // what the values mean, with units; may be empty
 };

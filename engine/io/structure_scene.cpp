@@ -59,8 +59,8 @@ void check_options(const Structure& structure, const ExportOptions& options) {
       throw InvalidArgument("export: color_scale needs one value per block (" + std::to_string(structure.size()) +
                             "), got " + std::to_string(scale->values.size()));
     }
-    if (!std::isfinite(scale->lo) || !std::isfinite(scale->hi) || scale->lo > scale->hi) {
-      throw InvalidArgument("export: color_scale's range must be finite with lo <= hi, got {" +
+    if (!std::isfinite(scale->lo) || !std::isfinite(scale->hi)) {
+      throw InvalidArgument("export: color_scale's range must be finite, got {" +
                             shortest_number(scale->lo) + ", " + shortest_number(scale->hi) + "}");
     }
     check_color_map(scale->map);
