@@ -1,9 +1,9 @@
 // The HTML viewer of ashlar.export (web/viewer.html loads it): draws the
 // scene the engine wrote into the page (engine/io/viewer_page.cpp) with
 // three.js. Turn with the left mouse button, pan with the right one, zoom
-// with the wheel; hovering an object shows its name and values; the
-// check boxes show and hide each layer. Coordinates are ashlar's: metres,
-// z up.
+// with the wheel; hovering (or tapping) an object shows its name and
+// values; the check boxes show and hide each layer. Coordinates are
+// ashlar's: metres, z up.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
@@ -210,7 +210,8 @@ function hover(mesh) {
   info.replaceChildren(heading, table);
 }
 
-renderer.domElement.addEventListener("pointermove", (event) => {
+// Hover with a mouse; a tap (touch screens have no hover) picks too.
+function pick(event) {
   const rect = renderer.domElement.getBoundingClientRect();
   pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
   raycaster.setFromCamera(pointer, camera);
@@ -219,7 +220,9 @@ renderer.domElement.addEventListener("pointermove", (event) => {
   const chosen = hits.find((hit) => !see_through(hit)) || hits[0];
   hover(chosen ? chosen.object : null);
   request_render();
-});
+}
+renderer.domElement.addEventListener("pointermove", pick);
+renderer.domElement.addEventListener("click", pick);
 renderer.domElement.addEventListener("pointerleave", () => {
   hover(null);
   request_render();

@@ -7,7 +7,8 @@
 // Every case checks that the page loads without console errors and draws
 // something; then
 //   arch: the forces and thrust line show in their colours and go when
-//         switched off, hovering the crown names its voussoir, hovering an
+//         switched off, hovering or tapping the crown names its voussoir,
+//         hovering an
 //         arrow shows its interface's forces;
 //   dome: blocks coloured by height with coolwarm are red at the top and
 //         blue at the bottom, and the legend shows the map and its label.
@@ -139,6 +140,12 @@ async function check_arch(browser, page) {
   const crown = await info_after_hover(page, Math.round((left + right) / 2), top + Math.round(0.04 * (bottom - top)));
   check(/^voussoir 5\b/.test(crown), `hovering the crown names it: ${JSON.stringify(crown.split('\n')[0])}`);
   check(/mass\s+\d/.test(crown), 'and gives its mass');
+  // A tap (no hover on touch screens) picks too.
+  await info_after_hover(page, 2, HEIGHT / 2);
+  await page.touchscreen.tap(Math.round((left + right) / 2), top + Math.round(0.04 * (bottom - top)));
+  await page.evaluate(() => new Promise((done) => requestAnimationFrame(done)));
+  const tapped = await page.$eval('#info', (element) => element.innerText);
+  check(/^voussoir 5\b/.test(tapped), `tapping the crown names it: ${JSON.stringify(tapped.split('\n')[0])}`);
 
   // An arrow: the blue pixel with the most blue neighbours.
   await page.click('#layer-forces');
