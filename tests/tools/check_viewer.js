@@ -8,8 +8,7 @@
 // something; then
 //   arch: the forces and thrust line show in their colours and go when
 //         switched off, hovering or tapping the crown names its voussoir,
-//         hovering an
-//         arrow shows its interface's forces;
+//         hovering an arrow shows its interface's forces;
 //   dome: blocks coloured by height with coolwarm are red at the top and
 //         blue at the bottom, and the legend shows the map and its label.
 // Exits 77 (ctest: skipped) when chromium is not installed, 2 when
