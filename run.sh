@@ -6,7 +6,8 @@
 #   ./run.sh sanitize [args]    build with ASan+UBSan into build-sanitize/ and run the suite there
 #   ./run.sh install PACKAGE... install the Debian packages that are missing (for scripts/fuzz.sh)
 # Re-running is cheap: packages and the CMake configuration are only set up
-# when missing, npm packages when missing or their lockfile is newer. ASHLAR_JOBS sets the build's parallelism.
+# when missing, npm packages when missing or their lockfile is newer.
+# ASHLAR_JOBS sets the build's parallelism.
 set -euo pipefail
 
 cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")"
