@@ -76,6 +76,28 @@ describe("ashlar.export to HTML", function()
     assert.truthy(read(folder .. "/values.html"):find("<title>five voussoirs</title>", 1, true))
   end)
 
+  it("switches cables, load traces and a mechanism's displaced blocks like the mesh files draw them", function()
+    local bridge = models.cable_stayed_bridge{}
+    ashlar.export(bridge, folder .. "/bridge.html")
+    assert.truthy(scene_of(folder .. "/bridge.html"):find('{"name":"cables","visible":true}', 1, true))
+    local frame = models.h_frame{}
+    ashlar.export(frame, folder .. "/traces.html", { traces = ashlar.trace_loads(frame, "beam", { traces = 5, seed = 1 }) })
+    local traces = scene_of(folder .. "/traces.html")
+    assert.truthy(traces:find('{"name":"traces","visible":true}', 1, true))
+    assert.truthy(traces:find('"name":"load traces"', 1, true))
+    local thin = models.arch{ voussoirs = 5, thickness = 0.2 }
+    local falls = ashlar.analyze(thin, { friction = 0.7 })
+    assert.is_false(falls.stable)
+    ashlar.export(thin, folder .. "/falls.html", { result = falls, mechanism = 0.3, title = "thin" })
+    ashlar.export(thin, folder .. "/stands.html", { result = falls, title = "thin" })
+    local moved, still = scene_of(folder .. "/falls.html"), scene_of(folder .. "/stands.html")
+    assert.truthy(moved:find('"summary":"7 blocks: unstable, infeasibility ', 1, true))
+    -- The free blocks and their outlines moved, and nothing else changed.
+    local function without_geometry(scene) return (scene:gsub('"positions":%b[]', ""):gsub('"outline":%b[]', "")) end
+    assert.are_not.equal(still, moved)
+    assert.are.equal(without_geometry(still), without_geometry(moved))
+  end)
+
   it("names the option at fault", function()
     expect_error({ 'format: expected "compas" or "html"', 'got "htm"' }, ashlar.export, s, folder .. "/x.html",
                  { format = "htm" })
