@@ -86,8 +86,9 @@ int w_export(lua_State* L) {
     const bool html = format == "html" || (!format && file_extension(path) == "html");
     if (!html) {
       for (const char* key : {"title", "legend"}) {
-        if (options.has(key)) {
-          throw ArgError(3, std::string(key) + ": only the HTML viewer (a .html path, or format = \"html\") has one");
+        if (const std::optional<std::string> text = options.string(key)) {
+          throw ArgError(3, std::string(key) + ": only the HTML viewer (a .html path, or format = \"html\") has one, got \"" +
+                                *text + "\" for '" + path + "'");
         }
       }
     }
