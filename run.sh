@@ -5,8 +5,9 @@
 #   ./run.sh test [args]        build, run the test suite (args go to ctest), then the sanitizer suite
 #   ./run.sh sanitize [args]    build with ASan+UBSan into build-sanitize/ and run the suite there
 #   ./run.sh install PACKAGE... install the Debian packages that are missing (for scripts/fuzz.sh)
-# Re-running is cheap: packages, npm tools and the CMake configuration are
-# only set up when missing. ASHLAR_JOBS sets the build's parallelism.
+# Re-running is cheap: packages and the CMake configuration are only set up
+# when missing, npm packages when missing or their lockfile is newer.
+# ASHLAR_JOBS sets the build's parallelism.
 set -euo pipefail
 
 cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")"
@@ -16,7 +17,7 @@ readonly DEBIAN_PACKAGES=(
   libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libopenblas0-pthread libcgal-dev libgmp-dev libmpfr-dev
   libassimp-dev liblbfgspp-dev libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev coinor-libclp-dev libcairo2-dev
   googletest libgtest-dev lua-busted valgrind libreadline-dev
-  nodejs npm gnuplot-nox python3 python3-cvxopt python3-numpy
+  nodejs npm gnuplot-nox python3 python3-cvxopt python3-numpy chromium
 )
 # Node.js may come from outside Debian (NodeSource's nodejs bundles npm and
 # conflicts with Debian's npm): for these a working command is enough.
@@ -64,12 +65,19 @@ install_packages() {
     apt-get install -y -q --no-install-recommends "${missing[@]}"
 }
 
-# The glTF validator used by the export tests.
+# npm packages, each folder at the versions its package-lock.json pins:
+# web/ holds three.js, which the build embeds in the HTML viewer; tests/tools
+# the glTF validator and puppeteer-core, which drives Debian's chromium in
+# the viewer's tests (it never downloads a browser). A folder is installed
+# again when its lockfile is newer than what npm last installed.
 install_node_tools() {
-  local tools=tests/tools
-  [[ -f $tools/package.json && ! -d $tools/node_modules ]] || return 0
-  say "installing node tools in $tools"
-  (cd "$tools" && npm ci --no-audit --no-fund)
+  local folder
+  for folder in web tests/tools; do
+    [[ -f $folder/package-lock.json ]] || continue
+    [[ $folder/package-lock.json -nt $folder/node_modules/.package-lock.json ]] || continue
+    say "installing node packages in $folder"
+    (cd "$folder" && npm ci --no-audit --no-fund)
+  done
 }
 
 # build <dir> [cmake options]: configures <dir> once, then builds it.

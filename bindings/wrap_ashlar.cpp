@@ -9,6 +9,7 @@
 #include "io/color_map.hpp"
 #include "io/compas_assembly.hpp"
 #include "io/mesh_io.hpp"
+#include "io/viewer_page.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"
 #include "wrap_Block.hpp"
@@ -61,19 +62,19 @@ int w_export(lua_State* L) {
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"format", "color", "interfaces", "tolerance", "result", "forces",
                                      "thrust", "force_scale", "opacity", "cable_color", "traces",
-                                     "trace_color", "mechanism", "edges"});
+                                     "trace_color", "mechanism", "edges", "title", "legend"});
     const std::optional<std::string> format = options.string("format");
-    if (format && *format != "compas") {
-      throw ArgError(3, "format: expected \"compas\" (other formats follow the file's extension), got \"" +
+    if (format && *format != "compas" && *format != "html") {
+      throw ArgError(3, "format: expected \"compas\" or \"html\" (other formats follow the file's extension), got \"" +
                             *format + "\"");
     }
-    if (format || file_extension(path) == "json") {
+    if (format == "compas" || (!format && file_extension(path) == "json")) {
       CompasExportOptions compas;
       compas.contact.tolerance = options.positive("tolerance", 0.0, true);
       const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
       compas.result = result.get();
       for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
-                              "traces", "trace_color", "mechanism", "edges"}) {
+                              "traces", "trace_color", "mechanism", "edges", "title", "legend"}) {
         if (options.has(key)) {
           throw ArgError(3, std::string(key) + ": does not apply to a COMPAS assembly (.json), which holds blocks, "
                                                "supports, interfaces and, with result, their forces");
@@ -82,8 +83,27 @@ int w_export(lua_State* L) {
       write_compas_assembly(s, path, compas);
       return 0;
     }
+    const bool html = format == "html" || (!format && file_extension(path) == "html");
+    if (!html) {
+      for (const char* key : {"title", "legend"}) {
+        if (const std::optional<std::string> text = options.string(key)) {
+          throw ArgError(3, std::string(key) + ": only the HTML viewer (a .html path, or format = \"html\") has one, got \"" +
+                                *text + "\" for '" + path + "'");
+        }
+      }
+    }
     ExportOptions exported;
-    exported.block_colors = block_colors(L, options, s.size());
+    BlockColoring coloring = block_coloring(L, options, s.size());
+    exported.block_colors = std::move(coloring.colors);
+    if (html) exported.color_scale = std::move(coloring.scale);
+    if (const std::optional<std::string> legend = options.string("legend")) {
+      if (!exported.color_scale) {
+        throw ArgError(3, "legend: \"" + *legend + "\" labels colours mapped from values; give color = { values = {...}, "
+                          "map = ..., range = ... } with it");
+      }
+      exported.color_scale->label = *legend;
+    }
+    exported.title = options.string("title").value_or("");
     exported.interfaces = options.boolean("interfaces").value_or(false);
     exported.contact.tolerance = options.positive("tolerance", 0.0, true);
     const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
@@ -92,7 +112,8 @@ int w_export(lua_State* L) {
     exported.thrust = options.boolean("thrust").value_or(false);
     exported.force_scale = options.positive("force_scale", 0.0, true);
     exported.mechanism_scale = options.positive("mechanism", 0.0, true);
-    exported.edges = options.boolean("edges").value_or(false);
+    // The viewer's outlines are lines, shown unless edges = false.
+    exported.edges = options.boolean("edges").value_or(html);
     if (options.push("cable_color") != LUA_TNIL) {
       exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
     }
@@ -108,7 +129,11 @@ int w_export(lua_State* L) {
       }
       exported.block_opacity = opacity;
     }
-    export_structure(s, path, exported);
+    if (html) {
+      write_viewer_page(s, path, exported);
+    } else {
+      export_structure(s, path, exported);
+    }
     return 0;
   });
 }

@@ -9,9 +9,9 @@ namespace ashlar::lua {
 
 namespace {
 
-// Colours from a values table: one number per block, mapped with `map`
-// over `range` (default: the values' own range).
-std::vector<Rgb> mapped_colors(lua_State* L, int color, int arg, int block_count) {
+// The values table: one number per block, mapped with `map` over `range`
+// (default: the values' own range).
+ColorScale color_scale(lua_State* L, int color, int arg, int block_count) {
   const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
   if (mapped.push("values") != LUA_TTABLE) {
     throw ArgError(arg, "color.values: expected a list of numbers, one per block");
@@ -40,7 +40,12 @@ std::vector<Rgb> mapped_colors(lua_State* L, int color, int arg, int block_count
   }
   if (mapped.push("range") != LUA_TNIL) std::tie(lo, hi) = to_range(L, -1, arg, "color.range");
   lua_pop(L, 1);
-  return map_colors(values, lo, hi, mapped.string("map").value_or("viridis"));
+  ColorScale scale;
+  scale.values = std::move(values);
+  scale.lo = lo;
+  scale.hi = hi;
+  scale.map = mapped.string("map").value_or("viridis");
+  return scale;
 }
 
 }  // namespace
@@ -80,6 +85,10 @@ std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::st
 }
 
 std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count) {
+  return block_coloring(L, options, block_count).colors;
+}
+
+BlockColoring block_coloring(lua_State* L, const OptionTable& options, int block_count) {
   const int arg = options.arg();
   if (options.push("color") == LUA_TNIL) {
     lua_pop(L, 1);
@@ -91,7 +100,8 @@ std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int bloc
                         "{values = {...}, map = name, range = {lo, hi}}, got " +
                             type_name(L, color));
   }
-  std::vector<Rgb> colors;
+  BlockColoring coloring;
+  std::vector<Rgb>& colors = coloring.colors;
   lua_rawgeti(L, color, 1);
   const int first = lua_type(L, -1);
   lua_pop(L, 1);
@@ -109,10 +119,11 @@ std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int bloc
       lua_pop(L, 1);
     }
   } else {
-    colors = mapped_colors(L, color, arg, block_count);
+    coloring.scale = color_scale(L, color, arg, block_count);
+    colors = map_colors(coloring.scale->values, coloring.scale->lo, coloring.scale->hi, coloring.scale->map);
   }
   lua_pop(L, 1);
-  return colors;
+  return coloring;
 }
 
 }  // namespace ashlar::lua

@@ -1,6 +1,7 @@
 // Colour options shared by ashlar.export and ashlar.draw.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,5 +21,12 @@ std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::st
 // per block, or {values = {...}, map = "viridis", range = {lo, hi}}. Empty
 // when absent.
 std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count);
+
+struct BlockColoring {
+  std::vector<Rgb> colors;          // as block_colors
+  std::optional<ColorScale> scale;  // with values: the values, range and map
+};
+// The `color` option with, when it gives values, what they were mapped by.
+BlockColoring block_coloring(lua_State* L, const OptionTable& options, int block_count);
 
 }  // namespace ashlar::lua

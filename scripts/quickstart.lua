@@ -1,6 +1,6 @@
 -- ashlar quickstart: builds a small scene, finds its contact interfaces,
--- analyses the equilibrium of an arch, exports both as glTF and prints a
--- summary.
+-- analyses the equilibrium of an arch, exports both as glTF (the arch also
+-- as the interactive HTML viewer) and prints a summary.
 --   ashlar scripts/quickstart.lua [output folder]
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
@@ -57,4 +57,5 @@ while thick - thin > 1e-4 do
 end
 print(("        minimum thickness without sliding: t/R = %.4f (limit for many voussoirs: 0.1075)"):format(thick))
 ashlar.export(arch, out .. "/arch.glb", { result = r, forces = true, thrust = true })
-print(("  wrote %s/arch.glb with force arrows and the thrust line"):format(out))
+ashlar.export(arch, out .. "/arch.html", { result = r, forces = true, thrust = true, interfaces = true })
+print(("  wrote %s/arch.glb with force arrows and the thrust line, and %s/arch.html to open in a browser"):format(out, out))

@@ -70,4 +70,34 @@ function support.render(glb, view)
   assert(os.rename(temporary, png))
 end
 
+-- Runs f, prints `what` with the seconds it took, returns f's result.
+function support.timed(what, f)
+  local clock = require("ashlar").clock
+  local start = clock()
+  local result = f()
+  print(("  %-32s %8.3f s"):format(what, clock() - start))
+  return result
+end
+
+-- Whether pages of the HTML viewer can be photographed (Debian: chromium).
+function support.can_screenshot()
+  return os.execute("command -v chromium > /dev/null 2>&1")
+end
+
+-- Photographs the page `html` into `png` (width x height pixels) with
+-- headless chromium, WebGL on SwiftShader (no GPU or display needed;
+-- --no-sandbox for containers), once the page has had 10 s of virtual time
+-- to draw; written under a temporary name, then renamed.
+function support.screenshot(html, png, width, height)
+  local temporary = png .. ".tmp.png"
+  local command = table.concat({
+    "chromium --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader --hide-scrollbars",
+    ("--window-size=%d,%d"):format(width, height), "--virtual-time-budget=10000",
+    "--screenshot=" .. support.shell_quoted(temporary), support.shell_quoted("file://" .. html),
+    "> /dev/null 2>&1",
+  }, " ")
+  assert(os.execute(command), "chromium failed: " .. command)
+  assert(os.rename(temporary, png))
+end
+
 return support

@@ -1,7 +1,7 @@
 // Named triangle meshes written as one 3D file through assimp's exporters
 // (glTF 2.0, OBJ, PLY, STL; the extension picks the format), whole or not at
-// all. Every export that draws geometry goes through here, so formats,
-// axes, materials and atomic writing are decided once.
+// all. Every export to a mesh file goes through here, so formats, axes,
+// materials and atomic writing are decided once.
 #pragma once
 
 #include <array>
@@ -11,28 +11,10 @@
 
 #include "core/types.hpp"
 #include "geometry/block.hpp"
+#include "io/flat_mesh.hpp"
 #include "io/mesh_io.hpp"
 
 namespace ashlar {
-
-// A flat-shaded triangle mesh: each polygon has its own copies of its
-// vertices, carrying its normal, so that edges stay sharp in any viewer.
-struct FlatMesh {
-  std::vector<Vec3> positions;                     // m
-  std::vector<Vec3> normals;                       // unit, one per position
-  std::vector<std::array<unsigned, 3>> triangles;  // counter-clockwise seen from outside
-  // Vertex colours: one per position, or empty for the material's colour
-  // alone. glTF multiplies them by the material's colour; give white then.
-  std::vector<Rgb> colors;
-
-  // Adds one planar polygon (convex or not, collinear runs allowed),
-  // ear-clipped in its plane, with its own vertices; `flip` shows its back.
-  // Adds no colours.
-  void add_polygon(const std::vector<Vec3>& loop, const Vec3& normal, bool flip);
-};
-
-// The faces of a block, flat-shaded.
-FlatMesh block_mesh(const Block& block);
 
 // Collects objects (a node with one mesh and a material of its own each)
 // and writes them as one scene.

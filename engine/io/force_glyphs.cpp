@@ -1,7 +1,5 @@
 #include "io/force_glyphs.hpp"
 
-#include <set>
-
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -133,7 +131,8 @@ void add_force_arrows(const EquilibriumResult& result, const ExportOptions& opti
   const double metres_per_newton = largest_arrow / largest;
   const double negligible = options.negligible_force * largest;
   std::map<std::string, int> uses;
-  for (const InterfaceForces& f : result.interfaces) {
+  for (std::size_t k = 0; k < result.interfaces.size(); ++k) {
+    const InterfaceForces& f = result.interfaces[k];
     const double size = f.resultant.norm();
     if (!(size > negligible) || !finite(f.resultant) || !finite(f.center_of_pressure)) continue;
     const double length = metres_per_newton * size;
@@ -149,11 +148,26 @@ void add_force_arrows(const EquilibriumResult& result, const ExportOptions& opti
     const Vec3 tip = f.center_of_pressure + length * f.resultant / size;
     const bool pulls = f.tension > negligible;
     glyphs.push_back({std::move(name), arrow_faces(f.center_of_pressure, tip, shape),
-                      pulls ? options.tension_color : options.compression_color});
+                      pulls ? options.tension_color : options.compression_color, SceneLayer::forces,
+                      static_cast<int>(k)});
   }
 }
 
 }  // namespace
+
+std::vector<std::array<Vec3, 2>> block_edges(const Block& block) {
+  std::vector<std::array<Vec3, 2>> edges;
+  std::set<std::pair<int, int>> drawn;
+  for (const FaceLoop& face : block.faces()) {
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const int p = face[k], q = face[(k + 1) % face.size()];
+      if (drawn.insert({std::min(p, q), std::max(p, q)}).second) {
+        edges.push_back({block.vertices()[p], block.vertices()[q]});
+      }
+    }
+  }
+  return edges;
+}
 
 double mean_free_block_size(const Structure& structure) {
   double sum = 0.0;
@@ -173,26 +187,19 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
   if (options.edges) {
     GlyphFaces edges;
     for (int i = 0; i < structure.size(); ++i) {
-      const Block& block = structure.block(i);
-      std::set<std::pair<int, int>> drawn;
-      for (const FaceLoop& face : block.faces()) {
-        for (std::size_t k = 0; k < face.size(); ++k) {
-          const int p = face[k], q = face[(k + 1) % face.size()];
-          if (!drawn.insert({std::min(p, q), std::max(p, q)}).second) continue;
-          GlyphFaces tube = tube_faces({block.vertices()[p], block.vertices()[q]},
-                                       kEdgeRadiusOfBlockSize * block_size, kEdgeSides);
-          edges.insert(edges.end(), std::make_move_iterator(tube.begin()), std::make_move_iterator(tube.end()));
-        }
+      for (const auto& [p, q] : block_edges(structure.block(i))) {
+        GlyphFaces tube = tube_faces({p, q}, kEdgeRadiusOfBlockSize * block_size, kEdgeSides);
+        edges.insert(edges.end(), std::make_move_iterator(tube.begin()), std::make_move_iterator(tube.end()));
       }
     }
-    if (!edges.empty()) glyphs.push_back({"edges", std::move(edges), options.edge_color});
+    if (!edges.empty()) glyphs.push_back({"edges", std::move(edges), options.edge_color, SceneLayer::edges});
   }
   for (std::size_t c = 0; c < structure.cables().size(); ++c) {
     const Cable& cable = structure.cables()[c];
     GlyphFaces tube = tube_faces({cable.from.point, cable.to.point},
                                  kCableRadiusOfBlockSize * block_size, kGlyphSides);
     if (!tube.empty()) {
-      glyphs.push_back({"cable " + std::to_string(c + 1), std::move(tube), options.cable_color});
+      glyphs.push_back({"cable " + std::to_string(c + 1), std::move(tube), options.cable_color, SceneLayer::cables});
     }
   }
   GlyphFaces traces;
@@ -201,7 +208,7 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
     traces.insert(traces.end(), std::make_move_iterator(tube.begin()),
                   std::make_move_iterator(tube.end()));
   }
-  if (!traces.empty()) glyphs.push_back({"load traces", std::move(traces), options.trace_color});
+  if (!traces.empty()) glyphs.push_back({"load traces", std::move(traces), options.trace_color, SceneLayer::traces});
   if (!options.result) return glyphs;
   if (options.forces) add_force_arrows(*options.result, options, block_size, glyphs);
   if (options.thrust) {  // every branch, as the drawings show it
@@ -212,7 +219,7 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
       GlyphFaces tube = tube_faces(points, kThrustRadiusOfBlockSize * block_size, kGlyphSides);
       tubes.insert(tubes.end(), std::make_move_iterator(tube.begin()), std::make_move_iterator(tube.end()));
     }
-    if (!tubes.empty()) glyphs.push_back({"thrust line", std::move(tubes), options.thrust_color});
+    if (!tubes.empty()) glyphs.push_back({"thrust line", std::move(tubes), options.thrust_color, SceneLayer::thrust});
   }
   return glyphs;
 }

@@ -5,11 +5,13 @@
 // most mesh formats and renderers draw one pixel wide, if at all).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include "core/types.hpp"
 #include "io/mesh_io.hpp"
+#include "io/structure_scene.hpp"
 
 namespace ashlar {
 
@@ -38,10 +40,15 @@ GlyphFaces tube_faces(const std::vector<Vec3>& points, double radius, int sides)
 // structure when none is free: the size glyphs are drawn in proportion to.
 double mean_free_block_size(const Structure& structure);
 
+// Every edge of a block once, as its two end points.
+std::vector<std::array<Vec3, 2>> block_edges(const Block& block);
+
 struct NamedGlyph {
   std::string name;
   GlyphFaces faces;
   Rgb color;
+  SceneLayer layer;
+  int interface = -1;  // forces: the arrow's interface (index into result.interfaces)
 };
 
 // Every cable as a tube, node "cable c" (1-based), the load traces as one

@@ -38,10 +38,23 @@ struct ImportedBlock {
 // naming the object when a mesh is not a closed solid.
 std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOptions& options);
 
+// The values that block colours were mapped from (map_colors), kept for
+// the HTML viewer: its legend and each block's read-out.
+struct ColorScale {
+  std::vector<double> values;  // one per block
+  double lo = 0.0, hi = 1.0;   // the values mapped onto the map's ends (hi < lo reverses it)
+  std::string map = "viridis";
+  std::string label;  // what the values mean, with units; may be empty
+};
+
 struct ExportOptions {
   // One colour per block (size() == structure.size()), or empty for the
   // default grey.
   std::vector<Rgb> block_colors;
+  // HTML viewer only: the values block_colors came from, if any.
+  std::optional<ColorScale> color_scale;
+  // HTML viewer only: the page's title; empty: the file's name.
+  std::string title;
   bool interfaces = false;  // also write each contact polygon as a node
   Rgb interface_color{0.9, 0.2, 0.1};
   ContactOptions contact;
@@ -82,7 +95,9 @@ struct ExportOptions {
   // Every block edge as a thin dark tube (radius 0.4 % of the mean free
   // block's size), in one node "edges": blocks read as masonry in viewers
   // that draw no outlines. With a mechanism, the edges stay where the
-  // blocks stand.
+  // blocks stand. The HTML viewer always holds every block's outline as
+  // lines (as drawn, displaced by a mechanism too); this says whether they
+  // show when the page opens.
   bool edges = false;
   Rgb edge_color{0.12, 0.12, 0.12};
   // How the result's mechanism moves the blocks: each free block drawn
@@ -92,8 +107,9 @@ struct ExportOptions {
   double mechanism_scale = 0.0;
 };
 
-// Format from the extension: .glb, .gltf (glTF 2.0), .obj, .ply, .stl.
-// Each block is a node named after it, each cable a tube "cable c"; every
+// Format from the extension: .glb, .gltf (glTF 2.0), .obj, .ply, .stl, or
+// .html (the interactive viewer, viewer_page.hpp). Each block is a node
+// named after it, each cable a tube "cable c" (structure_scene.hpp); every
 // file is written atomically.
 // Throws InvalidArgument for an unknown extension, bad options (forces or
 // thrust without a result, a result of another structure), IoError on
@@ -101,7 +117,8 @@ struct ExportOptions {
 void export_structure(const Structure& structure, const std::string& path,
                       const ExportOptions& options);
 
-// Names of the supported export extensions, for error messages.
+// Names of the supported mesh-file extensions (.glb, .gltf, .obj, .ply,
+// .stl; export_structure also writes .html), for error messages.
 const std::vector<std::string>& export_extensions();
 
 // The extension of path after its last dot, lower case, without the dot;

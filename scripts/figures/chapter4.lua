@@ -47,12 +47,7 @@ local function coloured(s, name, values, label, view, options)
   render(glb, view)
 end
 
-local function timed(what, f)
-  local start = ashlar.clock()
-  local result = f()
-  print(("  %-28s %8.3f s"):format(what, ashlar.clock() - start))
-  return result
-end
+local timed = support.timed
 
 -- Figure 4: a dome, the force change for a bottom block's and a middle block's weight.
 print("figure 4: weight sensitivity, dome 16 x 12")

@@ -1,0 +1,241 @@
+// The HTML viewer's page: the scene as JSON, the scripts as JSON strings
+// (exactly what the browser gets back, whatever characters they hold), both
+// in <script type="application/json"> elements of web/viewer.html, every
+// "<" written \u003c so that nothing in them can close the element.
+#include "io/viewer_page.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "analysis/equilibrium.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/version.hpp"
+#include "io/color_map.hpp"
+#include "io/json_document.hpp"
+#include "io/structure_scene.hpp"
+#include "io/web_assets.hpp"
+
+namespace ashlar {
+namespace {
+
+// Colour stops of the legend's bar, sampled from the map itself.
+constexpr int kLegendStops = 33;
+// Read-outs carry 4 significant digits.
+constexpr int kReadoutDigits = 4;
+
+std::string number(double value) {
+  std::ostringstream text;
+  text.precision(kReadoutDigits);
+  text << value;
+  return text.str();
+}
+
+// A force in N, kN or MN, whichever keeps it readable.
+std::string force(double newtons) {
+  const double size = std::abs(newtons);
+  if (size >= 1e6) return number(newtons / 1e6) + " MN";
+  if (size >= 1e3) return number(newtons / 1e3) + " kN";
+  return number(newtons) + " N";
+}
+
+std::string point(const Vec3& p) {
+  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ") m";
+}
+
+using Rows = std::vector<std::pair<std::string, std::string>>;
+
+Rows block_rows(const Structure& structure, int i, const ExportOptions& options) {
+  Rows rows{{"block", std::to_string(i + 1) + " of " + std::to_string(structure.size())},
+            {"kind", structure.is_support(i) ? "support" : "free block"},
+            {"mass", number(structure.block(i).mass()) + " kg"}};
+  if (options.color_scale) {
+    const std::string& label = options.color_scale->label;
+    rows.emplace_back(label.empty() ? "value" : label, number(options.color_scale->values[i]));
+  }
+  // A stable structure's tension is solver round-off.
+  const EquilibriumResult* result = options.result;
+  if (result && !result->stable && static_cast<int>(result->block_tension.size()) == structure.size()) {
+    rows.emplace_back("tension on its interfaces", force(result->block_tension[i]));
+  }
+  return rows;
+}
+
+Rows interface_rows(const Structure& structure, int k, const ExportOptions& options) {
+  const Interface& contact = structure.interfaces(options.contact).at(k);
+  Rows rows{{"between", structure.name(contact.a) + " and " + structure.name(contact.b)},
+            {"area", number(contact.area) + " m²"}};
+  if (const EquilibriumResult* result = options.result) {
+    const InterfaceForces& f = result->interfaces.at(k);
+    rows.emplace_back("normal force",
+                      force(f.normal_force) + (f.normal_force >= 0 ? " (compression)" : " (tension)"));
+    if (!result->stable) rows.emplace_back("tension", force(f.tension));
+    rows.emplace_back("resultant", force(f.resultant.norm()) + " on " + structure.name(f.b));
+    rows.emplace_back("its components", "(" + number(f.resultant.x()) + ", " + number(f.resultant.y()) + ", " +
+                                            number(f.resultant.z()) + ") N");
+    rows.emplace_back("centre of pressure", point(f.center_of_pressure));
+  }
+  return rows;
+}
+
+Rows object_rows(const Structure& structure, const SceneObject& object, const ExportOptions& options) {
+  switch (object.layer) {
+    case SceneLayer::blocks: return block_rows(structure, object.block, options);
+    case SceneLayer::interfaces:
+    case SceneLayer::forces: return interface_rows(structure, object.interface, options);
+    case SceneLayer::thrust: return {{"what", "the line of thrust: centres of pressure joined through each block"}};
+    case SceneLayer::traces: return {{"what", "paths of the loads down to the supports"}};
+    case SceneLayer::cables:
+    case SceneLayer::edges: break;
+  }
+  return {};
+}
+
+json color_json(const Rgb& c) { return json::array({c.r, c.g, c.b, c.a}); }
+
+json object_json(const Structure& structure, const SceneObject& object, const ExportOptions& options) {
+  json positions = json::array(), triangles = json::array();
+  for (const Vec3& p : object.mesh.positions) {
+    for (int axis = 0; axis < 3; ++axis) positions.push_back(static_cast<float>(p[axis]));
+  }
+  for (const auto& triangle : object.mesh.triangles) {
+    for (unsigned index : triangle) triangles.push_back(index);
+  }
+  json info = json::array();
+  for (const auto& [key, value] : object_rows(structure, object, options)) info.push_back({key, value});
+  return {{"layer", kSceneLayerNames.name(object.layer)},
+          {"name", object.name},
+          {"color", color_json(object.color)},
+          {"two_sided", object.two_sided},
+          {"positions", std::move(positions)},
+          {"triangles", std::move(triangles)},
+          {"info", std::move(info)}};
+}
+
+std::string summary(const Structure& structure, const ExportOptions& options) {
+  std::string text = std::to_string(structure.size()) + " blocks";
+  if (const EquilibriumResult* result = options.result) {
+    text += result->stable ? ": stable" : ": unstable, infeasibility " + number(result->infeasibility);
+    text += std::string(" (") + kAnalysisMethodNames.name(result->method) + " method, solver " +
+            kSolverStatusNames.name(result->status) + ")";
+  }
+  return text;
+}
+
+json legend_json(const ColorScale& scale) {
+  std::vector<double> samples;
+  for (int k = 0; k < kLegendStops; ++k) samples.push_back(static_cast<double>(k) / (kLegendStops - 1));
+  json stops = json::array();
+  for (const Rgb& c : map_colors(samples, 0.0, 1.0, scale.map)) stops.push_back({c.r, c.g, c.b});
+  return {{"label", scale.label.empty() ? "value" : scale.label},
+          {"lo", number(scale.lo)},
+          {"hi", number(scale.hi)},
+          {"stops", std::move(stops)}};
+}
+
+std::string file_name(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// JSON text safe inside a <script> element: "<" only occurs in strings,
+// where \u003c means the same.
+std::string script_json(const json& value) {
+  const std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+  std::string safe;
+  safe.reserve(text.size());
+  for (char c : text) {
+    if (c == '<') {
+      safe += "\\u003c";
+    } else {
+      safe += c;
+    }
+  }
+  return safe;
+}
+
+std::string html_text(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// The template with each placeholder replaced, found in the template itself
+// (never in a value put in before it).
+std::string fill(std::string_view page, std::vector<std::pair<std::string, std::string>> fields) {
+  std::vector<std::pair<std::size_t, const std::pair<std::string, std::string>*>> places;
+  for (const auto& field : fields) {
+    const auto at = page.find(field.first);
+    if (at == std::string_view::npos) throw IoError("the viewer's page template has no " + field.first);
+    places.emplace_back(at, &field);
+  }
+  std::sort(places.begin(), places.end());
+  std::string text;
+  std::size_t done = 0;
+  for (const auto& [at, field] : places) {
+    text.append(page.substr(done, at - done));
+    text += field->second;
+    done = at + field->first.size();
+  }
+  text.append(page.substr(done));
+  return text;
+}
+
+}  // namespace
+
+void write_viewer_page(const Structure& structure, const std::string& path, const ExportOptions& options) {
+  // The outlines are lines in the page; the edge tubes are for mesh files.
+  ExportOptions drawn = options;
+  drawn.edges = false;
+  const std::vector<SceneObject> objects = structure_scene(structure, drawn);
+
+  json scene;
+  scene["title"] = options.title.empty() ? file_name(path) : options.title;
+  scene["summary"] = summary(structure, options);
+  scene["legend"] = options.color_scale ? legend_json(*options.color_scale) : json(nullptr);
+  json outline = json::array();
+  double opacity = 1.0;
+  bool present[kSceneLayerNames.entries.size()] = {};
+  json items = json::array();
+  for (const SceneObject& object : objects) {
+    present[static_cast<int>(object.layer)] = true;
+    if (object.layer == SceneLayer::blocks) opacity = object.opacity;
+    for (const auto& edge : object.outline) {
+      for (const Vec3& p : edge) {
+        for (int axis = 0; axis < 3; ++axis) outline.push_back(static_cast<float>(p[axis]));
+      }
+    }
+    items.push_back(object_json(structure, object, options));
+  }
+  if (!outline.empty()) present[static_cast<int>(SceneLayer::edges)] = true;
+  json layers = json::array();
+  for (const auto& [layer, name] : kSceneLayerNames.entries) {
+    if (!present[static_cast<int>(layer)]) continue;
+    layers.push_back({{"name", name}, {"visible", layer != SceneLayer::edges || options.edges}});
+  }
+  scene["layers"] = std::move(layers);
+  scene["opacity"] = opacity;
+  scene["edge_color"] = {options.edge_color.r, options.edge_color.g, options.edge_color.b};
+  scene["outline"] = std::move(outline);
+  scene["objects"] = std::move(items);
+
+  const json modules = {{"three.core", web_asset(WebAsset::three_core)},
+                        {"three.module", web_asset(WebAsset::three_module)},
+                        {"OrbitControls", web_asset(WebAsset::orbit_controls)},
+                        {"viewer", web_asset(WebAsset::viewer_script)}};
+  write_file_atomically(path, fill(web_asset(WebAsset::viewer_page),
+                                   {{"@TITLE@", html_text(scene["title"].get<std::string>())},
+                                    {"@VERSION@", version()},
+                                    {"@SCENE@", script_json(scene)},
+                                    {"@MODULES@", script_json(modules)}}));
+}
+
+}  // namespace ashlar

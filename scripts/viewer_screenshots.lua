@@ -1,0 +1,70 @@
+-- The README's pictures of the HTML viewer (ashlar.export to .html), taken
+-- by headless chromium (Debian: chromium):
+--   ashlar scripts/viewer_screenshots.lua [folder] [pages]
+-- folder: the PNGs (default docs/figures/viewer); pages: where the .html
+-- pages are written (default: a new temporary folder, printed). Pictures:
+--   arch_forces     a semicircular arch, 15 voussoirs, friction 0.7: its
+--                   interfaces, force arrows and thrust line
+--   dome_weights    a 12 x 8 dome coloured by ashlar.important_weights
+--   arcade_thrust   a two-span arcade (models.arch_bridge{ spans = 2,
+--                   spandrel = false }): its thrust line branching at the pier
+-- Prints the time of each analysis and export.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+-- script_support.lua lives in this script's folder.
+package.path = (arg[0]:match("^(.*)/[^/]+$") or ".") .. "/?.lua;" .. package.path
+local support = require "script_support"
+
+local folder = arg[1] or "docs/figures/viewer"
+local pages = arg[2]
+if not pages then
+  pages = os.tmpname()
+  os.remove(pages)
+end
+support.make_folders(folder, pages)
+print("pages in " .. pages)
+local pictures = support.can_screenshot()
+if not pictures then print("chromium not found: only the .html pages are written") end
+
+local timed = support.timed
+
+local function page(name, s, options)
+  local html = ("%s/%s.html"):format(pages, name)
+  timed("export " .. name .. ".html", function() ashlar.export(s, html, options) end)
+  if pictures then
+    -- chromium needs an absolute file:// address.
+    if html:sub(1, 1) ~= "/" then html = os.getenv("PWD") .. "/" .. html end
+    timed("screenshot " .. name .. ".png", function()
+      support.screenshot(html, ("%s/%s.png"):format(folder, name), 1000, 640)
+    end)
+  end
+end
+
+print("arch, 15 voussoirs")
+local arch = models.arch{ voussoirs = 15 }
+local r = timed("analyze", function() return ashlar.analyze(arch, { friction = 0.7 }) end)
+-- Arrows long enough to read at this size: the largest 1 m.
+local largest = 0
+for _, f in ipairs(r.interfaces) do
+  largest = math.max(largest, math.sqrt(f.resultant[1] ^ 2 + f.resultant[2] ^ 2 + f.resultant[3] ^ 2))
+end
+page("arch_forces", arch, { result = r, forces = true, thrust = true, interfaces = true, force_scale = 1 / largest,
+                            title = "Semicircular arch, 15 voussoirs: interfaces, forces, thrust line" })
+
+print("dome, 12 meridians x 8 parallels")
+local dome = models.dome{ meridians = 12, parallels = 8 }
+local weights = timed("important_weights", function() return ashlar.important_weights(dome) end)
+local shown, hi = {}, 0
+for i = 1, #dome do
+  shown[i] = weights[i] / 1000  -- kN/m^3; supports 0
+  hi = math.max(hi, shown[i])
+end
+page("dome_weights", dome, { color = { values = shown, map = "viridis", range = { 0, hi } },
+                             legend = "important weight (kN/m³)",
+                             title = "Dome, 12 × 8: which blocks' weight holds it up" })
+
+print("two-span arcade")
+local arcade = models.arch_bridge{ spans = 2, spandrel = false }
+local ra = timed("analyze", function() return ashlar.analyze(arcade, { friction = 0.7 }) end)
+page("arcade_thrust", arcade, { result = ra, thrust = true,
+                                title = "Two-span arcade: the thrust line branches at the pier" })

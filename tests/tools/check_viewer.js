@@ -1,0 +1,228 @@
+#!/usr/bin/env node
+// Opens a page of ashlar's HTML viewer in Debian's chromium (headless,
+// WebGL through SwiftShader) and checks what a user would see.
+// Usage: node check_viewer.js ASHLAR OUT arch|dome
+//   ASHLAR  the ashlar program, which writes the page (viewer_pages.lua)
+//   OUT     a folder for the page and the screenshots
+// Every case checks that the page loads without console errors and draws
+// something; then
+//   arch: the forces and thrust line show in their colours and go when
+//         switched off, hovering or tapping the crown names its voussoir,
+//         hovering an arrow shows its interface's forces;
+//   dome: blocks coloured by height with coolwarm are red at the top and
+//         blue at the bottom, and the legend shows the map and its label.
+// Exits 77 (ctest: skipped) when chromium is not installed, 2 when
+// puppeteer-core is not (npm ci in this folder), 1 when a check fails.
+'use strict';
+
+const { execFileSync } = require('child_process');
+const fs = require('fs');
+const path = require('path');
+
+const CHROMIUM = process.env.ASHLAR_CHROMIUM || '/usr/bin/chromium';
+const WIDTH = 800, HEIGHT = 600;
+
+const [ashlar, out, name] = process.argv.slice(2);
+if (!ashlar || !out || !['arch', 'dome'].includes(name)) {
+  console.error('usage: node check_viewer.js ASHLAR OUT arch|dome');
+  process.exit(1);
+}
+if (!fs.existsSync(CHROMIUM)) {
+  console.log(`SKIPPED: ${CHROMIUM} is not installed (Debian: apt-get install chromium; ./run.sh build does it)`);
+  process.exit(77);
+}
+let puppeteer;
+try {
+  puppeteer = require('puppeteer-core');
+} catch (e) {
+  console.error(`puppeteer-core is not installed: run \`npm ci\` in ${__dirname} once ` +
+                '(./run.sh build does it; tests never download at test time).');
+  process.exit(2);
+}
+
+let failures = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok' : 'not ok'} - ${what}`);
+  if (!ok) failures += 1;
+}
+
+// Pixel statistics of a PNG screenshot, decoded by the browser itself,
+// within `region` ([x0, y0, x1, y1], default all) and outside the viewer's
+// panels. Classes: background, saturated blue (hue 200-250), orange
+// (20-50), red (<= 12 or >= 348), and everything else drawn.
+async function analyse(browser, shot, region) {
+  const page = await browser.newPage();
+  try {
+    return await page.evaluate(async (base64, panels, region) => {
+      const image = new Image();
+      image.src = 'data:image/png;base64,' + base64;
+      await image.decode();
+      const canvas = document.createElement('canvas');
+      canvas.width = image.width;
+      canvas.height = image.height;
+      const context = canvas.getContext('2d');
+      context.drawImage(image, 0, 0);
+      const { data } = context.getImageData(0, 0, image.width, image.height);
+      const [x0, y0, x1, y1] = region || [0, 0, image.width, image.height];
+      const counts = { drawn: 0, blue: 0, orange: 0, red: 0, total: 0 };
+      const drawn_rows = [];
+      const blue_points = [];
+      let warmth = 0, top = image.height, bottom = -1, left = image.width, right = -1;
+      const in_panel = (x, y) => panels.some((p) => x >= p[0] && x < p[2] && y >= p[1] && y < p[3]);
+      for (let y = y0; y < y1; ++y) {
+        for (let x = x0; x < x1; ++x) {
+          if (in_panel(x, y)) continue;
+          const k = 4 * (y * image.width + x);
+          const r = data[k] / 255, g = data[k + 1] / 255, b = data[k + 2] / 255;
+          counts.total += 1;
+          // The page's background is (0.957, 0.957, 0.945).
+          if (Math.abs(r - 0.957) < 0.03 && Math.abs(g - 0.957) < 0.03 && Math.abs(b - 0.945) < 0.03) continue;
+          counts.drawn += 1;
+          top = Math.min(top, y); bottom = Math.max(bottom, y);
+          left = Math.min(left, x); right = Math.max(right, x);
+          warmth += r - b;
+          const max = Math.max(r, g, b), min = Math.min(r, g, b);
+          const saturation = max > 0 ? (max - min) / max : 0;
+          if (saturation < 0.45 || max < 0.25) continue;
+          let hue;
+          if (max === r) hue = (60 * (g - b) / (max - min) + 360) % 360;
+          else if (max === g) hue = 60 * (b - r) / (max - min) + 120;
+          else hue = 60 * (r - g) / (max - min) + 240;
+          if (hue >= 200 && hue <= 250) { counts.blue += 1; blue_points.push([x, y]); }
+          else if (hue >= 20 && hue <= 50) counts.orange += 1;
+          else if (hue <= 12 || hue >= 348) counts.red += 1;
+        }
+      }
+      return { ...counts, warmth: counts.drawn ? warmth / counts.drawn : 0,
+               box: [left, top, right, bottom], blue_points };
+    }, shot.png, shot.panels, region);
+  } finally {
+    await page.close();
+  }
+}
+
+async function screenshot(page, file) {
+  // Two frames: the viewer draws on the next animation frame after a change.
+  await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+  const png = await page.screenshot({ encoding: 'base64' });
+  fs.writeFileSync(path.join(out, file), Buffer.from(png, 'base64'));
+  const panels = await page.$$eval('.panel', (elements) => elements.map((element) => {
+    const r = element.getBoundingClientRect();
+    return [Math.floor(r.left), Math.floor(r.top), Math.ceil(r.right), Math.ceil(r.bottom)];
+  }));
+  return { png, panels };
+}
+
+async function info_after_hover(page, x, y) {
+  await page.mouse.move(x, y);
+  await page.evaluate(() => new Promise((done) => requestAnimationFrame(done)));
+  return page.$eval('#info', (element) => element.innerText);
+}
+
+async function check_arch(browser, page) {
+  const drawn = await analyse(browser, await screenshot(page, 'arch.png'));
+  check(drawn.drawn > 0.03 * drawn.total, `the arch covers ${(100 * drawn.drawn / drawn.total).toFixed(1)} % of the canvas`);
+  check(drawn.blue > 200, `force arrows show in the compression colour (${drawn.blue} blue pixels)`);
+  check(drawn.orange > 100, `the thrust line shows in orange (${drawn.orange} pixels)`);
+
+  await page.click('#layer-forces');
+  const no_forces = await analyse(browser, await screenshot(page, 'arch_no_forces.png'));
+  check(no_forces.blue < drawn.blue / 20, `switching forces off removes the arrows (${no_forces.blue} blue pixels left)`);
+  check(no_forces.orange > 100, 'the thrust line stays');
+  await page.click('#layer-thrust');
+  const bare = await analyse(browser, await screenshot(page, 'arch_bare.png'));
+  check(bare.orange < drawn.orange / 20, `switching the thrust line off removes it (${bare.orange} orange pixels left)`);
+
+  // The crown: just under the highest drawn pixel, in the middle of the
+  // arch's width. Nine voussoirs: the fifth is the keystone.
+  const [left, top, right, bottom] = bare.box;
+  const crown = await info_after_hover(page, Math.round((left + right) / 2), top + Math.round(0.04 * (bottom - top)));
+  check(/^voussoir 5\b/.test(crown), `hovering the crown names it: ${JSON.stringify(crown.split('\n')[0])}`);
+  check(/mass\s+\d/.test(crown), 'and gives its mass');
+  // A tap (no hover on touch screens) picks too.
+  await info_after_hover(page, 2, HEIGHT / 2);
+  await page.touchscreen.tap(Math.round((left + right) / 2), top + Math.round(0.04 * (bottom - top)));
+  await page.evaluate(() => new Promise((done) => requestAnimationFrame(done)));
+  const tapped = await page.$eval('#info', (element) => element.innerText);
+  check(/^voussoir 5\b/.test(tapped), `tapping the crown names it: ${JSON.stringify(tapped.split('\n')[0])}`);
+
+  // An arrow: the blue pixel with the most blue neighbours.
+  await page.click('#layer-forces');
+  const forces = await analyse(browser, await screenshot(page, 'arch_forces.png'));
+  const blue = new Set(forces.blue_points.map(([x, y]) => `${x},${y}`));
+  let best = null, best_count = -1;
+  for (const [x, y] of forces.blue_points) {
+    let count = 0;
+    for (let dy = -3; dy <= 3; ++dy) for (let dx = -3; dx <= 3; ++dx) count += blue.has(`${x + dx},${y + dy}`);
+    if (count > best_count) { best = [x, y]; best_count = count; }
+  }
+  check(best !== null, 'an arrow to hover');
+  if (best) {
+    const arrow = await info_after_hover(page, best[0], best[1]);
+    check(/^force \d+-\d+/.test(arrow), `hovering an arrow names its interface: ${JSON.stringify(arrow.split('\n')[0])}`);
+    check(/normal force\s+[\d.]+ kN \(compression\)/.test(arrow), 'and gives its normal force');
+  }
+}
+
+async function check_dome(browser, page) {
+  const shot = await screenshot(page, 'dome.png');
+  const all = await analyse(browser, shot);
+  check(all.drawn > 0.05 * all.total, `the dome covers ${(100 * all.drawn / all.total).toFixed(1)} % of the canvas`);
+  // Thirds of the dome's picture, top and bottom.
+  const [left, top, right, bottom] = all.box;
+  const third = Math.round((bottom - top) / 3);
+  const upper = await analyse(browser, shot, [left, top, right + 1, top + third]);
+  const lower = await analyse(browser, shot, [left, bottom - third, right + 1, bottom + 1]);
+  check(upper.red > 10 * upper.blue && upper.red > 0.2 * upper.drawn,
+        `the top (highest values) is red: ${upper.red} red, ${upper.blue} blue of ${upper.drawn} pixels`);
+  check(lower.blue > 10 * lower.red && lower.blue > 0.2 * lower.drawn,
+        `the bottom (lowest values) is blue: ${lower.blue} blue, ${lower.red} red of ${lower.drawn} pixels`);
+  const legend = await page.$eval('#legend', (element) => ({
+    shown: getComputedStyle(element).display !== 'none',
+    text: element.innerText,
+    bar: getComputedStyle(element.querySelector('.bar')).backgroundImage,
+  }));
+  check(legend.shown && legend.text.includes('height (m)'), `the legend shows its label: ${JSON.stringify(legend.text)}`);
+  const stops = [...legend.bar.matchAll(/rgb\((\d+), (\d+), (\d+)\)/g)].map((m) => m.slice(1).map(Number));
+  const [first, last] = [stops[0], stops[stops.length - 1]];
+  check(stops.length > 10 && first[2] > first[0] + 80 && last[0] > last[2] + 80,
+        `the legend runs from blue to red: ${JSON.stringify(first)} to ${JSON.stringify(last)}`);
+}
+
+(async () => {
+  fs.rmSync(out, { recursive: true, force: true });
+  fs.mkdirSync(out, { recursive: true });
+  execFileSync(ashlar, [path.join(__dirname, 'viewer_pages.lua'), name, out], { stdio: 'inherit' });
+  const file = path.join(out, `${name}.html`);
+
+  const browser = await puppeteer.launch({
+    executablePath: CHROMIUM,
+    headless: true,
+    // Containers have no user namespaces for the sandbox and no GPU:
+    // WebGL runs on SwiftShader, the CPU renderer chromium ships.
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-gpu-sandbox',
+           '--no-first-run', '--no-default-browser-check', '--disable-dev-shm-usage'],
+    defaultViewport: { width: WIDTH, height: HEIGHT, deviceScaleFactor: 1 },
+  });
+  try {
+    const page = await browser.newPage();
+    const errors = [];
+    page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
+    page.on('pageerror', (error) => errors.push(error.message));
+    page.on('requestfailed', (request) => errors.push(`request failed: ${request.url()}`));
+    await page.goto('file://' + path.resolve(file), { waitUntil: 'load' });
+    await page.waitForSelector('#view canvas', { timeout: 15000 });
+    const html = fs.readFileSync(file, 'utf8');
+    check(!/<script[^>]+src=|<link[^>]+href=/.test(html), 'the page loads no other file');
+    if (name === 'arch') await check_arch(browser, page);
+    else await check_dome(browser, page);
+    check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  } finally {
+    await browser.close();
+  }
+  console.log(failures === 0 ? `${name}: all checks passed (screenshots in ${out})` : `${name}: ${failures} checks failed`);
+  process.exit(failures === 0 ? 0 : 1);
+})().catch((error) => {
+  console.error(error);
+  process.exit(1);
+});

@@ -1,0 +1,26 @@
+-- Writes the pages the browser tests open (tests/tools/check_viewer.js runs it):
+--   ashlar viewer_pages.lua <case> <folder>
+-- arch: a 9-voussoir arch with its forces, thrust line and interfaces;
+-- dome: a small dome coloured by the height of each block (coolwarm), with
+-- a legend.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+
+local case, folder = arg[1], arg[2]
+assert(case and folder, "usage: ashlar viewer_pages.lua arch|dome <folder>")
+
+if case == "arch" then
+  local s = models.arch{ voussoirs = 9 }
+  local r = ashlar.analyze(s, { friction = 0.7 })
+  assert(r.stable, "the test arch should stand")
+  ashlar.export(s, folder .. "/arch.html",
+                { result = r, forces = true, thrust = true, interfaces = true, title = "test arch" })
+elseif case == "dome" then
+  local s = models.dome{ meridians = 8, parallels = 4 }
+  local heights = {}
+  for i = 1, #s do heights[i] = s:block(i):centroid()[3] end
+  ashlar.export(s, folder .. "/dome.html",
+                { color = { values = heights, map = "coolwarm" }, legend = "height (m)" })
+else
+  error("unknown case " .. tostring(case))
+end

@@ -1,0 +1,184 @@
+// The HTML viewer's page: the scene objects it shares with the mesh files,
+// and the page itself read back as a browser would read its JSON.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "analysis/equilibrium.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "geometry/block_builders.hpp"
+#include "io/color_map.hpp"
+#include "io/mesh_io.hpp"
+#include "io/structure_scene.hpp"
+#include "io/viewer_page.hpp"
+#include "io/web_assets.hpp"
+#include "test_support.hpp"
+
+using namespace ashlar;
+using nlohmann::json;
+
+namespace {
+
+// Ground, a block on it and a second block shifted along x on that one; the
+// top block's name would end a <script> element if written as it is.
+Structure stack() {
+  Structure s;
+  s.add(std::make_shared<const Block>(make_box({4, 2, 0.5}, {0, 0, -0.25})), true, "ground");
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0, 0, 0.25})), false, "base");
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0.3, 0, 0.75})), false, "</script><!-- top");
+  return s;
+}
+
+// The text of the <script type="application/json"> element with this id.
+std::string script_text(const std::string& page, const std::string& id) {
+  const std::string open = "<script type=\"application/json\" id=\"" + id + "\">";
+  const auto start = page.find(open);
+  EXPECT_NE(start, std::string::npos) << id;
+  const auto end = page.find("</script>", start);
+  return page.substr(start + open.size(), end - start - open.size());
+}
+
+// Runs `call`, which must throw E with `part` in its message.
+template <class E, class Call>
+void expect_error(Call call, const std::string& part) {
+  try {
+    call();
+    ADD_FAILURE() << "no error; expected one with: " << part;
+  } catch (const E& error) {
+    EXPECT_NE(std::string(error.what()).find(part), std::string::npos) << error.what();
+  }
+}
+
+int count(const std::string& text, const std::string& part) {
+  int n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(StructureScene, ObjectsCarryTheirLayerAndWhatTheyDraw) {
+  const Structure s = stack();
+  const EquilibriumResult result = analyze_equilibrium(s, {});
+  ASSERT_TRUE(result.stable);
+  ExportOptions options;
+  options.result = &result;
+  options.forces = true;
+  options.thrust = true;
+  options.interfaces = true;
+  const std::vector<SceneObject> objects = structure_scene(s, options);
+
+  std::vector<std::string> names;
+  for (const SceneObject& object : objects) names.push_back(object.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"ground", "base", "</script><!-- top", "interface 1-2", "interface 2-3",
+                                             "force 1-2", "force 2-3", "thrust line"}));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(objects[i].layer, SceneLayer::blocks);
+    EXPECT_EQ(objects[i].block, i);
+    EXPECT_EQ(objects[i].outline.size(), 12u);  // a box's edges
+    EXPECT_EQ(objects[i].mesh.triangles.size(), 12u);
+    EXPECT_NEAR(objects[i].opacity, 0.35, 1e-12);  // glyphs inside
+  }
+  // Interfaces and arrows name the interface they draw.
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(objects[3 + k].layer, SceneLayer::interfaces);
+    EXPECT_EQ(objects[5 + k].layer, SceneLayer::forces);
+    EXPECT_EQ(objects[3 + k].interface, k);
+    EXPECT_EQ(objects[5 + k].interface, k);
+    EXPECT_EQ(result.interfaces[k].a, k);
+  }
+  EXPECT_EQ(objects[7].layer, SceneLayer::thrust);
+}
+
+TEST(ViewerPage, HoldsTheSceneAndEveryScriptWhateverTheNames) {
+  const Structure s = stack();
+  const EquilibriumResult result = analyze_equilibrium(s, {});
+  ExportOptions options;
+  options.result = &result;
+  options.forces = true;
+  options.thrust = true;
+  options.edges = false;
+  options.color_scale = ColorScale{{0.0, 1.0, 3.0}, 0.0, 2.0, "coolwarm", "load (kN)"};
+  options.block_colors = map_colors(options.color_scale->values, 0.0, 2.0, "coolwarm");
+  options.title = "a <stack> & more";
+  TempDir dir;
+  export_structure(s, dir.file("stack.html"), options);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"stack.html"});
+  const std::string page = read_file(dir.file("stack.html"));
+
+  // Only the page's own three scripts end an element; the block's name is
+  // in the JSON as \u003c.
+  EXPECT_EQ(count(page, "</script>"), 3);
+  EXPECT_EQ(count(page, "<!--"), 1);  // the page's own comment
+  EXPECT_NE(page.find("<title>a &lt;stack&gt; &amp; more</title>"), std::string::npos);
+  EXPECT_EQ(page.find('@' + std::string("SCENE@")), std::string::npos);
+
+  const json scene = json::parse(script_text(page, "ashlar-scene"));
+  EXPECT_EQ(scene["title"], "a <stack> & more");
+  EXPECT_EQ(scene["summary"], "3 blocks: stable (equilibrium method, solver converged)");
+  std::vector<std::string> layers;
+  for (const json& layer : scene["layers"]) {
+    layers.push_back(layer["name"]);
+    EXPECT_EQ(layer["visible"], layer["name"] != "edges");  // edges = false: outlines hidden at first
+  }
+  EXPECT_EQ(layers, (std::vector<std::string>{"blocks", "forces", "thrust", "edges"}));
+  EXPECT_EQ(scene["outline"].size(), 3u * 12u * 2u * 3u);  // 3 boxes, 12 edges, 2 points, xyz
+  EXPECT_DOUBLE_EQ(scene["opacity"].get<double>(), 0.35);
+
+  const json& top = scene["objects"][2];
+  EXPECT_EQ(top["name"], "</script><!-- top");
+  EXPECT_EQ(top["layer"], "blocks");
+  EXPECT_EQ(top["positions"].size(), 3u * 24u);  // 6 quads, 4 corners each
+  EXPECT_EQ(top["triangles"].size(), 3u * 12u);
+  const Rgb expected = options.block_colors[2];
+  EXPECT_EQ(top["color"], json({expected.r, expected.g, expected.b, expected.a}));
+  EXPECT_EQ(top["info"][0], json({"block", "3 of 3"}));
+  EXPECT_EQ(top["info"][1], json({"kind", "free block"}));
+  EXPECT_EQ(top["info"][2], json({"mass", "1200 kg"}));
+  EXPECT_EQ(top["info"][3], json({"load (kN)", "3"}));
+
+  // The arrow on the top block reads its interface's forces.
+  const json& arrow = scene["objects"][4];
+  EXPECT_EQ(arrow["name"], "force 2-3");
+  EXPECT_EQ(arrow["info"][0], json({"between", "base and </script><!-- top"}));
+  EXPECT_EQ(arrow["info"][2][0], "normal force");
+  EXPECT_EQ(arrow["info"][2][1], "11.77 kN (compression)");  // 1200 kg x 9.81
+
+  // The legend: the map sampled from lo to hi.
+  const json& legend = scene["legend"];
+  EXPECT_EQ(legend["label"], "load (kN)");
+  EXPECT_EQ(legend["lo"], "0");
+  EXPECT_EQ(legend["hi"], "2");
+  ASSERT_EQ(legend["stops"].size(), 33u);
+  const Rgb low = map_colors({0.0}, 0.0, 1.0, "coolwarm")[0], high = map_colors({1.0}, 0.0, 1.0, "coolwarm")[0];
+  EXPECT_EQ(legend["stops"][0], json({low.r, low.g, low.b}));
+  EXPECT_EQ(legend["stops"][32], json({high.r, high.g, high.b}));
+
+  // The scripts come back exactly as embedded.
+  const json modules = json::parse(script_text(page, "ashlar-modules"));
+  EXPECT_EQ(modules["three.core"].get<std::string>(), web_asset(WebAsset::three_core));
+  EXPECT_EQ(modules["three.module"].get<std::string>(), web_asset(WebAsset::three_module));
+  EXPECT_EQ(modules["OrbitControls"].get<std::string>(), web_asset(WebAsset::orbit_controls));
+  EXPECT_EQ(modules["viewer"].get<std::string>(), web_asset(WebAsset::viewer_script));
+  EXPECT_GT(web_asset(WebAsset::three_core).size(), 100000u);
+}
+
+TEST(ViewerPage, RefusesBadOptionsAndLeavesNoFile) {
+  const Structure s = stack();
+  TempDir dir;
+  ExportOptions options;
+  options.color_scale = ColorScale{{1.0, 2.0}, 0.0, 1.0, "viridis", ""};
+  expect_error<InvalidArgument>([&] { write_viewer_page(s, dir.file("a.html"), options); },
+                                "export: color_scale needs one value per block (3), got 2");
+  options.color_scale = ColorScale{{1.0, 2.0, 3.0}, 0.0, 1.0, "rainbow", ""};
+  EXPECT_THROW(write_viewer_page(s, dir.file("a.html"), options), InvalidArgument);
+  options.color_scale.reset();
+  options.forces = true;
+  EXPECT_THROW(write_viewer_page(s, dir.file("a.html"), options), InvalidArgument);  // no result
+  EXPECT_THROW(write_viewer_page(s, dir.file("missing/a.html"), ExportOptions{}), IoError);
+  EXPECT_TRUE(dir.entries().empty());
+  expect_error<InvalidArgument>([&] { export_structure(s, dir.file("a.htm"), ExportOptions{}); },
+                                "use one of: .glb, .gltf, .obj, .ply, .stl, .html");
+}

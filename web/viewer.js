@@ -1,0 +1,252 @@
+// The HTML viewer of ashlar.export (web/viewer.html loads it): draws the
+// scene the engine wrote into the page (engine/io/viewer_page.cpp) with
+// three.js. Turn with the left mouse button, pan with the right one, zoom
+// with the wheel; hovering (or tapping) an object shows its name and
+// values; the check boxes show and hide each layer. Coordinates are
+// ashlar's: metres, z up.
+import * as THREE from "three";
+import { OrbitControls } from "three/addons/controls/OrbitControls.js";
+
+const scene_data = JSON.parse(document.getElementById("ashlar-scene").textContent);
+const view = document.getElementById("view");
+
+function fail(text) {
+  const message = document.getElementById("message");
+  message.textContent = text;
+  message.style.display = "block";
+}
+
+function srgb([r, g, b]) {
+  return new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace);
+}
+
+let renderer;
+try {
+  renderer = new THREE.WebGLRenderer({ antialias: true });
+} catch (error) {
+  fail("This browser cannot draw WebGL, which the viewer needs: " + error.message);
+  throw error;
+}
+renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setClearColor(srgb([0.957, 0.957, 0.945]));
+view.appendChild(renderer.domElement);
+
+const scene = new THREE.Scene();
+const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+camera.up.set(0, 0, 1);
+scene.add(camera);
+// A soft light everywhere and one from the eye, so that faces turned to
+// the viewer show their colour and the others darken with their angle.
+scene.add(new THREE.AmbientLight(0xffffff, 1.4));
+const headlight = new THREE.DirectionalLight(0xffffff, 1.8);
+headlight.position.set(0.3, 0.5, 1);
+camera.add(headlight);
+camera.add(headlight.target);
+
+// One group per layer, switched by its check box.
+const layers = new Map();
+for (const { name } of scene_data.layers) {
+  const group = new THREE.Group();
+  group.name = name;
+  layers.set(name, group);
+  scene.add(group);
+}
+
+const pickable = [];
+const block_materials = [];
+for (const object of scene_data.objects) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
+  geometry.setIndex(object.triangles);
+  // Every polygon has its own vertices, so vertex normals are face normals.
+  geometry.computeVertexNormals();
+  const [r, g, b, a] = object.color;
+  const material = new THREE.MeshLambertMaterial({
+    color: srgb([r, g, b]),
+    side: object.two_sided ? THREE.DoubleSide : THREE.FrontSide,
+  });
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.name = object.name;
+  mesh.userData = { layer: object.layer, info: object.info };
+  material.userData.alpha = a;
+  if (object.layer === "interfaces") {
+    // Drawn over the block faces they lie on.
+    material.polygonOffset = true;
+    material.polygonOffsetFactor = -1;
+    material.polygonOffsetUnits = -4;
+  }
+  if (object.layer === "blocks") {
+    block_materials.push(material);
+  } else {
+    set_opacity(material, a);
+  }
+  layers.get(object.layer).add(mesh);
+  pickable.push(mesh);
+}
+
+function set_opacity(material, opacity) {
+  material.opacity = opacity;
+  material.transparent = opacity < 1;
+  // Translucent blocks must not hide what runs inside them.
+  material.depthWrite = opacity >= 1;
+  material.needsUpdate = true;
+}
+
+function set_block_opacity(opacity) {
+  for (const material of block_materials) set_opacity(material, opacity * material.userData.alpha);
+}
+
+if (scene_data.outline.length > 0) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(scene_data.outline, 3));
+  const lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: srgb(scene_data.edge_color) }));
+  layers.get("edges").add(lines);
+}
+
+// Controls: one check box per layer, the blocks' opacity, the view reset.
+const layer_boxes = document.getElementById("layers");
+for (const { name, visible } of scene_data.layers) {
+  const label = document.createElement("label");
+  const box = document.createElement("input");
+  box.type = "checkbox";
+  box.id = "layer-" + name;
+  box.checked = visible;
+  layers.get(name).visible = visible;
+  box.addEventListener("change", () => {
+    layers.get(name).visible = box.checked;
+    hover(null);
+    request_render();
+  });
+  label.append(box, " " + name);
+  layer_boxes.append(label);
+}
+const opacity_input = document.getElementById("opacity");
+opacity_input.value = scene_data.opacity;
+set_block_opacity(scene_data.opacity);
+opacity_input.addEventListener("input", () => {
+  set_block_opacity(Number(opacity_input.value));
+  request_render();
+});
+
+document.title = scene_data.title;
+document.getElementById("title").textContent = scene_data.title;
+document.getElementById("summary").textContent = scene_data.summary;
+
+if (scene_data.legend) {
+  const { label, lo, hi, stops } = scene_data.legend;
+  const css = stops.map(([r, g, b], k) =>
+    `rgb(${Math.round(255 * r)}, ${Math.round(255 * g)}, ${Math.round(255 * b)}) ${(100 * k) / (stops.length - 1)}%`);
+  document.getElementById("legend-bar").style.background = `linear-gradient(to right, ${css.join(", ")})`;
+  document.getElementById("legend-label").textContent = label;
+  document.getElementById("legend-lo").textContent = lo;
+  document.getElementById("legend-hi").textContent = hi;
+  document.getElementById("legend").classList.remove("hidden");
+}
+
+// The camera looks at the whole structure from the front (-y), a little
+// from the right and from above, as close as keeps every corner of its
+// bounding box in view.
+const bounds = new THREE.Box3();
+for (const group of layers.values()) bounds.expandByObject(group);
+const controls = new OrbitControls(camera, renderer.domElement);
+function reset_view() {
+  const center = bounds.getCenter(new THREE.Vector3());
+  const back = new THREE.Vector3(0.35, -1, 0.45).normalize();  // from the structure to the eye
+  const right = new THREE.Vector3().crossVectors(camera.up, back).normalize();
+  const up = new THREE.Vector3().crossVectors(back, right);
+  const tan_v = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
+  const tan_h = tan_v * camera.aspect;
+  let distance = 0;
+  for (let corner = 0; corner < 8; ++corner) {
+    const p = new THREE.Vector3(corner & 1 ? bounds.max.x : bounds.min.x, corner & 2 ? bounds.max.y : bounds.min.y,
+                                corner & 4 ? bounds.max.z : bounds.min.z).sub(center);
+    const toward = p.dot(back);
+    distance = Math.max(distance, toward + Math.abs(p.dot(right)) / tan_h, toward + Math.abs(p.dot(up)) / tan_v);
+  }
+  distance *= 1.25;  // a margin, which also keeps most structures clear of the panels
+  camera.position.copy(center).addScaledVector(back, distance);
+  camera.near = distance / 100;
+  camera.far = distance * 10;
+  camera.updateProjectionMatrix();
+  controls.target.copy(center);
+  controls.update();
+}
+document.getElementById("reset").addEventListener("click", () => {
+  reset_view();
+  request_render();
+});
+
+// Hover: the object under the pointer, among the visible ones. Blocks that
+// are translucent give way to what lies inside them (arrows, the thrust
+// line, interfaces).
+const raycaster = new THREE.Raycaster();
+const pointer = new THREE.Vector2();
+let hovered = null;
+const info = document.getElementById("info");
+const info_hint = info.innerHTML;
+
+function visible_in_scene(object) {
+  for (let o = object; o; o = o.parent) if (!o.visible) return false;
+  return true;
+}
+
+function hover(mesh) {
+  if (mesh === hovered) return;
+  if (hovered) hovered.material.emissive.setRGB(0, 0, 0);
+  hovered = mesh;
+  if (!mesh) {
+    info.innerHTML = info_hint;
+    return;
+  }
+  mesh.material.emissive.setRGB(0.25, 0.25, 0.25);
+  const heading = document.createElement("h2");
+  heading.textContent = mesh.name;
+  const table = document.createElement("table");
+  for (const [key, value] of mesh.userData.info) {
+    const row = table.insertRow();
+    row.insertCell().textContent = key;
+    row.insertCell().textContent = value;
+  }
+  info.replaceChildren(heading, table);
+}
+
+// Hover with a mouse; a tap (touch screens have no hover) picks too.
+function pick(event) {
+  const rect = renderer.domElement.getBoundingClientRect();
+  pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+  raycaster.setFromCamera(pointer, camera);
+  const hits = raycaster.intersectObjects(pickable.filter(visible_in_scene), false);
+  const see_through = (hit) => hit.object.userData.layer === "blocks" && hit.object.material.transparent;
+  const chosen = hits.find((hit) => !see_through(hit)) || hits[0];
+  hover(chosen ? chosen.object : null);
+  request_render();
+}
+renderer.domElement.addEventListener("pointermove", pick);
+renderer.domElement.addEventListener("click", pick);
+renderer.domElement.addEventListener("pointerleave", () => {
+  hover(null);
+  request_render();
+});
+
+// Drawn only when something changed.
+let render_requested = false;
+function request_render() {
+  if (render_requested) return;
+  render_requested = true;
+  requestAnimationFrame(() => {
+    render_requested = false;
+    renderer.render(scene, camera);
+  });
+}
+controls.addEventListener("change", request_render);
+
+function resize() {
+  const width = view.clientWidth, height = view.clientHeight;
+  renderer.setSize(width, height);
+  camera.aspect = width / height;
+  camera.updateProjectionMatrix();
+  request_render();
+}
+window.addEventListener("resize", resize);
+resize();
+reset_view();
