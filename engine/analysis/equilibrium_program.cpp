@@ -54,27 +54,29 @@ double friction_needed(const EquilibriumOptions& options, double c, double f_u, 
   return c > 0.0 ? reach / c : std::numeric_limits<double>::infinity();
 }
 
+int EquilibriumProgram::add_group_column(const EquilibriumProblem& problem, int k, const Eigen::Vector4d& unknowns,
+                                         double lower, double upper) {
+  const ForceGroup& group = problem.groups[k];
+  const int column = add_column(lower, upper, k, unknowns);
+  for (int r = 0; r < problem.block_rows; ++r) {
+    if (group.row_a >= 0) {
+      const double entry = group.on_a.row(r).dot(unknowns);
+      if (entry != 0.0) add_entry(group.row_a + r, column, entry);
+    }
+    if (group.row_b >= 0) {
+      const double entry = group.on_b.row(r).dot(unknowns);
+      if (entry != 0.0) add_entry(group.row_b + r, column, entry);
+    }
+  }
+  return column;
+}
+
 EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const EquilibriumOptions& options) {
   const double infinity = std::numeric_limits<double>::max();
   EquilibriumProgram program;
   program.rows = problem.row_count;
   program.row_lower.assign(problem.rhs.data(), problem.rhs.data() + problem.row_count);
   program.row_upper = program.row_lower;
-  // A column for the combination `unknowns` (c, s, f_u, f_v) of group k.
-  auto add_combination = [&](int k, const Eigen::Vector4d& unknowns, double lower, double upper) {
-    const ForceGroup& group = problem.groups[k];
-    const int column = program.add_column(lower, upper, k, unknowns);
-    for (int r = 0; r < problem.block_rows; ++r) {
-      if (group.row_a >= 0) {
-        const double entry = group.on_a.row(r).dot(unknowns);
-        if (entry != 0.0) program.add_entry(group.row_a + r, column, entry);
-      }
-      if (group.row_b >= 0) {
-        const double entry = group.on_b.row(r).dot(unknowns);
-        if (entry != 0.0) program.add_entry(group.row_b + r, column, entry);
-      }
-    }
-  };
 
   const std::vector<Eigen::Vector3d> edges = friction_edges(options);
   for (int k = 0; k < static_cast<int>(problem.groups.size()); ++k) {
@@ -82,19 +84,19 @@ EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const 
     switch (group.kind) {
       case GroupKind::contact_vertex:
         if (edges.empty()) {
-          add_combination(k, Eigen::Vector4d(1, 0, 0, 0), 0.0, infinity);
-          add_combination(k, Eigen::Vector4d(0, 0, 1, 0), -infinity, infinity);
-          add_combination(k, Eigen::Vector4d(0, 0, 0, 1), -infinity, infinity);
+          program.add_group_column(problem, k, Eigen::Vector4d(1, 0, 0, 0), 0.0, infinity);
+          program.add_group_column(problem, k, Eigen::Vector4d(0, 0, 1, 0), -infinity, infinity);
+          program.add_group_column(problem, k, Eigen::Vector4d(0, 0, 0, 1), -infinity, infinity);
         }
         for (const Eigen::Vector3d& edge : edges) {
-          add_combination(k, Eigen::Vector4d(edge(0), 0, edge(1), edge(2)), 0.0, infinity);
+          program.add_group_column(problem, k, Eigen::Vector4d(edge(0), 0, edge(1), edge(2)), 0.0, infinity);
         }
         break;
       case GroupKind::cable:
       case GroupKind::bounded_cable:
         // Tension only, up to its bound; compression is what it lacks.
-        add_combination(k, Eigen::Vector4d(1, 0, 0, 0), 0.0,
-                        group.kind == GroupKind::bounded_cable ? group.bound : infinity);
+        program.add_group_column(problem, k, Eigen::Vector4d(1, 0, 0, 0), 0.0,
+                                 group.kind == GroupKind::bounded_cable ? group.bound : infinity);
         break;
       case GroupKind::slack:   // virtual torques are what a compression-only equilibrium lacks
       case GroupKind::weight:  // not in analysis problems

@@ -42,6 +42,10 @@ struct EquilibriumProgram {
     column_index.push_back(column);
     value.push_back(entry);
   }
+  // A column for the combination `unknowns` (c, s, f_u, f_v) of group k of
+  // `problem`, with its entries in the group's bodies' balance rows.
+  int add_group_column(const EquilibriumProblem& problem, int k, const Eigen::Vector4d& unknowns,
+                       double lower, double upper);
   // The groups' unknowns (c, s, f_u, f_v), scaled, for column values x.
   std::vector<Eigen::Vector4d> group_unknowns(const EquilibriumProblem& problem, const double* x) const;
 };
