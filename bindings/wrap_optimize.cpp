@@ -340,12 +340,10 @@ int optimize_structure(lua_State* L) {
   // One analysis object for every step: the steps move vertices, not
   // contacts, so its symbolic factorisation serves them all.
   std::shared_ptr<Structure> current;
-  std::unique_ptr<EquilibriumAnalysis> reused;
+  AnalysisSequence analyses(analysis, false);
   const DesignObjective objective = [&](const DesignPoint& design) {
     current = with_design(s, design);
-    if (reused) reused->update(*current, analysis);
-    else reused = std::make_unique<EquilibriumAnalysis>(*current, analysis);
-    const StructuralGradient g = structural_gradient(*reused, *current);
+    const StructuralGradient g = structural_gradient(analyses.set_up(*current), *current);
     if (!g.valid) {
       throw Error("the structure has no equilibrium at all (" +
                   std::string(status_name(g.analysis.status)) + ")");
@@ -469,12 +467,10 @@ int optimize_parameters_of(lua_State* L) {
   // One analysis object for every evaluation: its symbolic factorisation
   // is kept while the generated structures keep their contacts.
   std::shared_ptr<Structure> base;
-  std::unique_ptr<EquilibriumAnalysis> reused;
+  AnalysisSequence analyses(analysis, false);
   const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
     base = generate(L, generator, sorted_names, values);
-    if (reused) reused->update(*base, analysis);
-    else reused = std::make_unique<EquilibriumAnalysis>(*base, analysis);
-    const StructuralGradient g = structural_gradient(*reused, *base);
+    const StructuralGradient g = structural_gradient(analyses.set_up(*base), *base);
     if (!g.valid) {
       throw Error("the structure has no equilibrium at all (" +
                   std::string(status_name(g.analysis.status)) + ")");

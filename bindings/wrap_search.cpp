@@ -172,17 +172,9 @@ int w_geometric_factor(lua_State* L) {
       lua_pop(L, 1);
     }
 
-    // Successive models differ only in their dimensions, so the last
-    // optimum is a good start: 3-28 % fewer interior-point iterations per
-    // search on arches, vaults, a dome and a flying buttress. The solver
-    // itself starts cold when the unknowns' sizes differ (another number of
-    // contact vertices, cables or analysed blocks); a result of a structure
-    // with another number of blocks is not offered at all, as
-    // ashlar.analyze would refuse it. One analysis object serves every
-    // model: its symbolic factorisation is kept while the contacts are.
-    std::unique_ptr<EquilibriumAnalysis> analysis;
-    bool warm_ready = false;  // the last solve ended with an optimum to start from
-    int previous_blocks = -1;
+    // Successive models differ only in their dimensions: one analysis
+    // object, warm from the last optimum.
+    AnalysisSequence analyses(settings, true);
     const auto stands = [&](double v) {
       const std::string call = "geometric_factor: model_fn(" + number_text(v) + ")";
       lua_pushvalue(L, 1);
@@ -202,15 +194,9 @@ int w_geometric_factor(lua_State* L) {
         verdict.stands = lua_toboolean(L, -1);
         lua_pop(L, 1);
       } else {
-        const bool warm = warm_ready && previous_blocks == s->size();
-        if (analysis) analysis->update(*s, settings);
-        else analysis = std::make_unique<EquilibriumAnalysis>(*s, settings);
-        const EquilibriumResult result = analysis->solve(warm);
+        const EquilibriumResult result = analyses.analyze(*s);
         verdict.stands = result.stable;
         verdict.analysis = VerdictAnalysis{result.infeasibility, result.iterations, result.status};
-        // A failed solve is no starting point.
-        warm_ready = result.status == SolverStatus::converged || result.status == SolverStatus::inaccurate;
-        previous_blocks = s->size();
       }
       lua_pop(L, 1);  // the structure
       return verdict;

@@ -157,4 +157,18 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   return result;
 }
 
+EquilibriumAnalysis& AnalysisSequence::set_up(const Structure& structure) {
+  if (analysis_) analysis_->update(structure, settings_);
+  else analysis_ = std::make_unique<EquilibriumAnalysis>(structure, settings_);
+  return *analysis_;
+}
+
+EquilibriumResult AnalysisSequence::analyze(const Structure& structure) {
+  const bool warm = warm_start_ && has_optimum_ && optimum_blocks_ == structure.size();
+  EquilibriumResult result = set_up(structure).solve(warm);
+  has_optimum_ = result.status == SolverStatus::converged || result.status == SolverStatus::inaccurate;
+  optimum_blocks_ = structure.size();
+  return result;
+}
+
 }  // namespace ashlar
