@@ -103,8 +103,11 @@ int w_important_weights(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
-    const ImportantWeights important = important_weights(s, settings);
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads"});
+    const AnalysisSettings settings = analysis_settings(options);
+    const int threads = static_cast<int>(
+        options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
+    const ImportantWeights important = important_weights(s, settings, threads);
     lua_createtable(L, s.size(), 3);
     set_list(L, important.per_volume);
     lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);

@@ -1,10 +1,13 @@
 #include "analysis/weight_analysis.hpp"
 
+#include <algorithm>
 #include <string>
+#include <thread>
 
 #include "analysis/equilibrium_analysis.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 
 namespace ashlar {
 
@@ -145,23 +148,62 @@ NecessaryWeights necessary_weights(const Structure& structure, int block,
   return problem.solve(block, false);
 }
 
-ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings) {
+ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings, int threads) {
   const auto start = Clock::now();
-  NecessaryWeightsProblem problem(structure, settings);
+  check_analysis_settings(settings);
+  std::vector<int> blocks;  // the free blocks analysed, in block order
+  {
+    const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
+    for (int i = 0; i < structure.size(); ++i) {
+      if (problem.row_of_block[i] >= 0) blocks.push_back(i);
+    }
+  }
+  // Each worker takes a contiguous share of the blocks, in order, on a
+  // problem and solver of its own, each solve warm from its own last one:
+  // the shares, and so the sums, do not depend on timing.
+  const int available = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int workers =
+      std::max(1, std::min(threads > 0 ? threads : available, static_cast<int>(blocks.size())));
+  struct Share {
+    std::vector<double> per_weight;  // N per block, summed over the share's blocks
+    std::vector<int> unstable;
+    int solves = 0;
+    bool interrupted = false;
+  };
+  std::vector<Share> shares(workers);
+  const Clock::time_point deadline = stop_deadline();  // a sandbox's, for the helpers too
+  auto work = [&](int w) {
+    const DeadlineScope scope(deadline);
+    Share& share = shares[w];
+    share.per_weight.assign(structure.size(), 0.0);
+    NecessaryWeightsProblem problem(structure, settings);
+    const size_t first = blocks.size() * w / workers, last = blocks.size() * (w + 1) / workers;
+    for (size_t k = first; k < last; ++k) {
+      const int i = blocks[k];
+      const NecessaryWeights needed = problem.solve(i, share.solves > 0);
+      if (needed.status == SolverStatus::interrupted) {
+        share.interrupted = true;
+        return;
+      }
+      ++share.solves;
+      if (!needed.stable) share.unstable.push_back(i);
+      for (int j = 0; j < structure.size(); ++j) {
+        if (j != i) share.per_weight[j] += needed.weights[j];
+      }
+    }
+  };
+  std::vector<std::thread> helpers;
+  for (int w = 1; w < workers; ++w) helpers.emplace_back(work, w);
+  work(0);
+  for (std::thread& helper : helpers) helper.join();
+
   ImportantWeights result;
   result.per_volume.assign(structure.size(), 0.0);
-  for (int i = 0; i < structure.size(); ++i) {
-    if (problem.problem().row_of_block[i] < 0) continue;
-    const NecessaryWeights needed = problem.solve(i, result.solves > 0);
-    if (needed.status == SolverStatus::interrupted) {
-      result.interrupted = true;
-      break;
-    }
-    ++result.solves;
-    if (!needed.stable) result.unstable_blocks.push_back(i);
-    for (int j = 0; j < structure.size(); ++j) {
-      if (j != i) result.per_volume[j] += needed.weights[j];
-    }
+  for (const Share& share : shares) {
+    for (int j = 0; j < structure.size(); ++j) result.per_volume[j] += share.per_weight[j];
+    result.unstable_blocks.insert(result.unstable_blocks.end(), share.unstable.begin(), share.unstable.end());
+    result.solves += share.solves;
+    result.interrupted = result.interrupted || share.interrupted;
   }
   for (int j = 0; j < structure.size(); ++j) {
     if (result.per_volume[j] != 0.0) result.per_volume[j] /= structure.block(j).volume();

@@ -60,14 +60,18 @@ struct ImportantWeights {
   // solution (0-based); they add what they found all the same.
   std::vector<int> unstable_blocks;
   // Every free block done, or stopped by Ctrl-C or a sandbox deadline:
-  // per_volume then sums the `solves` blocks done before (in block order).
+  // per_volume then sums only the `solves` blocks done before.
   bool interrupted = false;
   int solves = 0;
   double seconds = 0.0;
 };
 
 // One necessary-weights problem per free block, on one factorisation
-// pattern, each warm-started from the last.
-ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings);
+// pattern, each warm-started from the last. threads: worker threads, 0 for
+// one per hardware thread; each takes a contiguous share of the blocks
+// (its own problem, each solve warm from its own last), so the answer
+// depends on the count only to the solver's tolerance.
+ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings,
+                                   int threads = 0);
 
 }  // namespace ashlar
