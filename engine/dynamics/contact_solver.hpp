@@ -11,7 +11,11 @@
 //     target_n = e * the approach speed before the step: Newton's impact law)
 //   |P_t| <= mu P_n, and U_t = -lambda P_t, lambda >= 0, lambda (mu P_n - |P_t|) = 0
 //     (Coulomb friction, no dilatancy).
-// Each sweep visits the contacts in order and solves each one's normal
+// Rows between the same two bodies that follow one another form a group
+// (the points of one contact), solved together by repeated passes before
+// the next group. Sweeps visit the groups in order and back in turn
+// (symmetric Gauss-Seidel; the caller orders them, e.g. from the top of a
+// structure down, along its load path). A pass solves each row's normal
 // impulse exactly (the others held) and moves its tangential impulse by a
 // scalar step against the slip, projected on the disc |P_t| <= mu P_n: a
 // fixed point of the sweep satisfies the laws above exactly.
@@ -45,7 +49,12 @@ struct ContactRow {
 
 struct ContactSolverSettings {
   int max_sweeps = 1000;
-  // Stop when a sweep changes no contact velocity by more than this (m/s).
+  // Stop after a sweep in which no contact broke the laws above by more
+  // than this (m/s), its relative velocity measured at the impulse the
+  // sweep found it with: the normal velocity off its target where the
+  // contact presses (or below it where it does not), the slip of a
+  // sticking contact, the slip off the direction opposite the friction of
+  // a sliding one.
   double velocity_tolerance = 1e-9;
 };
 

@@ -259,8 +259,8 @@ void Run::free_velocities(const Vec3& ground) {
 }
 
 // Rows of the contact points whose gap, half a step ahead at the velocities
-// of the step's start, is within the contact tolerance; `which` gets their
-// indices into contacts_.
+// of the step's start, is within the contact tolerance, from the highest
+// down; `which` gets their indices into contacts_.
 std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::vector<Vec3>& linear,
                                           const std::vector<Vec3>& angular) const {
   std::vector<ContactRow> rows;
@@ -283,7 +283,29 @@ std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::ve
     rows.push_back(row);
     which.push_back(static_cast<int>(k));
   }
-  return rows;
+  // Each pair's points together (the solver's groups), the pairs from the
+  // top down (against gravity, by their highest point): a sweep then
+  // carries each block's weight down the load path to the supports.
+  std::map<std::pair<int, int>, double> pair_height;
+  for (const ContactRow& row : rows) {
+    const double height = -o_.gravity.dot(row.arm_a + poses_[row.a].position);
+    const auto [entry, added] = pair_height.emplace(std::make_pair(row.a, row.b), height);
+    if (!added) entry->second = std::max(entry->second, height);
+  }
+  std::vector<size_t> order(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r) order[r] = r;
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+    const double hx = pair_height[{rows[x].a, rows[x].b}], hy = pair_height[{rows[y].a, rows[y].b}];
+    return std::tie(hy, rows[x].a, rows[x].b) < std::tie(hx, rows[y].a, rows[y].b);
+  });
+  std::vector<ContactRow> sorted(rows.size());
+  std::vector<int> sorted_which(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r) {
+    sorted[r] = rows[order[r]];
+    sorted_which[r] = which[order[r]];
+  }
+  which.swap(sorted_which);
+  return sorted;
 }
 
 void Run::integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0) {

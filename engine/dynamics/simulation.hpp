@@ -75,10 +75,12 @@ struct SimulationOptions {
   // The run has settled when at the end no point of any free block moves
   // faster than this (m/s).
   double settle_speed = 1e-3;
-  // Contact solver: sweeps per step, and the velocity change (a fraction of
-  // |gravity| h, m/s) below which a sweep ends the solve.
+  // Contact solver: sweeps per step, and how far a contact may break the
+  // contact laws, as a velocity (a fraction of 9.81 m/s^2 times the step,
+  // m/s), for a sweep to end the solve (contact_solver.hpp). A block at
+  // rest then drifts by at most about tolerance x 9.81 h per second.
   int max_sweeps = 1000;
-  double tolerance = 1e-9;
+  double tolerance = 1e-4;
   // Called after every step with the simulated time reached (s).
   std::function<void(double t)> progress;
 };
