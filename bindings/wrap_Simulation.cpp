@@ -107,6 +107,21 @@ int w_Simulation_export(lua_State* L) {
   });
 }
 
+int w_Simulation_structure(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const SimulationResult& r = record->result;
+    const int frames = static_cast<int>(r.times.size());
+    const lua_Integer frame = check_integer(L, 2, "frame");
+    if (frame < 1 || frame > frames) {
+      throw ArgError(2, "frame: expected a frame number from 1 to " + std::to_string(frames) + ", got " +
+                            std::to_string(frame));
+    }
+    luax_pushStructure(L, std::make_shared<Structure>(posed_structure(record->structure, r.poses[frame - 1])));
+    return 1;
+  });
+}
+
 void push_displacements(lua_State* L, const SimulationResult& r) {
   lua_createtable(L, static_cast<int>(r.displacement.size()), 0);
   for (size_t i = 0; i < r.displacement.size(); ++i) {
@@ -125,6 +140,7 @@ int w_Simulation_index(lua_State* L) {
     auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
     if (is("trajectory")) lua_pushcfunction(L, w_Simulation_trajectory);
     else if (is("export")) lua_pushcfunction(L, w_Simulation_export);
+    else if (is("structure")) lua_pushcfunction(L, w_Simulation_structure);
     else if (is("status")) lua_pushstring(L, kSimulationStatusNames.name(r.status));
     else if (is("moved")) {
       if (!verdict) return 0;

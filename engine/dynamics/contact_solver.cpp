@@ -7,7 +7,7 @@ namespace ashlar {
 namespace {
 
 // Most passes over one group's rows per sweep.
-constexpr int kGroupPasses = 50;
+constexpr int kGroupPasses = 10;
 
 // Per-row constants: the 3x3 Delassus block W = J M^-1 J^T (the velocity
 // change of the contact per unit impulse) and the local step sizes.
@@ -145,9 +145,10 @@ ContactSolverReport solve_contacts(std::vector<ContactRow>& rows, BodyVelocities
     for (size_t visit = 0; visit < groups; ++visit) {
       const size_t g = forward ? visit : groups - 1 - visit;
       const size_t begin = group_start[g], end = group_start[g + 1];
-      largest_residual = std::max(largest_residual, pass(begin, end));
-      for (int inner = 1; inner < kGroupPasses; ++inner) {
-        if (pass(begin, end) <= 0.5 * settings.velocity_tolerance) break;
+      double group_residual = pass(begin, end);
+      largest_residual = std::max(largest_residual, group_residual);
+      for (int inner = 1; inner < kGroupPasses && group_residual > 0.5 * settings.velocity_tolerance; ++inner) {
+        group_residual = pass(begin, end);
       }
     }
     if (largest_residual <= settings.velocity_tolerance) {

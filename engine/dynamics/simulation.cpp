@@ -283,26 +283,34 @@ std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::ve
     rows.push_back(row);
     which.push_back(static_cast<int>(k));
   }
-  // Each pair's points together (the solver's groups), the pairs from the
-  // top down (against gravity, by their highest point): a sweep then
-  // carries each block's weight down the load path to the supports.
-  std::map<std::pair<int, int>, double> pair_height;
-  for (const ContactRow& row : rows) {
-    const double height = -o_.gravity.dot(row.arm_a + poses_[row.a].position);
-    const auto [entry, added] = pair_height.emplace(std::make_pair(row.a, row.b), height);
-    if (!added) entry->second = std::max(entry->second, height);
-  }
-  std::vector<size_t> order(rows.size());
-  for (size_t r = 0; r < rows.size(); ++r) order[r] = r;
-  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
-    const double hx = pair_height[{rows[x].a, rows[x].b}], hy = pair_height[{rows[y].a, rows[y].b}];
-    return std::tie(hy, rows[x].a, rows[x].b) < std::tie(hx, rows[y].a, rows[y].b);
-  });
-  std::vector<ContactRow> sorted(rows.size());
-  std::vector<int> sorted_which(rows.size());
+  // Each pair's points together (the solver's groups: contacts_ is sorted
+  // by pair), the pairs from the top down (against gravity, by their
+  // highest point): a sweep then carries each block's weight down the load
+  // path to the supports.
+  struct Group {
+    size_t begin, end;
+    double height;
+  };
+  std::vector<Group> groups;
   for (size_t r = 0; r < rows.size(); ++r) {
-    sorted[r] = rows[order[r]];
-    sorted_which[r] = which[order[r]];
+    const double height = -o_.gravity.dot(rows[r].arm_a + poses_[rows[r].a].position);
+    if (groups.empty() || rows[r].a != rows[groups.back().begin].a || rows[r].b != rows[groups.back().begin].b) {
+      groups.push_back({r, r + 1, height});
+    } else {
+      groups.back().end = r + 1;
+      groups.back().height = std::max(groups.back().height, height);
+    }
+  }
+  std::stable_sort(groups.begin(), groups.end(), [](const Group& x, const Group& y) { return x.height > y.height; });
+  std::vector<ContactRow> sorted;
+  std::vector<int> sorted_which;
+  sorted.reserve(rows.size());
+  sorted_which.reserve(rows.size());
+  for (const Group& group : groups) {
+    for (size_t r = group.begin; r < group.end; ++r) {
+      sorted.push_back(rows[r]);
+      sorted_which.push_back(which[r]);
+    }
   }
   which.swap(sorted_which);
   return sorted;

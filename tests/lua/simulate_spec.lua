@@ -150,6 +150,12 @@ describe("ashlar.simulate", function()
     assert.equal(3, #path.rotations[1])
     assert.same(path.positions, sim:trajectory("block 2").positions)
     assert.matches("^Simulation %(completed, 100 steps", tostring(sim))
+    -- The structure at a frame: blocks where the run put them.
+    local last = sim:structure(sim.frames)
+    assert.equal(#s, #last)
+    local c, p = last:block(3):centroid(), sim:trajectory(3).positions[sim.frames]
+    for k = 1, 3 do assert.near(p[k], c[k], 1e-9) end
+    support.expect_error({ "frame: expected a frame number from 1 to 11, got 12" }, function() sim:structure(12) end)
     getmetatable(sim).__close(sim)
     assert.equal("Simulation (closed)", tostring(sim))
     support.expect_error({ "closed Simulation" }, function() return sim.moved end)
