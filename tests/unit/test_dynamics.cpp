@@ -83,6 +83,39 @@ TEST(Dynamics, ABlockAtRestStaysAtRest) {
   EXPECT_TRUE(r.settled);
 }
 
+TEST(Dynamics, ABlockDroppedBouncesBackWithRestitutionOneAndStaysDownWithZero) {
+  // Dropped flat from 0.5 m: with e = 1 it comes back up to its height (no
+  // energy lost or gained at the impact), with e = 0 it stays on the ground.
+  // Highest point after 0.4 s, lowest before.
+  const auto highest_after_impact = [](double restitution) {
+    Structure s;
+    s.add(box({4, 4, 0.5}, {0, 0, -0.25}), true, "ground");
+    s.add(box({0.5, 0.5, 0.3}, {0, 0, 0.65}), false, "block");
+    // It falls 0.5 m in 0.319 s; bounced, it is up again at 0.64 s.
+    SimulationOptions options = lasting(0.7, 0.7);
+    options.restitution = restitution;
+    options.record_every = 1;
+    const SimulationResult r = simulate(s, options);
+    double lowest = 1e9, highest_after = -1e9;
+    for (size_t k = 0; k < r.times.size(); ++k) {
+      const double z = r.poses[k][1].position.z();
+      if (r.times[k] < 0.4) lowest = std::min(lowest, z);
+      else highest_after = std::max(highest_after, z);
+    }
+    return std::make_pair(lowest, highest_after);
+  };
+  const auto [lowest_elastic, back_up] = highest_after_impact(1.0);
+  const auto [lowest_plastic, after_plastic] = highest_after_impact(0.0);
+  std::printf("dropped 0.5 m: e = 1 lands at z %.6f and comes back to %.6f (started at 0.65); e = 0 lands at "
+              "%.6f, then reaches %.6f\n", lowest_elastic, back_up, lowest_plastic, after_plastic);
+  EXPECT_NEAR(lowest_elastic, 0.15, 0.01);  // the gap closes to within a step's travel
+  EXPECT_NEAR(back_up, 0.65, 1e-4);  // the drop height, to 0.02 % of the drop
+  EXPECT_NEAR(lowest_plastic, 0.15, 0.01);
+  // No bounce: the overlap of the landing step (under a step's travel) is
+  // taken back by moving it up to the ground, with no speed.
+  EXPECT_LT(after_plastic, 0.15 + 1e-9);
+}
+
 TEST(Dynamics, SlidesDownAnInclineHalfGSinMinusMuCosTSquared) {
   const double angle = 30.0 * kPi / 180.0, mu = 0.3;
   const SimulationResult r = simulate(incline(angle), lasting(1.0, mu));
