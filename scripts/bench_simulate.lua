@@ -11,6 +11,7 @@
 -- reported. Timing never fails anything: this prints figures.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
+local support = require "script_support"
 
 local brick = { 0.24, 0.07 }
 
@@ -64,13 +65,9 @@ for _, kind in ipairs{ "at rest", "shaken" } do
   end
 end
 local csv_path = folder .. "/bench_simulate.csv"
-local file = assert(io.open(csv_path .. ".tmp", "w"))
-file:write(table.concat(lines, "\n"), "\n")
-file:close()
-assert(os.rename(csv_path .. ".tmp", csv_path))
+support.write_atomically(csv_path, table.concat(lines, "\n") .. "\n")
 print("wrote " .. csv_path)
-local script_folder = script:match("^(.*)/[^/]*$") or "."
-local log_chart = dofile(script_folder .. "/log_chart.lua")
+local log_chart = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/log_chart.lua")
 log_chart.draw_all({ title = "ashlar.simulate: running-bond walls, 10 courses, step 1 ms",
                      ylabel = "wall-clock seconds per simulated second",
                      series = { { kind = "at rest", column = "per_second", title = "at rest", style = "pt 7" },

@@ -98,6 +98,17 @@ private:
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
   void correct_overlaps(const std::vector<int>& active);
   void record(double t);
+  // A solver row for contact c where it stands (geometry g): bodies, arms,
+  // frame; no friction, target or impulse yet.
+  ContactRow row_at(const ContactPoint& c, const ContactGeometry& g) const {
+    ContactRow row;
+    row.a = c.a;
+    row.b = c.b;
+    row.arm_a = g.point - poses_[c.a].position;
+    row.arm_b = g.point - poses_[c.b].position;
+    row.frame = contact_frame(g.normal);
+    return row;
+  }
   Vec3 point_velocity(int body, const Vec3& point, const std::vector<Vec3>& linear,
                       const std::vector<Vec3>& angular) const {
     return linear[body] + angular[body].cross(point - poses_[body].position);
@@ -271,12 +282,7 @@ std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::ve
     const double approach =
         g.normal.dot(point_velocity(c.b, g.point, linear, angular) - point_velocity(c.a, g.point, linear, angular));
     if (g.gap + 0.5 * h_ * approach > tolerance_) continue;
-    ContactRow row;
-    row.a = c.a;
-    row.b = c.b;
-    row.arm_a = g.point - poses_[c.a].position;
-    row.arm_b = g.point - poses_[c.b].position;
-    row.frame = contact_frame(g.normal);
+    ContactRow row = row_at(c, g);
     row.friction = o_.friction;
     row.target_normal = o_.restitution * std::max(0.0, -approach);
     row.impulse = row.frame * c.impulse;
@@ -336,12 +342,7 @@ void Run::correct_overlaps(const std::vector<int>& active) {
     const ContactPoint& c = contacts_[k];
     const ContactGeometry g = contact_geometry(c, poses_);
     if (g.gap >= -tolerance_) continue;
-    ContactRow row;
-    row.a = c.a;
-    row.b = c.b;
-    row.arm_a = g.point - poses_[c.a].position;
-    row.arm_b = g.point - poses_[c.b].position;
-    row.frame = contact_frame(g.normal);
+    ContactRow row = row_at(c, g);
     row.target_normal = kOverlapCorrection * (-g.gap - tolerance_) / h_;
     rows.push_back(row);
   }
