@@ -104,6 +104,17 @@ describe("ashlar.simulate", function()
     assert.is_nil(ashlar.compare_methods(cases.wedge(), { friction = 0.6 }).dynamic)
   end)
 
+  it("finishes with a structure that its ground_acceleration closes", function()
+    local s = cases.wedge()
+    local sim = ashlar.simulate(s, { duration = 0.01, ground_acceleration = function(t)
+      getmetatable(s).__close(s)
+      return 0, 0, 0
+    end })
+    assert.equal(10, sim.steps)
+    assert.is_false(sim.moved)
+    assert.equal("Structure (closed)", tostring(s))
+  end)
+
   it("stops on an interrupt with what it computed and no verdict", function()
     local outcome = ashlar.sandbox{ source = [[
       local ashlar = require "ashlar"
