@@ -4,7 +4,7 @@
 -- Structures: running-bond walls 10 courses high, 10, 100 and 1,000 bricks
 -- long (100, 1,000 and 10,000 blocks), standing from rest (`at rest`), and
 -- the same walls with their ground shaken along their length at 0.3 g,
--- 2 Hz (`shaken`; the 10,000-block one only with `all`: about 10 minutes
+-- 2 Hz (`shaken`; the 10,000-block one only with `all`: about 5 minutes
 -- per 0.1 s simulated). Each run is its own process, so that peak memory is its
 -- own. The first step costs most (the contact impulses start at zero, no
 -- prestress); later steps start from the last step's impulses, so both are
