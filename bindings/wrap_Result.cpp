@@ -11,6 +11,7 @@
 #include "analysis/qps_export.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"
+#include "wrap_Simulation.hpp"
 #include "wrap_Structure.hpp"
 
 namespace ashlar::lua {
@@ -30,21 +31,27 @@ struct AnalysisRecord {
 
 }  // namespace
 
-AnalysisSettings analysis_settings(const OptionTable& options) {
+double friction_option(const OptionTable& options, double fallback) {
   lua_State* L = options.state();
-  const int arg = options.arg();
-  AnalysisSettings settings;
-  EquilibriumOptions& problem = settings.problem;
+  double friction = fallback;
   if (options.push("friction") != LUA_TNIL) {
     // math.huge (no sliding) is allowed here, unlike in other numbers.
     if (lua_type(L, -1) != LUA_TNUMBER || std::isnan(lua_tonumber(L, -1)) ||
         lua_tonumber(L, -1) < 0.0) {
-      throw ArgError(arg, "friction: expected a number >= 0 (math.huge: no sliding), got " +
-                              (lua_type(L, -1) == LUA_TNUMBER ? number_text(lua_tonumber(L, -1)) : type_name(L, -1)));
+      throw ArgError(options.arg(), "friction: expected a number >= 0 (math.huge: no sliding), got " +
+                                        (lua_type(L, -1) == LUA_TNUMBER ? number_text(lua_tonumber(L, -1)) : type_name(L, -1)));
     }
-    problem.friction = lua_tonumber(L, -1);
+    friction = lua_tonumber(L, -1);
   }
   lua_pop(L, 1);
+  return friction;
+}
+
+AnalysisSettings analysis_settings(const OptionTable& options) {
+  lua_State* L = options.state();
+  AnalysisSettings settings;
+  EquilibriumOptions& problem = settings.problem;
+  problem.friction = friction_option(options, problem.friction);
   if (options.push("friction_sides") != LUA_TNIL) {
     problem.friction_sides = static_cast<int>(check_integer(L, -1, "friction_sides"));
   }
@@ -115,9 +122,27 @@ int w_compare_methods(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const AnalysisSettings settings = analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
-    MethodComparison comparison = compare_methods(s, settings);
-    lua_createtable(L, 0, 4);
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "dynamics"});
+    const AnalysisSettings settings = analysis_settings(options);
+    // dynamics = true, or a table of simulation options: the dynamic verdict too.
+    std::optional<SimulationOptions> dynamics;
+    std::shared_ptr<SimulationProgress> progress;
+    const int type = options.push("dynamics");
+    if (type == LUA_TTABLE) {
+      dynamics = simulation_options(OptionTable(L, lua_gettop(L), 2, "dynamics.", {ASHLAR_SIMULATION_OPTIONS}), s,
+                                    progress);
+    } else if (type == LUA_TBOOLEAN) {
+      if (lua_toboolean(L, -1)) dynamics = SimulationOptions{};
+    } else if (type != LUA_TNIL) {
+      throw ArgError(2, "dynamics: expected true or a table of ashlar.simulate options, got " + type_name(L, -1));
+    }
+    MethodComparison comparison = compare_methods(s, settings, dynamics ? &*dynamics : nullptr);
+    if (progress) progress->finish(*comparison.dynamic);
+    lua_createtable(L, 0, 5);
+    if (comparison.dynamic) {
+      luax_pushSimulation(L, s, std::move(*comparison.dynamic));
+      lua_setfield(L, -2, "dynamic");
+    }
     luax_pushResult(L, s, std::move(comparison.equilibrium));
     lua_setfield(L, -2, "equilibrium");
     luax_pushResult(L, s, std::move(comparison.kinematic));

@@ -19,6 +19,9 @@ class OptionTable;
   "friction", "friction_sides", "friction_model", "tension_weight", "force_weight",      \
       "tolerance", "max_iterations", "stable_tolerance", "contact_tolerance", "contact_angle",     \
       "contact_min_area"
+// The `friction` option: a number >= 0, math.huge for no sliding;
+// `fallback` when absent.
+double friction_option(const OptionTable& options, double fallback);
 // Analysis settings from an option table that allows ASHLAR_ANALYSIS_OPTIONS.
 AnalysisSettings analysis_settings(const OptionTable& options);
 

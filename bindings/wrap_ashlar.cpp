@@ -14,10 +14,12 @@
 #include "sandbox.hpp"
 #include "wrap_Block.hpp"
 #include "wrap_Result.hpp"
+#include "wrap_Simulation.hpp"
 #include "wrap_Structure.hpp"
 #include "wrap_chart.hpp"
 #include "wrap_colors.hpp"
 #include "wrap_draw.hpp"
+#include "wrap_export.hpp"
 #include "wrap_fea.hpp"
 #include "wrap_force_flow.hpp"
 #include "wrap_gradient.hpp"
@@ -55,85 +57,90 @@ std::vector<std::vector<Vec3>> load_traces(lua_State* L, const OptionTable& opti
   return traces;
 }
 
+}  // namespace
+
+void export_with_options(lua_State* L, const Structure& s, const std::string& path, const OptionTable& options) {
+  const std::optional<std::string> format = options.string("format");
+  if (format && *format != "compas" && *format != "html") {
+    throw ArgError(options.arg(), "format: expected \"compas\" or \"html\" (other formats follow the file's "
+                                  "extension), got \"" + *format + "\"");
+  }
+  if (format == "compas" || (!format && file_extension(path) == "json")) {
+    CompasExportOptions compas;
+    compas.contact.tolerance = options.positive("tolerance", 0.0, true);
+    const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
+    compas.result = result.get();
+    for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
+                            "traces", "trace_color", "mechanism", "edges", "title", "legend"}) {
+      if (options.has(key)) {
+        throw ArgError(options.arg(), std::string(key) + ": does not apply to a COMPAS assembly (.json), which "
+                                                         "holds blocks, supports, interfaces and, with result, "
+                                                         "their forces");
+      }
+    }
+    write_compas_assembly(s, path, compas);
+    return;
+  }
+  const bool html = format == "html" || (!format && file_extension(path) == "html");
+  if (!html) {
+    for (const char* key : {"title", "legend"}) {
+      if (const std::optional<std::string> text = options.string(key)) {
+        throw ArgError(options.arg(), std::string(key) + ": only the HTML viewer (a .html path, or format = "
+                                                         "\"html\") has one, got \"" + *text + "\" for '" + path + "'");
+      }
+    }
+  }
+  ExportOptions exported;
+  BlockColoring coloring = block_coloring(L, options, s.size());
+  exported.block_colors = std::move(coloring.colors);
+  if (html) exported.color_scale = std::move(coloring.scale);
+  if (const std::optional<std::string> legend = options.string("legend")) {
+    if (!exported.color_scale) {
+      throw ArgError(options.arg(), "legend: \"" + *legend + "\" labels colours mapped from values; give "
+                                    "color = { values = {...}, map = ..., range = ... } with it");
+    }
+    exported.color_scale->label = *legend;
+  }
+  exported.title = options.string("title").value_or("");
+  exported.interfaces = options.boolean("interfaces").value_or(false);
+  exported.contact.tolerance = options.positive("tolerance", 0.0, true);
+  const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
+  exported.result = result.get();
+  exported.forces = options.boolean("forces").value_or(false);
+  exported.thrust = options.boolean("thrust").value_or(false);
+  exported.force_scale = options.positive("force_scale", 0.0, true);
+  exported.mechanism_scale = options.positive("mechanism", 0.0, true);
+  // The viewer's outlines are lines, shown unless edges = false.
+  exported.edges = options.boolean("edges").value_or(html);
+  if (options.push("cable_color") != LUA_TNIL) {
+    exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
+  }
+  lua_pop(L, 1);
+  exported.traces = load_traces(L, options);
+  if (options.push("trace_color") != LUA_TNIL) {
+    exported.trace_color = to_rgb(L, -1, options.arg(), "trace_color");
+  }
+  lua_pop(L, 1);
+  if (const std::optional<double> opacity = options.number("opacity")) {
+    if (!(*opacity >= 0.0 && *opacity <= 1.0)) {
+      throw ArgError(options.arg(), "opacity: expected a number in [0, 1], got " + std::to_string(*opacity));
+    }
+    exported.block_opacity = opacity;
+  }
+  if (html) {
+    write_viewer_page(s, path, exported);
+  } else {
+    export_structure(s, path, exported);
+  }
+}
+
+namespace {
+
 int w_export(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
-    const Structure& s = *structure;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
-    const OptionTable options(L, 3, {"format", "color", "interfaces", "tolerance", "result", "forces",
-                                     "thrust", "force_scale", "opacity", "cable_color", "traces",
-                                     "trace_color", "mechanism", "edges", "title", "legend"});
-    const std::optional<std::string> format = options.string("format");
-    if (format && *format != "compas" && *format != "html") {
-      throw ArgError(3, "format: expected \"compas\" or \"html\" (other formats follow the file's extension), got \"" +
-                            *format + "\"");
-    }
-    if (format == "compas" || (!format && file_extension(path) == "json")) {
-      CompasExportOptions compas;
-      compas.contact.tolerance = options.positive("tolerance", 0.0, true);
-      const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
-      compas.result = result.get();
-      for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
-                              "traces", "trace_color", "mechanism", "edges", "title", "legend"}) {
-        if (options.has(key)) {
-          throw ArgError(3, std::string(key) + ": does not apply to a COMPAS assembly (.json), which holds blocks, "
-                                               "supports, interfaces and, with result, their forces");
-        }
-      }
-      write_compas_assembly(s, path, compas);
-      return 0;
-    }
-    const bool html = format == "html" || (!format && file_extension(path) == "html");
-    if (!html) {
-      for (const char* key : {"title", "legend"}) {
-        if (const std::optional<std::string> text = options.string(key)) {
-          throw ArgError(3, std::string(key) + ": only the HTML viewer (a .html path, or format = \"html\") has one, got \"" +
-                                *text + "\" for '" + path + "'");
-        }
-      }
-    }
-    ExportOptions exported;
-    BlockColoring coloring = block_coloring(L, options, s.size());
-    exported.block_colors = std::move(coloring.colors);
-    if (html) exported.color_scale = std::move(coloring.scale);
-    if (const std::optional<std::string> legend = options.string("legend")) {
-      if (!exported.color_scale) {
-        throw ArgError(3, "legend: \"" + *legend + "\" labels colours mapped from values; give color = { values = {...}, "
-                          "map = ..., range = ... } with it");
-      }
-      exported.color_scale->label = *legend;
-    }
-    exported.title = options.string("title").value_or("");
-    exported.interfaces = options.boolean("interfaces").value_or(false);
-    exported.contact.tolerance = options.positive("tolerance", 0.0, true);
-    const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
-    exported.result = result.get();
-    exported.forces = options.boolean("forces").value_or(false);
-    exported.thrust = options.boolean("thrust").value_or(false);
-    exported.force_scale = options.positive("force_scale", 0.0, true);
-    exported.mechanism_scale = options.positive("mechanism", 0.0, true);
-    // The viewer's outlines are lines, shown unless edges = false.
-    exported.edges = options.boolean("edges").value_or(html);
-    if (options.push("cable_color") != LUA_TNIL) {
-      exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
-    }
-    lua_pop(L, 1);
-    exported.traces = load_traces(L, options);
-    if (options.push("trace_color") != LUA_TNIL) {
-      exported.trace_color = to_rgb(L, -1, options.arg(), "trace_color");
-    }
-    lua_pop(L, 1);
-    if (const std::optional<double> opacity = options.number("opacity")) {
-      if (!(*opacity >= 0.0 && *opacity <= 1.0)) {
-        throw ArgError(3, "opacity: expected a number in [0, 1], got " + std::to_string(*opacity));
-      }
-      exported.block_opacity = opacity;
-    }
-    if (html) {
-      write_viewer_page(s, path, exported);
-    } else {
-      export_structure(s, path, exported);
-    }
+    export_with_options(L, *structure, path, OptionTable(L, 3, {ASHLAR_EXPORT_OPTIONS}));
     return 0;
   });
 }
@@ -243,12 +250,14 @@ int ashlar_open_library(lua_State* L) {
   register_Result(L);
   register_FeaResult(L);
   register_Study(L);
+  register_Simulation(L);
   lua_newtable(L);
   lua_pushstring(L, ashlar::version());
   lua_setfield(L, -2, "version");
   set_block_constructors(L);
   set_structure_functions(L);
   set_analysis_functions(L);
+  set_simulation_functions(L);
   set_gradient_functions(L);
   set_optimize_functions(L);
   set_weights_functions(L);

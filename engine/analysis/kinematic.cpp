@@ -156,12 +156,19 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
   return result;
 }
 
-MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings) {
+MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings,
+                                 const SimulationOptions* dynamics) {
   MethodComparison out;
   AnalysisSettings equilibrium = settings;
   equilibrium.method = AnalysisMethod::equilibrium;
   out.equilibrium = analyze_equilibrium(structure, equilibrium);
   out.kinematic = analyze_kinematic(structure, settings);
+  if (dynamics) {
+    SimulationOptions options = *dynamics;
+    options.friction = settings.problem.friction;
+    options.contact = settings.problem.contact;
+    out.dynamic = simulate(structure, options);
+  }
   const EquilibriumResult& e = out.equilibrium;
   const EquilibriumResult& k = out.kinematic;
   if (e.vertex_forces.size() != k.vertex_forces.size()) return out;  // floating or without answers

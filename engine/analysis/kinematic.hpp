@@ -40,11 +40,13 @@
 // sliding; or frictionless joints).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
 #include "analysis/load_factor.hpp"
+#include "dynamics/simulation.hpp"
 
 namespace ashlar {
 
@@ -54,7 +56,9 @@ namespace ashlar {
 EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSettings& settings);
 
 // Both methods on one structure (settings.method is ignored), and where
-// they differ.
+// they differ; with `dynamics`, also the simulation from rest (its friction
+// and contact options replaced by the settings'): the dynamic verdict,
+// moved or stayed.
 struct MethodComparison {
   EquilibriumResult equilibrium, kinematic;
   // Interfaces whose friction in the equilibrium method's forces exceeds mu
@@ -67,8 +71,10 @@ struct MethodComparison {
     double available = 0.0;          // mu x the sum of its compressions, kinematic method
   };
   std::vector<Borrowed> borrowed;
+  std::optional<SimulationResult> dynamic;  // when asked for
 };
-MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings);
+MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings,
+                                 const SimulationOptions* dynamics = nullptr);
 
 // The load factor by the kinematic method: the largest lambda for which the
 // structure with the body force lambda x weight x direction on every free

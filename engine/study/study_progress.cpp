@@ -10,8 +10,10 @@
 namespace ashlar::study {
 
 StudyProgress::StudyProgress(std::string label, std::size_t total, bool enabled, std::FILE* out,
-                             double log_interval)
+                             double log_interval, std::string kind, std::string unit)
     : label_(std::move(label)),
+      kind_(std::move(kind)),
+      unit_(std::move(unit)),
       total_(total),
       enabled_(enabled && out != nullptr),
       terminal_(enabled_ && isatty(fileno(out))),
@@ -33,9 +35,9 @@ std::string StudyProgress::status_text(std::size_t done, std::size_t errors, dou
   const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
   const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done, total_)) / rate : NAN;
   char buffer[160];
-  std::snprintf(buffer, sizeof buffer, "%zu/%zu %3.0f%%  %.1f runs/s  ETA %s", done, total_,
+  std::snprintf(buffer, sizeof buffer, "%zu/%zu %3.0f%%  %.1f %ss/s  ETA %s", done, total_,
                 total_ ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0, rate,
-                clock_text(eta).c_str());
+                unit_.c_str(), clock_text(eta).c_str());
   std::string text = buffer;
   if (errors) text += "  " + std::to_string(errors) + (errors == 1 ? " error" : " errors");
   return text;
@@ -54,7 +56,7 @@ void StudyProgress::update(std::size_t done, std::size_t errors) {
     const std::string bar = std::string(filled, '#') + std::string(kBarWidth - filled, '.');
     std::fprintf(out_, "\r\033[K%s [%s] %s", label_.c_str(), bar.c_str(), status.c_str());
   } else {
-    std::fprintf(out_, "study %s: %s\n", label_.c_str(), status.c_str());
+    std::fprintf(out_, "%s %s: %s\n", kind_.c_str(), label_.c_str(), status.c_str());
   }
   std::fflush(out_);
 }
@@ -63,9 +65,9 @@ void StudyProgress::finish(std::size_t done, std::size_t errors, const std::stri
   if (!enabled_) return;
   const double elapsed = monotonic_seconds() - start_;
   const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
-  std::fprintf(out_, "%sstudy %s: %zu %s in %s (%.1f runs/s), %zu %s%s%s\n", terminal_ ? "\r\033[K" : "",
-               label_.c_str(), done, done == 1 ? "run" : "runs", clock_text(elapsed).c_str(), rate, errors,
-               errors == 1 ? "error" : "errors", note.empty() ? "" : "; ", note.c_str());
+  std::fprintf(out_, "%s%s %s: %zu %s%s in %s (%.1f %ss/s), %zu %s%s%s\n", terminal_ ? "\r\033[K" : "",
+               kind_.c_str(), label_.c_str(), done, unit_.c_str(), done == 1 ? "" : "s", clock_text(elapsed).c_str(),
+               rate, unit_.c_str(), errors, errors == 1 ? "error" : "errors", note.empty() ? "" : "; ", note.c_str());
   std::fflush(out_);
 }
 

@@ -12,9 +12,12 @@ namespace ashlar::study {
 class StudyProgress {
 public:
   // total: runs this session will do; out: where to write (stderr by
-  // default); enabled = false writes nothing.
+  // default); enabled = false writes nothing. `kind` begins the lines
+  // written off a terminal and the closing line ("study <label>: ..."), and
+  // `unit` names what is counted ("run": "12 runs", "3.5 runs/s"), so that
+  // other long loops (a simulation's steps) report the same way.
   StudyProgress(std::string label, std::size_t total, bool enabled, std::FILE* out = stderr,
-                double log_interval = 10.0);
+                double log_interval = 10.0, std::string kind = "study", std::string unit = "run");
 
   // Called as runs finish; redraws at most 10 times a second.
   void update(std::size_t done, std::size_t errors);
@@ -27,7 +30,7 @@ public:
 private:
   std::string status_text(std::size_t done, std::size_t errors, double elapsed) const;
 
-  std::string label_;
+  std::string label_, kind_, unit_;
   std::size_t total_;
   bool enabled_, terminal_;
   std::FILE* out_;

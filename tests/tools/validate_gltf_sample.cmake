@@ -1,5 +1,6 @@
 # Run by ctest as gltf.validator: the engine writes sample .glb and .gltf
-# files (export_gltf_sample), then the Khronos glTF Validator checks them.
+# files and an animated .glb (export_gltf_sample), then the Khronos glTF
+# Validator checks them.
 # Inputs: SAMPLE (the program), NODE (node executable), TOOLS (this folder),
 # OUT (a folder in the build tree). Nothing is downloaded here.
 if(NOT EXISTS "${TOOLS}/node_modules/gltf-validator/package.json")
@@ -20,6 +21,7 @@ if(NOT exported EQUAL 0)
 endif()
 execute_process(
   COMMAND "${NODE}" "${TOOLS}/validate_gltf.js" "${OUT}/sample.glb" "${OUT}/sample.gltf"
+          "${OUT}/sample_animation.glb"
   RESULT_VARIABLE validated)
 if(NOT validated EQUAL 0)
   message(FATAL_ERROR "the glTF validator reported errors in ${OUT} (see above)")

@@ -2,7 +2,9 @@
 // given as the only argument, for the gltf.validator test, which runs the
 // Khronos glTF Validator on them. The sample exercises what the exporter
 // does: coloured translucent blocks, convex and non-convex faces,
-// interfaces, force arrows in compression and tension, a thrust line.
+// interfaces, force arrows in compression and tension, a thrust line; and
+// sample_animation.glb, a simulation of the same structure (the overhang
+// topples) as an animated glTF, with a translucent block.
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -12,6 +14,7 @@
 #include "analysis/equilibrium.hpp"
 #include "geometry/block_builders.hpp"
 #include "io/color_map.hpp"
+#include "io/simulation_export.hpp"
 #include "io/mesh_io.hpp"
 
 using namespace ashlar;
@@ -66,6 +69,16 @@ int main(int argc, char** argv) {
       std::printf("wrote %s/%s (%d blocks, %zu interfaces)\n", folder.c_str(), name,
                   structure.size(), structure.interfaces(options.contact).size());
     }
+    SimulationOptions run;
+    run.duration = 0.3;
+    const SimulationResult simulation = simulate(structure, run);
+    AnimationOptions animation;
+    animation.block_colors = options.block_colors;
+    animation.block_colors[1].a = 0.5;
+    animation.fps = 30;
+    export_animation(structure, simulation, folder + "/sample_animation.glb", animation);
+    std::printf("wrote %s/sample_animation.glb (%zu frames, largest displacement %.3g m)\n", folder.c_str(),
+                simulation.times.size(), simulation.max_displacement);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "export_gltf_sample: %s\n", e.what());
     return 1;

@@ -1,0 +1,23 @@
+// ashlar.export's options for 3D files, the HTML viewer and COMPAS assemblies, shared by
+// every function that writes a structure the way ashlar.export does.
+#pragma once
+
+#include <lua.hpp>
+
+#include <string>
+
+#include "luax.hpp"
+#include "structure/structure.hpp"
+
+namespace ashlar::lua {
+
+// The option names of ashlar.export.
+#define ASHLAR_EXPORT_OPTIONS                                                                          \
+  "format", "color", "interfaces", "tolerance", "result", "forces", "thrust", "force_scale", "opacity", \
+      "cable_color", "traces", "trace_color", "mechanism", "edges", "title", "legend"
+
+// Writes `s` to `path` as ashlar.export does with `options` (a table that
+// allows ASHLAR_EXPORT_OPTIONS and maybe more keys, which are not read).
+void export_with_options(lua_State* L, const Structure& s, const std::string& path, const OptionTable& options);
+
+}  // namespace ashlar::lua

@@ -1,0 +1,118 @@
+#include "dynamics/contact_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <tuple>
+#include <utility>
+
+#include "structure/contact_detection.hpp"
+
+namespace ashlar {
+namespace {
+
+// The contact point of world point p on block a against face f of block b
+// (world plane `plane`), in reference coordinates.
+ContactPoint make_point(int a, int b, int face, const Vec3& p, const FacePlane& plane,
+                        const std::vector<RigidPose>& poses) {
+  ContactPoint contact;
+  contact.a = a;
+  contact.b = b;
+  contact.face = face;
+  contact.point = poses[a].rotation.conjugate() * (p - poses[a].position);
+  contact.normal = poses[b].rotation.conjugate() * plane.normal;
+  contact.offset = plane.offset - plane.normal.dot(poses[b].position);
+  return contact;
+}
+
+// The face of `block` (world) an interface polygon with normal n (pointing
+// into the block) was cut from: among faces turned against n within the
+// contact angle, the one whose plane passes nearest the polygon's centre.
+int facing_face(const Block& block, const Vec3& n, const Vec3& center, double opposite) {
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  const std::vector<FacePlane>& planes = block.face_planes();
+  for (size_t f = 0; f < planes.size(); ++f) {
+    if (planes[f].normal.dot(n) > opposite) continue;
+    const double distance = std::abs(planes[f].normal.dot(center) - planes[f].offset);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = static_cast<int>(f);
+    }
+  }
+  return best;
+}
+
+// Vertices of convex block `from` within `distance` of convex block `to`
+// (both world), each against the face of `to` it is least deep behind.
+void add_vertex_contacts(int from, int to, const Block& a, const Block& b, double distance,
+                         const std::vector<RigidPose>& poses, std::vector<ContactPoint>& out) {
+  const std::vector<FacePlane>& planes = b.face_planes();
+  const Vec3 towards = a.centroid() - b.centroid();
+  for (const Vec3& p : a.vertices()) {
+    int best = -1;
+    double depth = -std::numeric_limits<double>::infinity();
+    for (size_t f = 0; f < planes.size(); ++f) {
+      const double s = planes[f].normal.dot(p) - planes[f].offset;
+      const bool tie = best >= 0 && std::abs(s - depth) <= 1e-9 * distance;
+      if (tie ? planes[f].normal.dot(towards) > planes[best].normal.dot(towards) : s > depth) {
+        depth = std::max(depth, s);
+        best = static_cast<int>(f);
+      }
+    }
+    if (best >= 0 && depth <= distance) out.push_back(make_point(from, to, best, p, planes[best], poses));
+  }
+}
+
+}  // namespace
+
+ContactGeometry contact_geometry(const ContactPoint& contact, const std::vector<RigidPose>& poses) {
+  const RigidPose& a = poses[contact.a];
+  const RigidPose& b = poses[contact.b];
+  ContactGeometry geometry;
+  geometry.point = a.position + a.rotation * contact.point;
+  const Vec3 face_normal = b.rotation * contact.normal;
+  geometry.gap = face_normal.dot(geometry.point - b.position) - contact.offset;
+  geometry.normal = -face_normal;
+  return geometry;
+}
+
+std::vector<ContactPoint> find_contact_points(const std::vector<const Block*>& posed,
+                                              const std::vector<RigidPose>& poses,
+                                              const std::vector<bool>& fixed, const std::vector<int>& which,
+                                              double distance, double angle) {
+  std::vector<const Block*> subset;
+  subset.reserve(which.size());
+  for (int i : which) subset.push_back(posed[i]);
+  ContactOptions options;
+  options.tolerance = distance;
+  options.angle = angle;
+  const double opposite = opposite_cosine(options);
+
+  std::vector<ContactPoint> out;
+  std::set<std::pair<int, int>> face_pairs;
+  for (const Interface& contact : detect_interfaces(subset, options)) {
+    const int a = which[contact.a], b = which[contact.b];
+    if (fixed[a] && fixed[b]) continue;
+    const int face = facing_face(*posed[b], contact.normal, contact.center, opposite);
+    if (face < 0) continue;
+    face_pairs.emplace(std::min(a, b), std::max(a, b));
+    for (const Vec3& p : contact.vertices) {
+      out.push_back(make_point(a, b, face, p, posed[b]->face_planes()[face], poses));
+    }
+  }
+  for (const auto& [i, j] : box_pairs(subset, distance)) {
+    const int a = which[i], b = which[j];
+    if ((fixed[a] && fixed[b]) || face_pairs.count({std::min(a, b), std::max(a, b)})) continue;
+    if (!posed[a]->convex() || !posed[b]->convex()) continue;
+    add_vertex_contacts(a, b, *posed[a], *posed[b], distance, poses, out);
+    add_vertex_contacts(b, a, *posed[b], *posed[a], distance, poses, out);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const ContactPoint& x, const ContactPoint& y) {
+    return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+  });
+  return out;
+}
+
+}  // namespace ashlar

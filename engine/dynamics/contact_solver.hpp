@@ -1,0 +1,75 @@
+// One step's contact impulses: a projected Gauss-Seidel (non-smooth
+// Gauss-Seidel, as in LMGC90's NSCD and Siconos' fc3d NSGS with a projection
+// local solver) over contact points with unilateral contact and Coulomb
+// friction, at velocity level.
+//
+// Unknowns: per contact point, the impulse P = (P_n, P_t) (N s) that body b
+// receives (body a the opposite), in the contact's frame (n from a into b,
+// two tangents). Per contact, with U the relative velocity of b's material
+// point against a's after the step (m/s):
+//   0 <= P_n  complementary to  U_n - target_n >= 0   (unilateral contact,
+//     target_n = e * the approach speed before the step: Newton's impact law)
+//   |P_t| <= mu P_n, and U_t = -lambda P_t, lambda >= 0, lambda (mu P_n - |P_t|) = 0
+//     (Coulomb friction, no dilatancy).
+// Rows between the same two bodies that follow one another form a group
+// (the points of one contact), solved together by repeated passes before
+// the next group. Sweeps visit the groups in order and back in turn
+// (symmetric Gauss-Seidel; the caller orders them, e.g. from the top of a
+// structure down, along its load path). A pass solves each row's normal
+// impulse exactly (the others held) and moves its tangential impulse by a
+// scalar step against the slip, projected on the disc |P_t| <= mu P_n: a
+// fixed point of the sweep satisfies the laws above exactly.
+#pragma once
+
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace ashlar {
+
+// The bodies' velocities and inverse masses; a fixed body has zero inverse
+// mass and inertia and keeps zero velocity.
+struct BodyVelocities {
+  std::vector<Vec3> linear;        // m/s, of the centroid
+  std::vector<Vec3> angular;       // rad/s, world frame
+  std::vector<double> inverse_mass;    // 1/kg
+  std::vector<Mat3> inverse_inertia;   // 1/(kg m^2), world frame, about the centroid
+};
+
+// One active contact point of the step.
+struct ContactRow {
+  int a = -1, b = -1;             // bodies; a pair of fixed bodies is never a row
+  Vec3 arm_a = Vec3::Zero();      // contact point - a's centroid (m)
+  Vec3 arm_b = Vec3::Zero();      // contact point - b's centroid (m)
+  Mat3 frame = Mat3::Identity();  // rows: n (from a into b), t1, t2
+  double friction = 0.0;          // mu, >= 0 (inf: no sliding)
+  double target_normal = 0.0;     // least normal velocity after the step (m/s)
+  Vec3 impulse = Vec3::Zero();    // (P_n, P_t1, P_t2), N s: the warm start in, the answer out
+};
+
+struct ContactSolverSettings {
+  int max_sweeps = 1000;
+  // Stop after a sweep in which no contact broke the laws above by more
+  // than this (m/s), its relative velocity measured at the impulse the
+  // sweep found it with: the normal velocity off its target where the
+  // contact presses (or below it where it does not), the slip of a
+  // sticking contact, the slip off the direction opposite the friction of
+  // a sliding one.
+  double velocity_tolerance = 1e-9;
+};
+
+struct ContactSolverReport {
+  int sweeps = 0;
+  bool converged = false;
+};
+
+// Solves the rows, starting from their impulses, and applies the change of
+// impulse to the velocities (which enter as the free velocities: those after
+// the step without contact forces).
+ContactSolverReport solve_contacts(std::vector<ContactRow>& rows, BodyVelocities& bodies,
+                                   const ContactSolverSettings& settings);
+
+// An orthonormal frame with n as its first row.
+Mat3 contact_frame(const Vec3& n);
+
+}  // namespace ashlar

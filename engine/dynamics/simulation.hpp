@@ -1,0 +1,134 @@
+// Rigid-block dynamics: what a structure does from rest under gravity, point
+// loads and a prescribed ground motion.
+//
+// Method: non-smooth contact dynamics, Moreau-Jean time stepping (as in
+// LMGC90 and Siconos). Each free block is a rigid body (exact mass, centroid
+// and inertia of its polyhedron); supports are fixed. Per step of length h,
+// with theta in [1/2, 1]:
+//   v+ = v + h M^-1 f_theta + M^-1 P      (velocities after the step)
+//   q+ = q + h ((1 - theta) v + theta v+) (positions; rotations likewise)
+// where f_theta is the theta-weighted external force (gravity, point loads,
+// the ground motion's inertia force) and P the contact impulses, found by
+// projected Gauss-Seidel (contact_solver.hpp): unilateral contact with
+// Newton's impact law (restitution e) and Coulomb friction, no dilatancy.
+// A contact point takes part in a step when its gap, predicted half a step
+// ahead, is within the contact tolerance. The solve starts from the last
+// step's impulses, so a structure at rest that can stand stays at rest to
+// the solver's tolerance: nothing is pre-stressed at the start (every
+// impulse starts at zero) and overlaps are removed by moving positions
+// only (a separate frictionless solve on pseudo-velocities that are then
+// dropped), so the correction never adds kinetic energy.
+//
+// Ground motion: the supports move rigidly with a prescribed acceleration
+// a_g(t) (m/s^2, no rotation). The simulation runs in the ground's frame,
+// where every free block feels the extra body force -m a_g(t); positions
+// and displacements are relative to the ground.
+//
+// Contacts (contact_points.hpp): found from the geometry at the start
+// (ashlar's contact detection, plus corner contacts between convex blocks)
+// up to a search distance, then kept with their blocks; a block and its
+// neighbours are searched again once the block has moved (its farthest
+// vertex) half the search distance since its last search, so no contact is
+// missed. Neighbours come from a point grid of the centroids: sub-quadratic.
+//
+// Units: SI (m, kg, s, N). Throws InvalidArgument for options out of range,
+// a structure with cables, explicit interfaces, overlapping blocks or no
+// free block. An interrupt (Ctrl-C, a sandbox deadline: core/interrupt.hpp)
+// ends the run with status `interrupted`, what was computed so far, and no
+// verdict.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "core/enum_names.hpp"
+#include "core/types.hpp"
+#include "dynamics/rigid_body.hpp"
+#include "structure/structure.hpp"
+
+namespace ashlar {
+
+struct SimulationOptions {
+  double duration = 1.0;      // simulated time (s), > 0
+  double step = 1e-3;         // time step h (s), > 0 and <= duration
+  double theta = 0.5;         // theta of the theta-method, in [0.5, 1]
+  double friction = 0.7;      // Coulomb mu at every contact, >= 0 (inf: no sliding)
+  double restitution = 0.0;   // Newton's e in [0, 1]: 0, masonry's plastic impacts
+  Vec3 gravity{0.0, 0.0, -kGravity};  // m/s^2
+  // Acceleration of the ground (the supports) at time t (m/s^2); empty: the
+  // ground stays still. Called once per step, at its end time (and at 0).
+  std::function<Vec3(double t)> ground_acceleration;
+  // Steps between recorded frames (the first is at time 0, the last at the
+  // end); 0: about 100 frames per simulated second (round(0.01 / step),
+  // at least 1).
+  int record_every = 0;
+  // Contact detection: `angle` pairs faces as detection does, and gaps up to
+  // the structure's contact tolerance (`tolerance`, relative_tolerance)
+  // count as touching.
+  ContactOptions contact;
+  // Search distance for contacts (m); 0: 2 % of the smallest free block's
+  // bounding-box diagonal. Larger means fewer searches, more points.
+  double search_distance = 0.0;
+  // A block has moved when a vertex of it has gone further than this
+  // fraction of its bounding-box diagonal from where it started.
+  double moved_fraction = 1e-3;
+  // The run has settled when at the end no point of any free block moves
+  // faster than this (m/s).
+  double settle_speed = 1e-3;
+  // Contact solver: sweeps per step, and how far a contact may break the
+  // contact laws, as a velocity (a fraction of 9.81 m/s^2 times the step,
+  // m/s), for a sweep to end the solve (contact_solver.hpp). A block at
+  // rest then drifts by at most about tolerance x 9.81 h per second.
+  int max_sweeps = 1000;
+  double tolerance = 1e-4;
+  // Called after every step with the simulated time reached (s).
+  std::function<void(double t)> progress;
+};
+
+enum class SimulationStatus { completed, interrupted };
+inline constexpr EnumNames<SimulationStatus, 2> kSimulationStatusNames{
+    {{{SimulationStatus::completed, "completed"}, {SimulationStatus::interrupted, "interrupted"}}}};
+
+struct SimulationResult {
+  SimulationStatus status = SimulationStatus::completed;
+  // Verdict, only when completed: whether any block moved (moved_fraction),
+  // and whether the motion had stopped at the end (settle_speed).
+  bool moved = false;
+  bool settled = false;
+
+  int steps = 0;               // steps taken
+  double time = 0.0;           // simulated time reached (s)
+  double seconds = 0.0;        // wall-clock time of the run (s)
+  // Largest displacement (m) of any vertex of block i from where it
+  // started, over the whole run (0 for supports); and its largest over all
+  // blocks, with the block (0-based, -1 when nothing moved).
+  std::vector<double> displacement;
+  double max_displacement = 0.0;
+  int max_displacement_block = -1;
+
+  // Info, not errors: sweeps summed over the steps, steps whose solve
+  // stopped at max_sweeps, contact searches (each over the moved blocks and
+  // their neighbours), and the most contact points taking part in a step.
+  long long sweeps = 0;
+  int unconverged_steps = 0;
+  int searches = 0;
+  int max_active_contacts = 0;
+
+  // Recorded frames: times[k] (s) and poses[k][i] of every block i
+  // (supports keep their place).
+  std::vector<double> times;
+  std::vector<std::vector<RigidPose>> poses;
+};
+
+SimulationResult simulate(const Structure& structure, const SimulationOptions& options);
+
+// The poses of every block at time t (s), between the recorded frames
+// around it: positions linear, rotations by slerp; clamped to the run.
+std::vector<RigidPose> poses_at(const SimulationResult& result, double t);
+
+// A copy of `structure` with each block placed at poses[i] (same names,
+// supports and faces; point loads move with their blocks); cables and
+// explicit interfaces, which simulate refuses, are not copied.
+Structure posed_structure(const Structure& structure, const std::vector<RigidPose>& poses);
+
+}  // namespace ashlar

@@ -1,0 +1,149 @@
+-- ashlar.simulate (rigid-block dynamics) as a user calls it: the cases
+-- where rigid-block equilibrium is wrong, a ground motion, the Simulation's
+-- fields and methods, exports, compare_methods' dynamic verdict, the
+-- interrupt and the errors. The arches: simulate_arch_spec.lua.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+local support = require "spec_support"
+
+local cases = dofile("../../scripts/kinematic_cases.lua")
+
+describe("ashlar.simulate", function()
+  it("lets a block clamped between two walls fall freely, whatever the friction", function()
+    for _, mu in ipairs{ 0.3, 0.9, math.huge } do
+      local s = cases.clamped()
+      assert.is_true(ashlar.analyze(s, { friction = mu }).stable)  -- equilibrium is wrong here
+      local sim = ashlar.simulate(s, { duration = 0.5, friction = mu })
+      local path = sim:trajectory(3)
+      local drop = path.positions[1][3] - path.positions[#path.positions][3]
+      support.near(drop, 0.5 * 9.81 * 0.25, 1e-6, "mu " .. mu)
+      assert.is_true(sim.moved)
+    end
+  end)
+
+  it("keeps a wedge seated in a V at rest", function()
+    local sim = ashlar.simulate(cases.wedge(), { duration = 0.5, friction = 0.3 })
+    assert.is_false(sim.moved)
+    assert.is_true(sim.max_displacement < 1e-7)
+  end)
+
+  it("gives fields, trajectories and a printable Simulation", function()
+    local s = cases.stack(1.2)  -- tips
+    local sim = ashlar.simulate(s, { duration = 0.2, step = 0.002, record_every = 10 })
+    assert.equal(100, sim.steps)
+    assert.equal(11, sim.frames)
+    assert.near(0.2, sim.time, 1e-12)
+    assert.is_true(sim.seconds >= 0)
+    assert.is_true(sim.moved)
+    assert.is_number(sim.max_displacement_block)
+    assert.equal(#s, #sim.displacements)
+    assert.equal(0, sim.displacements[1])  -- the support
+    local path = sim:trajectory(2)
+    assert.equal(11, #path.times)
+    assert.near(0.02, path.times[2], 1e-12)
+    assert.equal(3, #path.positions[1])
+    assert.equal(3, #path.rotations[1])
+    assert.same(path.positions, sim:trajectory("block 2").positions)
+    assert.matches("^Simulation %(completed, 100 steps", tostring(sim))
+    -- The structure at a frame: blocks where the run put them.
+    local last = sim:structure(sim.frames)
+    assert.equal(#s, #last)
+    local c, p = last:block(3):centroid(), sim:trajectory(3).positions[sim.frames]
+    for k = 1, 3 do assert.near(p[k], c[k], 1e-9) end
+    support.expect_error({ "frame: expected a frame number from 1 to 11, got 12" }, function() sim:structure(12) end)
+    getmetatable(sim).__close(sim)
+    assert.equal("Simulation (closed)", tostring(sim))
+    support.expect_error({ "closed Simulation" }, function() return sim.moved end)
+  end)
+
+  it("writes an animated .glb and a still of any frame", function()
+    local folder = os.tmpname()
+    os.remove(folder)
+    os.execute("mkdir -p " .. support.quote(folder))
+    local s = cases.stack(1.2)
+    local sim = ashlar.simulate(s, { duration = 0.3 })
+    sim:export(folder .. "/run.glb", { fps = 30 })
+    sim:export(folder .. "/last.obj", { frame = sim.frames })
+    sim:export(folder .. "/first.glb", { frame = 1, edges = true })
+    for _, name in ipairs{ "run.glb", "last.obj", "first.glb" } do
+      local f = assert(io.open(folder .. "/" .. name, "rb"))
+      assert.is_true(#f:read("a") > 100, name)
+      f:close()
+    end
+    local f = assert(io.open(folder .. "/run.glb", "rb"))
+    local glb = f:read("a")
+    f:close()
+    assert.equal("glTF", glb:sub(1, 4))
+    assert.truthy(glb:find('"animations"', 1, true))
+    support.expect_error({ "frame: expected a frame number from 1 to " .. sim.frames .. ", got 0" },
+      function() sim:export(folder .. "/x.glb", { frame = 0 }) end)
+    support.expect_error({ "an animation is written as .glb" }, function() sim:export(folder .. "/x.obj") end)
+    support.expect_error({ "edges: applies to a still" }, function() sim:export(folder .. "/x.glb", { edges = true }) end)
+    os.execute("rm -rf " .. support.quote(folder))
+  end)
+
+  it("follows a prescribed ground acceleration", function()
+    -- A block on a base accelerated at 0.1 g along x, friction 0.05: it
+    -- slides back relative to the base at (0.1 - 0.05) g.
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 6, 2, 0.2 }, center = { 0, 0, -0.1 } }, { support = true })
+    s:add(ashlar.box{ size = { 0.5, 0.5, 0.3 }, center = { 0, 0, 0.15 } })
+    local sim = ashlar.simulate(s, { duration = 1, friction = 0.05,
+                                     ground_acceleration = function(t) return 0.1 * 9.81, 0, 0 end })
+    local path = sim:trajectory(2)
+    support.near(path.positions[#path.positions][1] - path.positions[1][1], -0.5 * 0.05 * 9.81, 1e-3 * 0.245)
+  end)
+
+  it("adds the dynamic verdict to compare_methods when asked", function()
+    local c = ashlar.compare_methods(cases.clamped(), { friction = 0.6, dynamics = { duration = 0.3 } })
+    assert.is_true(c.equilibrium.stable)
+    assert.is_false(c.kinematic.stable)
+    assert.is_true(c.dynamic.moved)
+    local w = ashlar.compare_methods(cases.wedge(), { friction = 0.6, dynamics = true })
+    assert.is_false(w.dynamic.moved)
+    assert.is_nil(ashlar.compare_methods(cases.wedge(), { friction = 0.6 }).dynamic)
+  end)
+
+  it("finishes with a structure that its ground_acceleration closes", function()
+    local s = cases.wedge()
+    local sim = ashlar.simulate(s, { duration = 0.01, ground_acceleration = function(t)
+      getmetatable(s).__close(s)
+      return 0, 0, 0
+    end })
+    assert.equal(10, sim.steps)
+    assert.is_false(sim.moved)
+    assert.equal("Structure (closed)", tostring(s))
+  end)
+
+  it("stops on an interrupt with what it computed and no verdict", function()
+    local outcome = ashlar.sandbox{ source = [[
+      local ashlar = require "ashlar"
+      local s = ashlar.structure()
+      s:add(ashlar.box{ size = { 1, 1, 1 }, center = { 0, 0, 10 } })
+      local sim = ashlar.simulate(s, { duration = 1e4, step = 1e-3 })
+      return sim.status
+    ]], time = 0.5 }
+    assert.equal("time", outcome.status)
+    assert.is_true(outcome.seconds < 5)  -- the run stopped at the deadline, not after 1e7 steps
+  end)
+
+  it("names the argument and the value it got in errors", function()
+    local s = cases.wedge()
+    support.expect_error({ "bad argument #2 to 'simulate'", "step" , "-1" },
+      function() ashlar.simulate(s, { step = -1 }) end)
+    support.expect_error({ "restitution must be in [0, 1], got 2" },
+      function() ashlar.simulate(s, { restitution = 2 }) end)
+    support.expect_error({ "friction: expected a number >= 0", "got -0.5" },
+      function() ashlar.simulate(s, { friction = -0.5 }) end)
+    support.expect_error({ "unknown", "durration" }, function() ashlar.simulate(s, { durration = 1 }) end)
+    support.expect_error({ "ground_acceleration: expected a function", "got number" },
+      function() ashlar.simulate(s, { ground_acceleration = 3 }) end)
+    support.expect_error({ "ground_acceleration: the function must return three finite numbers", "result 2 is nil" },
+      function() ashlar.simulate(s, { duration = 0.01, ground_acceleration = function(t) return 1 end }) end)
+    support.expect_error({ "boom" },
+      function() ashlar.simulate(s, { duration = 0.01, ground_acceleration = function(t) error("boom") end }) end)
+    support.expect_error({ "Structure expected, got number" }, function() ashlar.simulate(3) end)
+    local sim = ashlar.simulate(s, { duration = 0.01 })
+    support.expect_error({ "block: index 9 is out of range" }, function() sim:trajectory(9) end)
+  end)
+end)
