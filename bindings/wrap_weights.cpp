@@ -3,11 +3,16 @@
 // weights hold a structure up.
 #include "wrap_weights.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include "analysis/load_capacity.hpp"
 #include "analysis/weight_analysis.hpp"
 #include "luax.hpp"
+#include "study/study_progress.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
 
@@ -22,6 +27,36 @@ void set_list(lua_State* L, const std::vector<double>& values) {
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
 }
+
+// The `progress` option of the per-block analyses (default: when stderr is
+// a terminal): a line on stderr counting the blocks done, redrawn in place
+// on a terminal, with a closing line; begun at the first report (0 done),
+// where the count of blocks is known.
+class BlockProgressLine {
+public:
+  BlockProgressLine(const OptionTable& options, std::string kind, int blocks)
+      : enabled_(options.boolean("progress").value_or(isatty(STDERR_FILENO) != 0)),
+        kind_(std::move(kind)),
+        label_(std::to_string(blocks) + " blocks") {}
+
+  BlockProgress callback() {
+    if (!enabled_) return {};
+    return [this](int done, int total) {
+      if (!line_) line_.emplace(label_, static_cast<std::size_t>(total), true, stderr, 10.0, kind_, "block");
+      done_ = done;
+      line_->update(static_cast<std::size_t>(done), 0);
+    };
+  }
+  void finish(const std::string& status) {
+    if (line_) line_->finish(static_cast<std::size_t>(done_), 0, status);
+  }
+
+private:
+  bool enabled_;
+  std::string kind_, label_;
+  std::optional<study::StudyProgress> line_;
+  int done_ = 0;
+};
 
 int w_weight_sensitivity(lua_State* L) {
   return guard(L, [&] {
@@ -56,11 +91,13 @@ int w_load_capacity(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = static_cast<int>(
         options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
-    const LoadCapacity capacity = load_capacity(s, settings, threads);
+    BlockProgressLine line(options, "load_capacity", s.size());
+    const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback());
+    line.finish(capacity.status);
     lua_createtable(L, s.size(), 5);
     for (int i = 0; i < s.size(); ++i) {
       if (std::isnan(capacity.max[i])) {
@@ -103,11 +140,13 @@ int w_important_weights(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = static_cast<int>(
         options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
-    const ImportantWeights important = important_weights(s, settings, threads);
+    BlockProgressLine line(options, "important_weights", s.size());
+    const ImportantWeights important = important_weights(s, settings, threads, line.callback());
+    line.finish(important.interrupted ? "interrupted" : "done");
     lua_createtable(L, s.size(), 3);
     set_list(L, important.per_volume);
     lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);

@@ -196,7 +196,8 @@ int worker_count(int requested, int blocks) {
 
 }  // namespace
 
-LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads) {
+LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads,
+                           const BlockProgress& progress) {
   const auto start = Clock::now();
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   std::vector<int> multiplier_column;
@@ -234,19 +235,25 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   programs.reserve(workers);
   for (int w = 0; w < workers; ++w) programs.emplace_back(capacity, rays, as_built == 0 ? &basis : nullptr);
   std::atomic<size_t> next{0};
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(blocks.size());
   // The helpers answer to the caller's sandbox deadline too; no block is
-  // begun once a stop is asked for.
+  // begun once a stop is asked for. Progress is told on the calling thread.
   const Clock::time_point deadline = stop_deadline();
-  auto work = [&](BlockPrograms& mine) {
+  auto work = [&](BlockPrograms& mine, bool tells) {
     const DeadlineScope scope(deadline);
     for (size_t k = next++; k < blocks.size() && !stop_requested(); k = next++) {
       bounds[k] = mine.solve(multiplier_column[blocks[k]]);
+      const int now = ++done;
+      if (tells && progress) progress(now, total);
     }
   };
+  if (progress) progress(0, total);
   std::vector<std::thread> helpers;
-  for (int w = 1; w < workers; ++w) helpers.emplace_back(work, std::ref(programs[w]));
-  work(programs[0]);
+  for (int w = 1; w < workers; ++w) helpers.emplace_back(work, std::ref(programs[w]), false);
+  work(programs[0], true);
   for (std::thread& thread : helpers) thread.join();
+  if (progress) progress(done, total);
 
   bool interrupted = false;
   for (size_t k = 0; k < blocks.size(); ++k) {

@@ -17,6 +17,7 @@
 // are shared among worker threads, each with its own copy of the programs.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,9 +46,15 @@ struct LoadCapacity {
   double seconds = 0.0;
 };
 
+// Called on the calling thread before the first block (0 done) and as
+// blocks are done: (blocks done, blocks in all). Long per-block loops (load
+// capacity, important weights) take one.
+using BlockProgress = std::function<void(int done, int total)>;
+
 // Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
 // threads: worker threads, 0 for one per hardware thread; the bounds do not
-// depend on it.
-LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0);
+// depend on it. progress: see BlockProgress (none when empty).
+LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0,
+                           const BlockProgress& progress = {});
 
 }  // namespace ashlar

@@ -1,6 +1,7 @@
 #include "analysis/weight_analysis.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <string>
 #include <thread>
 
@@ -148,7 +149,8 @@ NecessaryWeights necessary_weights(const Structure& structure, int block,
   return problem.solve(block, false);
 }
 
-ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings, int threads) {
+ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings, int threads,
+                                   const BlockProgress& progress) {
   const auto start = Clock::now();
   check_analysis_settings(settings);
   std::vector<int> blocks;  // the free blocks analysed, in block order
@@ -172,6 +174,8 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
   };
   std::vector<Share> shares(workers);
   const Clock::time_point deadline = stop_deadline();  // a sandbox's, for the helpers too
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(blocks.size());
   auto work = [&](int w) {
     const DeadlineScope scope(deadline);
     Share& share = shares[w];
@@ -186,16 +190,20 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
         return;
       }
       ++share.solves;
+      const int now = ++done;
+      if (w == 0 && progress) progress(now, total);  // on the calling thread
       if (!needed.stable) share.unstable.push_back(i);
       for (int j = 0; j < structure.size(); ++j) {
         if (j != i) share.per_weight[j] += needed.weights[j];
       }
     }
   };
+  if (progress) progress(0, total);
   std::vector<std::thread> helpers;
   for (int w = 1; w < workers; ++w) helpers.emplace_back(work, w);
   work(0);
   for (std::thread& helper : helpers) helper.join();
+  if (progress) progress(done, total);
 
   ImportantWeights result;
   result.per_volume.assign(structure.size(), 0.0);

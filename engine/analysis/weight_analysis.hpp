@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/load_capacity.hpp"
 
 namespace ashlar {
 
@@ -70,8 +71,9 @@ struct ImportantWeights {
 // pattern, each warm-started from the last. threads: worker threads, 0 for
 // one per hardware thread; each takes a contiguous share of the blocks
 // (its own problem, each solve warm from its own last), so the answer
-// depends on the count only to the solver's tolerance.
+// depends on the count only to the solver's tolerance. progress: as
+// load_capacity's (analysis/load_capacity.hpp).
 ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings,
-                                   int threads = 0);
+                                   int threads = 0, const BlockProgress& progress = {});
 
 }  // namespace ashlar

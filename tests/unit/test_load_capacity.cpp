@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "analysis/load_capacity.hpp"
 #include "core/interrupt.hpp"
@@ -90,4 +93,23 @@ TEST(LoadCapacity, AnInterruptedComputationCarriesNoVerdict) {
     EXPECT_TRUE(std::isnan(capacity.min[j]) && std::isnan(capacity.max[j])) << j;
   }
   EXPECT_TRUE(load_capacity(s, AnalysisSettings{}).stable);
+}
+
+TEST(LoadCapacity, TellsItsProgressOnTheCallingThread) {
+  // 0 of the 9 voussoirs first, then counts that only grow, ending at 9;
+  // every call on this thread though a second worker solves blocks too.
+  const Structure s = semicircular_arch(9, 0.8);
+  std::vector<std::pair<int, int>> told;
+  const std::thread::id caller = std::this_thread::get_id();
+  bool elsewhere = false;
+  const LoadCapacity capacity = load_capacity(s, AnalysisSettings{}, 2, [&](int done, int total) {
+    elsewhere = elsewhere || std::this_thread::get_id() != caller;
+    told.emplace_back(done, total);
+  });
+  ASSERT_EQ(capacity.status, "optimal");
+  ASSERT_GE(told.size(), 2u);
+  EXPECT_FALSE(elsewhere);
+  EXPECT_EQ(told.front(), std::make_pair(0, 9));
+  EXPECT_EQ(told.back(), std::make_pair(9, 9));
+  for (size_t k = 1; k < told.size(); ++k) EXPECT_GE(told[k].first, told[k - 1].first);
 }
