@@ -10,49 +10,15 @@
 #include <memory>
 #include <string>
 
-#include "analysis/equilibrium_analysis.hpp"
-#include "analysis/structural_gradient.hpp"
 #include "core/error.hpp"
 #include "luax.hpp"
-#include "optimize/optimizer.hpp"
+#include "optimize/structure_optimization.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
 
 namespace ashlar::lua {
 
 namespace {
-
-// The design of a structure: its blocks' vertices, then both end points of
-// every cable as free points (from, to).
-DesignPoint design_of(const Structure& s) {
-  DesignPoint design;
-  for (int i = 0; i < s.size(); ++i) design.block_vertices.push_back(s.block(i).vertices());
-  for (const Cable& cable : s.cables()) {
-    design.points.push_back(cable.from.point);
-    design.points.push_back(cable.to.point);
-  }
-  return design;
-}
-
-// `s` with the positions of `design`: same names, supports, loads, cables.
-std::shared_ptr<Structure> with_design(const Structure& s, const DesignPoint& design) {
-  auto out = std::make_shared<Structure>();
-  for (int i = 0; i < s.size(); ++i) {
-    const Block& block = s.block(i);
-    out->add(std::make_shared<const Block>(design.block_vertices[i], block.faces(), block.density(),
-                                           block.name(), block.planarity()),
-             s.is_support(i), s.name(i));
-  }
-  out->set_planar(s.planar());
-  for (const PointLoad& load : s.loads()) out->add_load(load);
-  for (size_t c = 0; c < s.cables().size(); ++c) {
-    Cable cable = s.cables()[c];
-    cable.from.point = design.points[2 * c];
-    cable.to.point = design.points[2 * c + 1];
-    out->add_cable(cable);
-  }
-  return out;
-}
 
 OptimizeSettings optimize_settings(const OptionTable& options) {
   OptimizeSettings settings;
@@ -174,27 +140,6 @@ PositionRef vertex_ref(lua_State* L, const Structure& s, int arg, const std::str
                             " vertices)");
   }
   return PositionRef::vertex(block, static_cast<int>(vertex - 1));
-}
-
-// By default a free block's face resting on a fixed block (a voussoir's
-// springing on its abutment) stays where it is: its vertices are fixed too,
-// so the bearing a designer drew is kept. With slide_on_fixed the design
-// space keeps them in the fixed face's plane instead, and the bearing may
-// move or change size.
-void hold_faces_on_fixed_blocks(const Structure& s, DesignConstraints& c) {
-  std::vector<bool> fixed(s.size(), false);
-  for (int block : c.fixed_blocks) fixed[block] = true;
-  const double tolerance = 1e-6 * s.bounds().diagonal();
-  for (const Interface& contact : s.interfaces()) {
-    if (fixed[contact.a] == fixed[contact.b]) continue;
-    const int free_block = fixed[contact.a] ? contact.b : contact.a;
-    const std::vector<Vec3>& vertices = s.block(free_block).vertices();
-    for (size_t k = 0; k < vertices.size(); ++k) {
-      if (std::abs(contact.normal.dot(vertices[k] - contact.center)) <= tolerance) {
-        c.fixed.push_back(PositionRef::vertex(free_block, static_cast<int>(k)));
-      }
-    }
-  }
 }
 
 DesignConstraints design_constraints(lua_State* L, const Structure& s, const OptionTable& options) {
@@ -322,7 +267,7 @@ void push_outcome(lua_State* L, OptimizeStatus status, bool stable, const std::s
 int optimize_structure(lua_State* L) {
   const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
   const Structure& s = *structure;
-  s.require_detected_interfaces("optimize");
+  s.require_detected_interfaces("optimize");  // before the options: the structure is what is refused
   const OptionTable options(
       L, 2, {"method", "max_iterations", "gradient_tolerance", "value_tolerance", "initial_step",
              "analysis", "progress", "fixed", "fixed_names", "fixed_vertices", "fixed_cables",
@@ -330,39 +275,17 @@ int optimize_structure(lua_State* L) {
              "slide_on_fixed"});
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
-  std::vector<std::vector<FaceLoop>> faces;
-  for (int i = 0; i < s.size(); ++i) faces.push_back(s.block(i).faces());
-  const DesignSpace space(std::move(faces), design_of(s), design_constraints(L, s, options));
-
+  const DesignConstraints constraints = design_constraints(L, s, options);
   Progress progress;
   progress.print = wants_progress(options);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
-  // One analysis object for every step: the steps move vertices, not
-  // contacts, so its symbolic factorisation serves them all.
-  std::shared_ptr<Structure> current;
-  AnalysisSequence analyses(analysis, false);
-  const DesignObjective objective = [&](const DesignPoint& design) {
-    current = with_design(s, design);
-    const StructuralGradient g = structural_gradient(analyses.set_up(*current), *current);
-    if (!g.valid) {
-      throw Error("the structure has no equilibrium at all (" +
-                  std::string(status_name(g.analysis.status)) + ")");
-    }
-    progress.evaluated(g.analysis.penalty, g.analysis.infeasibility);
-    DesignEvaluation evaluation;
-    evaluation.value = g.analysis.penalty;
-    evaluation.stable = g.analysis.stable;
-    evaluation.gradient.block_vertices = g.block_vertices;
-    for (size_t c = 0; c < g.cable_from.size(); ++c) {
-      evaluation.gradient.points.push_back(g.cable_from[c]);
-      evaluation.gradient.points.push_back(g.cable_to[c]);
-    }
-    return evaluation;
-  };
-  const OptimizeResult result = optimize_design(space, objective, settings);
+  const StructureOptimization optimized = optimize_structure(
+      s, constraints, analysis, settings,
+      [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
   lua_createtable(L, 0, 7);
-  luax_pushStructure(L, with_design(s, result.design));
+  luax_pushStructure(L, optimized.structure);
   lua_setfield(L, -2, "structure");
+  const OptimizeResult& result = optimized.result;
   push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
   return 1;
 }
@@ -381,35 +304,6 @@ std::shared_ptr<Structure> generate(lua_State* L, int generator, const std::vect
   std::shared_ptr<Structure> s = luax_checkStructure(L, -1);
   lua_pop(L, 1);
   return s;
-}
-
-// The derivative of every position with respect to one parameter, by central
-// differences of the generator (no analysis involved): the dot product with
-// the structural gradient is the parameter's derivative.
-double parameter_derivative(const Structure& base, const Structure& plus, const Structure& minus,
-                            const StructuralGradient& g, double step, const std::string& name) {
-  if (plus.size() != base.size() || minus.size() != base.size() ||
-      plus.cables().size() != base.cables().size() ||
-      minus.cables().size() != base.cables().size()) {
-    throw InvalidArgument("parameter '" + name +
-                          "' changes the number of blocks or cables; only parameters that move "
-                          "vertices can be optimised");
-  }
-  double sum = 0.0;
-  for (int i = 0; i < base.size(); ++i) {
-    const std::vector<Vec3>& p = plus.block(i).vertices();
-    const std::vector<Vec3>& m = minus.block(i).vertices();
-    if (p.size() != g.block_vertices[i].size() || m.size() != p.size()) {
-      throw InvalidArgument("parameter '" + name + "' changes the vertex count of block " +
-                            std::to_string(i + 1));
-    }
-    for (size_t k = 0; k < p.size(); ++k) sum += g.block_vertices[i][k].dot(p[k] - m[k]);
-  }
-  for (size_t c = 0; c < base.cables().size(); ++c) {
-    sum += g.cable_from[c].dot(plus.cables()[c].from.point - minus.cables()[c].from.point);
-    sum += g.cable_to[c].dot(plus.cables()[c].to.point - minus.cables()[c].to.point);
-  }
-  return sum / (2.0 * step);
 }
 
 int optimize_parameters_of(lua_State* L) {
@@ -464,35 +358,13 @@ int optimize_parameters_of(lua_State* L) {
   Progress progress;
   progress.print = wants_progress(options);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
-  // One analysis object for every evaluation: its symbolic factorisation
-  // is kept while the generated structures keep their contacts.
-  std::shared_ptr<Structure> base;
-  AnalysisSequence analyses(analysis, false);
-  const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
-    base = generate(L, generator, sorted_names, values);
-    const StructuralGradient g = structural_gradient(analyses.set_up(*base), *base);
-    if (!g.valid) {
-      throw Error("the structure has no equilibrium at all (" +
-                  std::string(status_name(g.analysis.status)) + ")");
-    }
-    progress.evaluated(g.analysis.penalty, g.analysis.infeasibility);
-    ParameterEvaluation evaluation;
-    evaluation.value = g.analysis.penalty;
-    evaluation.stable = g.analysis.stable;
-    evaluation.gradient.resize(n);
-    for (int j = 0; j < n; ++j) {
-      const double step = 1e-6 * std::max(1.0, std::abs(values(j)));
-      Eigen::VectorXd plus = values, minus = values;
-      plus(j) += step;
-      minus(j) -= step;
-      evaluation.gradient(j) =
-          parameter_derivative(*base, *generate(L, generator, sorted_names, plus),
-                               *generate(L, generator, sorted_names, minus), g, step,
-                               sorted_names[j]);
-    }
-    return evaluation;
+  const StructureGenerator generator_of = [&](const Eigen::VectorXd& values) {
+    return generate(L, generator, sorted_names, values);
   };
-  const ParameterResult result = optimize_parameters(lower, upper, start, objective, settings);
+  const GeneratedOptimization optimized = optimize_generated(
+      generator_of, sorted_names, lower, upper, start, analysis, settings,
+      [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
+  const ParameterResult& result = optimized.result;
   lua_createtable(L, 0, 8);
   lua_createtable(L, 0, n);
   for (int j = 0; j < n; ++j) {
@@ -500,7 +372,7 @@ int optimize_parameters_of(lua_State* L) {
     lua_setfield(L, -2, sorted_names[j].c_str());
   }
   lua_setfield(L, -2, "params");
-  luax_pushStructure(L, generate(L, generator, sorted_names, result.parameters));
+  luax_pushStructure(L, optimized.structure);
   lua_setfield(L, -2, "structure");
   push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
   return 1;

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "optimize/design_space.hpp"
 #include "optimize/optimizer.hpp"
+#include "optimize/structure_optimization.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -820,4 +823,50 @@ TEST(Optimizer, BadSettingsAndParameterBoundsThrow) {
                                   Eigen::Vector2d(0.5, 0.5), quadratic);
             }),
             "optimize parameters: lower, upper and initial must have equal sizes, got 2, 3 and 2");
+}
+
+TEST(StructureOptimization, AThinArchIsMadeToStandByItsVerticesOrItsThickness) {
+  // A 16-voussoir arch (centreline radius 5 m, no sliding) at t = 0.4 m,
+  // below its minimum 5 x 0.1071 = 0.536 m: ashlar.optimize's two paths,
+  // in C++. Moving vertices (supports fixed, springings held, symmetric
+  // about x = 0), the result stands and its supports and springing faces
+  // have not moved; through a generator of thickness, the thickness found
+  // stands and is no less than the minimum.
+  AnalysisSettings analysis;
+  analysis.problem.friction = std::numeric_limits<double>::infinity();
+  const Structure arch = semicircular_arch(16, 0.4);
+  ASSERT_FALSE(analyze_equilibrium(arch, analysis).stable);
+
+  DesignConstraints constraints;
+  for (int i = 0; i < arch.size(); ++i) {
+    if (arch.is_support(i)) constraints.fixed_blocks.push_back(i);
+  }
+  hold_faces_on_fixed_blocks(arch, constraints);
+  EXPECT_EQ(constraints.fixed.size(), 8u);  // the two springing faces' vertices
+  constraints.mirror = MirrorPlane{Vec3::Zero(), Vec3::UnitX()};
+  OptimizeSettings settings;
+  settings.initial_step = 0.01;
+  int reports = 0;
+  const StructureOptimization moved =
+      optimize_structure(arch, constraints, analysis, settings, [&](double, double) { ++reports; });
+  EXPECT_TRUE(moved.result.stable) << moved.result.message;
+  EXPECT_TRUE(analyze_equilibrium(*moved.structure, analysis).stable);
+  EXPECT_EQ(reports, moved.result.evaluations);
+  for (int i = 0; i < arch.size(); ++i) {
+    if (arch.is_support(i)) EXPECT_EQ(moved.structure->block(i).vertices(), arch.block(i).vertices());
+  }
+  for (const PositionRef& held : constraints.fixed) {
+    EXPECT_EQ(moved.structure->block(held.block).vertices()[held.index],
+              arch.block(held.block).vertices()[held.index]);
+  }
+
+  const StructureGenerator thickness = [](const Eigen::VectorXd& t) {
+    return std::make_shared<Structure>(semicircular_arch(16, t(0)));
+  };
+  const GeneratedOptimization thickened =
+      optimize_generated(thickness, {"thickness"}, Eigen::VectorXd::Constant(1, 0.3),
+                         Eigen::VectorXd::Constant(1, 1.5), Eigen::VectorXd::Constant(1, 0.4), analysis, settings);
+  EXPECT_TRUE(thickened.result.stable) << thickened.result.message;
+  EXPECT_GE(thickened.result.parameters(0), 5 * 0.1071 - 1e-3);
+  EXPECT_TRUE(analyze_equilibrium(*thickened.structure, analysis).stable);
 }
