@@ -8,6 +8,7 @@
 #include "core/text.hpp"
 #include "io/mesh_io.hpp"
 #include "io/simulation_export.hpp"
+#include "io/viewer_page.hpp"
 #include "sandbox.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
@@ -93,15 +94,35 @@ int w_Simulation_export(lua_State* L) {
       export_with_options(L, still, path, options);
       return 0;
     }
-    for (const char* key : {"format", "interfaces", "tolerance", "result", "forces", "thrust", "force_scale",
-                            "opacity", "cable_color", "traces", "trace_color", "mechanism", "edges"}) {
+    const std::optional<std::string> format = options.string("format");
+    if (format && *format != "html") {
+      throw ArgError(3, "format: an animation is a .glb, or the HTML viewer with format = \"html\", got \"" +
+                            *format + "\" (give frame = k for a still in any format)");
+    }
+    const bool html = format || file_extension(path) == "html";
+    for (const char* key : {"interfaces", "tolerance", "result", "forces", "thrust", "force_scale", "cable_color",
+                            "traces", "trace_color", "mechanism"}) {
       if (options.has(key)) {
-        throw ArgError(3, std::string(key) + ": applies to a still (give frame = k); an animation takes color and fps");
+        throw ArgError(3, std::string(key) + ": applies to a still (give frame = k); an animation takes color and "
+                                             "fps, and as a page (.html) legend, opacity, edges and title too");
       }
+    }
+    if (!html) {
+      for (const char* key : {"opacity", "edges", "title", "legend"}) {
+        if (options.has(key)) {
+          throw ArgError(3, std::string(key) + ": applies to a still (give frame = k) or an animated page (.html, "
+                                               "or format = \"html\"); a .glb animation takes color and fps");
+        }
+      }
+    }
+    const double fps = options.positive("fps", 0.0, true);
+    if (html) {
+      write_viewer_page(record->structure, r, fps, path, block_appearance(L, options, record->structure.size(), true));
+      return 0;
     }
     AnimationOptions animation;
     animation.block_colors = block_colors(L, options, record->structure.size());
-    animation.fps = options.positive("fps", 0.0, true);
+    animation.fps = fps;
     export_animation(record->structure, r, path, animation);
     return 0;
   });

@@ -59,6 +59,30 @@ std::vector<std::vector<Vec3>> load_traces(lua_State* L, const OptionTable& opti
 
 }  // namespace
 
+ExportOptions block_appearance(lua_State* L, const OptionTable& options, int blocks, bool html) {
+  ExportOptions exported;
+  BlockColoring coloring = block_coloring(L, options, blocks);
+  exported.block_colors = std::move(coloring.colors);
+  if (html) exported.color_scale = std::move(coloring.scale);
+  if (const std::optional<std::string> legend = options.string("legend")) {
+    if (!exported.color_scale) {
+      throw ArgError(options.arg(), "legend: \"" + *legend + "\" labels colours mapped from values; give "
+                                    "color = { values = {...}, map = ..., range = ... } with it");
+    }
+    exported.color_scale->label = *legend;
+  }
+  exported.title = options.string("title").value_or("");
+  // The viewer's outlines are lines, shown unless edges = false.
+  exported.edges = options.boolean("edges").value_or(html);
+  if (const std::optional<double> opacity = options.number("opacity")) {
+    if (!(*opacity >= 0.0 && *opacity <= 1.0)) {
+      throw ArgError(options.arg(), "opacity: expected a number in [0, 1], got " + number_text(*opacity));
+    }
+    exported.block_opacity = opacity;
+  }
+  return exported;
+}
+
 void export_with_options(lua_State* L, const Structure& s, const std::string& path, const OptionTable& options) {
   const std::optional<std::string> format = options.string("format");
   if (format && *format != "compas" && *format != "html") {
@@ -90,18 +114,7 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
       }
     }
   }
-  ExportOptions exported;
-  BlockColoring coloring = block_coloring(L, options, s.size());
-  exported.block_colors = std::move(coloring.colors);
-  if (html) exported.color_scale = std::move(coloring.scale);
-  if (const std::optional<std::string> legend = options.string("legend")) {
-    if (!exported.color_scale) {
-      throw ArgError(options.arg(), "legend: \"" + *legend + "\" labels colours mapped from values; give "
-                                    "color = { values = {...}, map = ..., range = ... } with it");
-    }
-    exported.color_scale->label = *legend;
-  }
-  exported.title = options.string("title").value_or("");
+  ExportOptions exported = block_appearance(L, options, s.size(), html);
   exported.interfaces = options.boolean("interfaces").value_or(false);
   exported.contact.tolerance = options.positive("tolerance", 0.0, true);
   const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
@@ -110,8 +123,6 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
   exported.thrust = options.boolean("thrust").value_or(false);
   exported.force_scale = options.positive("force_scale", 0.0, true);
   exported.mechanism_scale = options.positive("mechanism", 0.0, true);
-  // The viewer's outlines are lines, shown unless edges = false.
-  exported.edges = options.boolean("edges").value_or(html);
   if (options.push("cable_color") != LUA_TNIL) {
     exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
   }
@@ -121,12 +132,6 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
     exported.trace_color = to_rgb(L, -1, options.arg(), "trace_color");
   }
   lua_pop(L, 1);
-  if (const std::optional<double> opacity = options.number("opacity")) {
-    if (!(*opacity >= 0.0 && *opacity <= 1.0)) {
-      throw ArgError(options.arg(), "opacity: expected a number in [0, 1], got " + std::to_string(*opacity));
-    }
-    exported.block_opacity = opacity;
-  }
   if (html) {
     write_viewer_page(s, path, exported);
   } else {

@@ -2,8 +2,10 @@
 // scene the engine wrote into the page (engine/io/viewer_page.cpp) with
 // three.js. Turn with the left mouse button, pan with the right one, zoom
 // with the wheel; hovering (or tapping) an object shows its name and
-// values; the check boxes show and hide each layer. Coordinates are
-// ashlar's: metres, z up.
+// values; the check boxes show and hide each layer. The page of a
+// simulation also plays it (play and pause, a time slider, loop): its
+// blocks and their outlines move through the key frames the engine wrote.
+// Coordinates are ashlar's: metres, z up.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
@@ -54,6 +56,7 @@ for (const { name } of scene_data.layers) {
 
 const pickable = [];
 const block_materials = [];
+const meshes = [];
 for (const object of scene_data.objects) {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
@@ -82,6 +85,7 @@ for (const object of scene_data.objects) {
   }
   layers.get(object.layer).add(mesh);
   pickable.push(mesh);
+  meshes.push(mesh);
 }
 
 function set_opacity(material, opacity) {
@@ -96,12 +100,63 @@ function set_block_opacity(opacity) {
   for (const material of block_materials) set_opacity(material, opacity * material.userData.alpha);
 }
 
-if (scene_data.outline.length > 0) {
+// The outlines: one set of lines for what stands still, and one per block
+// that moves, which moves with it.
+const outline_material = new THREE.LineBasicMaterial({ color: srgb(scene_data.edge_color) });
+function outline_lines(points) {
   const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.Float32BufferAttribute(scene_data.outline, 3));
-  const lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: srgb(scene_data.edge_color) }));
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(points, 3));
+  const lines = new THREE.LineSegments(geometry, outline_material);
   layers.get("edges").add(lines);
+  return lines;
 }
+const animation = scene_data.animation;
+// Per moving block: what moves (its mesh and its outline) and its track.
+const bodies = [];
+if (animation) {
+  const moving = new Uint8Array(scene_data.outline.length / 3);
+  for (const track of animation.tracks) {
+    const [first, last] = track.outline;
+    moving.fill(1, first, last);
+    const [cx, cy, cz] = track.centroid;
+    // Both are drawn about the centroid, then placed by the pose.
+    const parts = [meshes[track.object]];
+    if (last > first) parts.push(outline_lines(scene_data.outline.slice(3 * first, 3 * last)));
+    for (const part of parts) part.geometry.translate(-cx, -cy, -cz);
+    bodies.push({ parts, track });
+  }
+  const still = scene_data.outline.filter((value, k) => !moving[Math.floor(k / 3)]);
+  if (still.length > 0) outline_lines(still);
+} else if (scene_data.outline.length > 0) {
+  outline_lines(scene_data.outline);
+}
+
+// Places every moving block at time t (s): between the key frames around
+// it, positions linear and rotations by slerp, as glTF viewers do.
+const pose = { position: new THREE.Vector3(), next: new THREE.Vector3(), rotation: [0, 0, 0, 1] };
+function show_time(t) {
+  const times = animation.times;
+  let k = 0;
+  let hi = times.length - 1;
+  while (k < hi - 1) {
+    const mid = (k + hi) >> 1;
+    if (times[mid] <= t) k = mid;
+    else hi = mid;
+  }
+  const next = Math.min(k + 1, times.length - 1);
+  const f = next > k ? Math.min(Math.max((t - times[k]) / (times[next] - times[k]), 0), 1) : 0;
+  for (const { parts, track } of bodies) {
+    const p = track.positions;
+    pose.position.set(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
+    pose.position.lerp(pose.next.set(p[3 * next], p[3 * next + 1], p[3 * next + 2]), f);
+    THREE.Quaternion.slerpFlat(pose.rotation, 0, track.rotations, 4 * k, track.rotations, 4 * next, f);
+    for (const part of parts) {
+      part.position.copy(pose.position);
+      part.quaternion.fromArray(pose.rotation);
+    }
+  }
+}
+if (animation) show_time(animation.times[0]);
 
 // Controls: one check box per layer, the blocks' opacity, the view reset.
 const layer_boxes = document.getElementById("layers");
@@ -250,3 +305,59 @@ function resize() {
 window.addEventListener("resize", resize);
 resize();
 reset_view();
+
+// The player: play and pause, the time slider, loop. Simulated time runs at
+// the wall clock's pace.
+if (animation) {
+  const times = animation.times;
+  const start = times[0], end = times[times.length - 1];
+  const play_button = document.getElementById("play");
+  const slider = document.getElementById("time");
+  const time_text = document.getElementById("time-text");
+  const loop = document.getElementById("loop");
+  const digits = end - start < 1 ? 3 : 2;
+  slider.min = start;
+  slider.max = end;
+  let time = start;
+  let playing = false;
+  let last_frame = 0;
+
+  const set_time = (t) => {
+    time = Math.min(Math.max(t, start), end);
+    slider.value = time;
+    time_text.textContent = `${time.toFixed(digits)} s / ${end.toFixed(digits)} s`;
+    show_time(time);
+    request_render();
+  };
+  const set_playing = (on) => {
+    playing = on;
+    play_button.textContent = on ? "pause" : "play";
+    if (on) {
+      last_frame = performance.now();
+      requestAnimationFrame(advance);
+    }
+  };
+  function advance(now) {
+    if (!playing) return;
+    let t = time + Math.max(now - last_frame, 0) / 1000;
+    last_frame = now;
+    if (t >= end) {
+      if (loop.checked && end > start) {
+        t = start + ((t - start) % (end - start));
+      } else {
+        set_time(end);
+        set_playing(false);
+        return;
+      }
+    }
+    set_time(t);
+    requestAnimationFrame(advance);
+  }
+  play_button.addEventListener("click", () => {
+    if (!playing && time >= end) set_time(start);
+    set_playing(!playing);
+  });
+  slider.addEventListener("input", () => set_time(Number(slider.value)));
+  set_time(start);
+  document.getElementById("player").classList.remove("hidden");
+}

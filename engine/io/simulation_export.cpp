@@ -91,46 +91,45 @@ private:
   json views_ = json::array(), accessors_ = json::array();
 };
 
-void check(const Structure& structure, const SimulationResult& result, const std::string& path,
-           const AnimationOptions& options) {
-  if (file_extension(path) != "glb") {
-    throw InvalidArgument("export: an animation is written as .glb, got '" + path +
-                          "' (give frame = t for a still in another format)");
-  }
+}  // namespace
+
+void check_animation(const Structure& structure, const SimulationResult& result, double fps) {
   if (result.poses.empty() || result.poses.front().size() != static_cast<size_t>(structure.size())) {
     throw InvalidArgument("export: the simulation is of a structure with " +
                           std::to_string(result.poses.empty() ? 0 : result.poses.front().size()) +
                           " blocks, this one has " + std::to_string(structure.size()));
   }
-  check_block_colors(structure, options.block_colors, "export");
-  if (!(options.fps >= 0.0) || !std::isfinite(options.fps)) {
+  if (!(fps >= 0.0) || !std::isfinite(fps)) {
     throw InvalidArgument("export: fps must be a number of frames per second > 0 (0: the recorded frames), got " +
-                          shortest_number(options.fps));
+                          shortest_number(fps));
   }
 }
 
-// Key times (s) and the poses at each, strictly increasing in single precision.
-void key_frames(const SimulationResult& result, double fps, std::vector<float>& times,
-                std::vector<std::vector<RigidPose>>& poses) {
+AnimationFrames animation_frames(const SimulationResult& result, double fps) {
+  AnimationFrames frames;
   const auto add = [&](double t, std::vector<RigidPose> at) {
-    if (!times.empty() && float(t) <= times.back()) return;
-    times.push_back(float(t));
-    poses.push_back(std::move(at));
+    if (!frames.times.empty() && float(t) <= frames.times.back()) return;
+    frames.times.push_back(float(t));
+    frames.poses.push_back(std::move(at));
   };
   if (fps == 0.0) {
     for (size_t k = 0; k < result.times.size(); ++k) add(result.times[k], result.poses[k]);
-    return;
+    return frames;
   }
   const double end = result.times.back();
   for (long k = 0; k / fps < end; ++k) add(k / fps, poses_at(result, k / fps));
   add(end, result.poses.back());
+  return frames;
 }
-
-}  // namespace
 
 void export_animation(const Structure& structure, const SimulationResult& result, const std::string& path,
                       const AnimationOptions& options) {
-  check(structure, result, path, options);
+  if (file_extension(path) != "glb") {
+    throw InvalidArgument("export: an animation is written as .glb or .html, got '" + path +
+                          "' (give frame = k for a still in another format)");
+  }
+  check_animation(structure, result, options.fps);
+  check_block_colors(structure, options.block_colors, "export");
   GlbBuilder glb;
   json nodes = json::array(), meshes = json::array(), materials = json::array();
   json children = json::array();
@@ -165,15 +164,13 @@ void export_animation(const Structure& structure, const SimulationResult& result
   }
   nodes.push_back({{"name", "ashlar simulation"}, {"children", children}});
 
-  std::vector<float> times;
-  std::vector<std::vector<RigidPose>> frames;
-  key_frames(result, options.fps, times, frames);
-  const int input = glb.add(times, 1, "SCALAR", 0, true);
+  const AnimationFrames frames = animation_frames(result, options.fps);
+  const int input = glb.add(frames.times, 1, "SCALAR", 0, true);
   json samplers = json::array(), channels = json::array();
   for (int i = 0; i < structure.size(); ++i) {
     if (structure.is_support(i)) continue;
     std::vector<float> translations, rotations;
-    for (const std::vector<RigidPose>& frame : frames) {
+    for (const std::vector<RigidPose>& frame : frames.poses) {
       const Eigen::Vector3f p = y_up(frame[i].position);
       const Quat& q = frame[i].rotation;
       const Eigen::Vector3f axis = y_up(q.vec());

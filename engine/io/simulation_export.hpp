@@ -20,6 +20,23 @@ struct AnimationOptions {
   double fps = 0.0;
 };
 
+// Throws InvalidArgument (messages beginning "export: ") when `result` is
+// not a simulation of `structure` (other block count) or fps is not a
+// number >= 0.
+void check_animation(const Structure& structure, const SimulationResult& result, double fps);
+
+// The key frames of an animation: times (s of simulated time), strictly
+// increasing in single precision, and every block's pose at each. fps > 0:
+// k / fps for every k up to the end, then the last recorded frame, each
+// interpolated between the recorded frames around it (poses_at); 0: the
+// recorded frames as they are. The .glb and the HTML viewer's player both
+// play these.
+struct AnimationFrames {
+  std::vector<float> times;
+  std::vector<std::vector<RigidPose>> poses;
+};
+AnimationFrames animation_frames(const SimulationResult& result, double fps);
+
 // Writes `result`, a simulation of `structure`, to `path` (.glb): one node
 // per block, named after it, holding its flat-shaded mesh about its centroid;
 // one animation "simulation" with a translation and a rotation channel per

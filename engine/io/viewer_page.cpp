@@ -14,6 +14,7 @@
 #include "core/version.hpp"
 #include "io/color_map.hpp"
 #include "io/json_document.hpp"
+#include "io/simulation_export.hpp"
 #include "io/structure_scene.hpp"
 #include "io/web_assets.hpp"
 
@@ -189,15 +190,22 @@ std::string fill(std::string_view page, std::vector<std::pair<std::string, std::
   return text;
 }
 
-}  // namespace
+// The page's scene (everything but an animation), and where each block's
+// outline lies in scene["outline"]: vertices [first, second).
+struct PageScene {
+  json data;
+  std::vector<std::pair<std::size_t, std::size_t>> block_outline;
+};
 
-void write_viewer_page(const Structure& structure, const std::string& path, const ExportOptions& options) {
+PageScene page_scene(const Structure& structure, const std::string& path, const ExportOptions& options) {
   // The outlines are lines in the page; the edge tubes are for mesh files.
   ExportOptions drawn = options;
   drawn.edges = false;
   const std::vector<SceneObject> objects = structure_scene(structure, drawn);
 
-  json scene;
+  PageScene page;
+  page.block_outline.resize(structure.size());
+  json& scene = page.data;
   scene["title"] = options.title.empty() ? file_name(path) : options.title;
   scene["summary"] = summary(structure, options);
   scene["legend"] = options.color_scale ? legend_json(*options.color_scale) : json(nullptr);
@@ -207,7 +215,10 @@ void write_viewer_page(const Structure& structure, const std::string& path, cons
   json items = json::array();
   for (const SceneObject& object : objects) {
     present[static_cast<int>(object.layer)] = true;
-    if (object.layer == SceneLayer::blocks) opacity = object.opacity;
+    if (object.layer == SceneLayer::blocks) {
+      opacity = object.opacity;
+      page.block_outline[object.block] = {outline.size() / 3, outline.size() / 3 + 2 * object.outline.size()};
+    }
     for (const auto& edge : object.outline) {
       for (const Vec3& p : edge) {
         for (int axis = 0; axis < 3; ++axis) outline.push_back(static_cast<float>(p[axis]));
@@ -226,7 +237,11 @@ void write_viewer_page(const Structure& structure, const std::string& path, cons
   scene["edge_color"] = {options.edge_color.r, options.edge_color.g, options.edge_color.b};
   scene["outline"] = std::move(outline);
   scene["objects"] = std::move(items);
+  scene["animation"] = nullptr;
+  return page;
+}
 
+void write_page(const std::string& path, const json& scene) {
   const json modules = {{"three.core", web_asset(WebAsset::three_core)},
                         {"three.module", web_asset(WebAsset::three_module)},
                         {"OrbitControls", web_asset(WebAsset::orbit_controls)},
@@ -236,6 +251,52 @@ void write_viewer_page(const Structure& structure, const std::string& path, cons
                                     {"@VERSION@", version()},
                                     {"@SCENE@", script_json(scene)},
                                     {"@MODULES@", script_json(modules)}}));
+}
+
+std::string simulation_summary(const Structure& structure, const SimulationResult& result) {
+  std::string text = std::to_string(structure.size()) + " blocks, simulated for " + number(result.time) + " s";
+  if (result.status != SimulationStatus::completed) return text + " (interrupted)";
+  text += result.moved ? ": moved, largest displacement " + number(result.max_displacement) + " m" : ": stayed";
+  return text + (result.settled ? ", settled" : ", still moving at the end");
+}
+
+}  // namespace
+
+void write_viewer_page(const Structure& structure, const std::string& path, const ExportOptions& options) {
+  write_page(path, page_scene(structure, path, options).data);
+}
+
+void write_viewer_page(const Structure& structure, const SimulationResult& result, double fps,
+                       const std::string& path, const ExportOptions& options) {
+  check_animation(structure, result, fps);
+  if (options.result || options.forces || options.thrust || options.interfaces || !options.traces.empty() ||
+      options.mechanism_scale > 0.0) {
+    throw InvalidArgument("export: an animated page draws the blocks and their edges; interfaces, forces, the "
+                          "thrust line, load traces and mechanisms belong to a still (one frame's structure)");
+  }
+  PageScene page = page_scene(structure, path, options);
+  page.data["summary"] = simulation_summary(structure, result);
+  const AnimationFrames frames = animation_frames(result, fps);
+  json tracks = json::array();
+  for (int i = 0; i < structure.size(); ++i) {
+    if (structure.is_support(i)) continue;
+    json positions = json::array(), rotations = json::array();
+    for (const std::vector<RigidPose>& frame : frames.poses) {
+      const RigidPose& pose = frame[i];
+      for (int axis = 0; axis < 3; ++axis) positions.push_back(static_cast<float>(pose.position[axis]));
+      for (double c : {pose.rotation.x(), pose.rotation.y(), pose.rotation.z(), pose.rotation.w()}) {
+        rotations.push_back(static_cast<float>(c));
+      }
+    }
+    const Vec3& centroid = structure.block(i).centroid();
+    tracks.push_back({{"object", i},
+                      {"centroid", {centroid.x(), centroid.y(), centroid.z()}},
+                      {"outline", {page.block_outline[i].first, page.block_outline[i].second}},
+                      {"positions", std::move(positions)},
+                      {"rotations", std::move(rotations)}});
+  }
+  page.data["animation"] = {{"times", frames.times}, {"tracks", std::move(tracks)}};
+  write_page(path, page.data);
 }
 
 }  // namespace ashlar

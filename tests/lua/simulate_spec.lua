@@ -82,6 +82,31 @@ describe("ashlar.simulate", function()
     os.execute("rm -rf " .. support.quote(folder))
   end)
 
+  it("writes the HTML viewer's page with a player", function()
+    local folder = support.temp_folder()
+    local sim = ashlar.simulate(cases.stack(1.2), { duration = 0.3 })
+    sim:export(folder .. "/run.html", { fps = 30, title = "a run", opacity = 0.8 })
+    sim:export(folder .. "/run.page", { format = "html", color = { values = { 1, 2, 3 }, map = "viridis" },
+                                        legend = "height (m)", edges = false })
+    for _, name in ipairs{ "run.html", "run.page" } do
+      local scene = support.read_file(folder .. "/" .. name)
+        :match('<script type="application/json" id="ashlar%-scene">(.-)</script>')
+      assert.truthy(scene:find('"animation":{"times":[0.0,', 1, true), name)
+      assert.truthy(scene:find('"tracks":[{"object":1,', 1, true), name)
+    end
+    support.expect_error({ "forces: applies to a still (give frame = k)" },
+      function() sim:export(folder .. "/x.html", { forces = true }) end)
+    support.expect_error({ 'format: an animation is a .glb, or the HTML viewer with format = "html", got "compas"' },
+      function() sim:export(folder .. "/x.json", { format = "compas" }) end)
+    support.expect_error({ "title: applies to a still (give frame = k) or an animated page (.html" },
+      function() sim:export(folder .. "/x.glb", { title = "run" }) end)
+    support.expect_error({ "opacity: expected a number in [0, 1], got 2" },
+      function() sim:export(folder .. "/x.html", { opacity = 2 }) end)
+    support.expect_error({ "fps: expected a number >= 0, got -1" },
+      function() sim:export(folder .. "/x.html", { fps = -1 }) end)
+    support.remove_folder(folder)
+  end)
+
   it("follows a prescribed ground acceleration", function()
     -- A block on a base accelerated at 0.1 g along x, friction 0.05: it
     -- slides back relative to the base at (0.1 - 0.05) g.

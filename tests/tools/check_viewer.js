@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Opens a page of ashlar's HTML viewer in Debian's chromium (headless,
 // WebGL through SwiftShader) and checks what a user would see.
-// Usage: node check_viewer.js ASHLAR OUT arch|dome
+// Usage: node check_viewer.js ASHLAR OUT arch|dome|animation
 //   ASHLAR  the ashlar program, which writes the page (viewer_pages.lua)
 //   OUT     a folder for the page and the screenshots
 // Every case checks that the page loads without console errors and draws
@@ -10,7 +10,11 @@
 //         switched off, hovering or tapping the crown names its voussoir,
 //         hovering an arrow shows its interface's forces;
 //   dome: blocks coloured by height with coolwarm are red at the top and
-//         blue at the bottom, and the legend shows the map and its label.
+//         blue at the bottom, and the legend shows the map and its label;
+//   animation: a simulation's page has a player (the still pages have
+//         none); the red block it drops is lower on the screen at the last
+//         frame than at the first, and hovering it there names it; playing
+//         moves the time on, pausing stops it.
 // Exits 77 (ctest: skipped) when chromium is not installed, 2 when
 // puppeteer-core is not (npm ci in this folder), 1 when a check fails.
 'use strict';
@@ -23,8 +27,8 @@ const CHROMIUM = process.env.ASHLAR_CHROMIUM || '/usr/bin/chromium';
 const WIDTH = 800, HEIGHT = 600;
 
 const [ashlar, out, name] = process.argv.slice(2);
-if (!ashlar || !out || !['arch', 'dome'].includes(name)) {
-  console.error('usage: node check_viewer.js ASHLAR OUT arch|dome');
+if (!ashlar || !out || !['arch', 'dome', 'animation'].includes(name)) {
+  console.error('usage: node check_viewer.js ASHLAR OUT arch|dome|animation');
   process.exit(1);
 }
 if (!fs.existsSync(CHROMIUM)) {
@@ -68,6 +72,7 @@ async function analyse(browser, shot, region) {
       const drawn_rows = [];
       const blue_points = [];
       let warmth = 0, top = image.height, bottom = -1, left = image.width, right = -1;
+      const red_box = [image.width, image.height, -1, -1];
       const in_panel = (x, y) => panels.some((p) => x >= p[0] && x < p[2] && y >= p[1] && y < p[3]);
       for (let y = y0; y < y1; ++y) {
         for (let x = x0; x < x1; ++x) {
@@ -90,11 +95,15 @@ async function analyse(browser, shot, region) {
           else hue = 60 * (r - g) / (max - min) + 240;
           if (hue >= 200 && hue <= 250) { counts.blue += 1; blue_points.push([x, y]); }
           else if (hue >= 20 && hue <= 50) counts.orange += 1;
-          else if (hue <= 12 || hue >= 348) counts.red += 1;
+          else if (hue <= 12 || hue >= 348) {
+            counts.red += 1;
+            red_box[0] = Math.min(red_box[0], x); red_box[1] = Math.min(red_box[1], y);
+            red_box[2] = Math.max(red_box[2], x); red_box[3] = Math.max(red_box[3], y);
+          }
         }
       }
       return { ...counts, warmth: counts.drawn ? warmth / counts.drawn : 0,
-               box: [left, top, right, bottom], blue_points };
+               box: [left, top, right, bottom], red_box, blue_points };
     }, shot.png, shot.panels, region);
   } finally {
     await page.close();
@@ -189,6 +198,49 @@ async function check_dome(browser, page) {
         `the legend runs from blue to red: ${JSON.stringify(first)} to ${JSON.stringify(last)}`);
 }
 
+async function player_time(page) {
+  return page.$eval('#time', (slider) => Number(slider.value));
+}
+
+async function check_animation(browser, page) {
+  const player = await page.$eval('#player', (element) => ({
+    shown: getComputedStyle(element).display !== 'none',
+    button: element.querySelector('#play').textContent,
+    min: Number(element.querySelector('#time').min),
+    max: Number(element.querySelector('#time').max),
+    text: element.querySelector('#time-text').textContent,
+  }));
+  check(player.shown && player.button === 'play', `the player shows, paused: ${JSON.stringify(player)}`);
+  check(player.min === 0 && Math.abs(player.max - 0.8) < 1e-6 && player.text === '0.000 s / 0.800 s',
+        `its slider runs over the simulated time, 0 to 0.8 s: ${player.text}`);
+
+  const first = await analyse(browser, await screenshot(page, 'animation_first.png'));
+  check(first.red > 500, `the red block shows at t = 0 (${first.red} pixels)`);
+  await page.$eval('#time', (slider) => {
+    slider.value = slider.max;
+    slider.dispatchEvent(new Event('input'));
+  });
+  const last = await analyse(browser, await screenshot(page, 'animation_last.png'));
+  const middle = (box) => [(box[0] + box[2]) / 2, (box[1] + box[3]) / 2];
+  const [, y0] = middle(first.red_box), [x1, y1] = middle(last.red_box);
+  check(last.red > 500 && y1 - y0 > 50,
+        `at the last frame the block has fallen: its middle from y = ${y0} to ${y1} px (${last.red} pixels)`);
+  const hovered = await info_after_hover(page, Math.round(x1), Math.round(y1));
+  check(/^block 2\b/.test(hovered), `hovering it where it landed names it: ${JSON.stringify(hovered.split('\n')[0])}`);
+
+  // Play (from the start, since the time is at the end), then pause.
+  await page.click('#play');
+  await new Promise((done) => setTimeout(done, 300));
+  const playing = await player_time(page);
+  check(playing > 0 && playing < 0.8, `playing moves the time on: ${playing} s after 0.3 s`);
+  await page.click('#play');
+  const paused = await player_time(page);
+  await new Promise((done) => setTimeout(done, 300));
+  const later = await player_time(page);
+  const button = await page.$eval('#play', (element) => element.textContent);
+  check(later === paused && button === 'play', `pausing stops it: ${paused} s, 0.3 s later ${later} s`);
+}
+
 (async () => {
   fs.rmSync(out, { recursive: true, force: true });
   fs.mkdirSync(out, { recursive: true });
@@ -214,8 +266,14 @@ async function check_dome(browser, page) {
     await page.waitForSelector('#view canvas', { timeout: 15000 });
     const html = fs.readFileSync(file, 'utf8');
     check(!/<script[^>]+src=|<link[^>]+href=/.test(html), 'the page loads no other file');
-    if (name === 'arch') await check_arch(browser, page);
-    else await check_dome(browser, page);
+    if (name === 'animation') {
+      await check_animation(browser, page);
+    } else {
+      const player = await page.$eval('#player', (element) => getComputedStyle(element).display);
+      check(player === 'none', 'a still has no player');
+      if (name === 'arch') await check_arch(browser, page);
+      else await check_dome(browser, page);
+    }
     check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
   } finally {
     await browser.close();

@@ -8,9 +8,11 @@
 #include "analysis/equilibrium.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "dynamics/simulation.hpp"
 #include "geometry/block_builders.hpp"
 #include "io/color_map.hpp"
 #include "io/mesh_io.hpp"
+#include "io/simulation_export.hpp"
 #include "io/structure_scene.hpp"
 #include "io/viewer_page.hpp"
 #include "io/web_assets.hpp"
@@ -126,6 +128,7 @@ TEST(ViewerPage, HoldsTheSceneAndEveryScriptWhateverTheNames) {
   EXPECT_EQ(layers, (std::vector<std::string>{"blocks", "forces", "thrust", "edges"}));
   EXPECT_EQ(scene["outline"].size(), 3u * 12u * 2u * 3u);  // 3 boxes, 12 edges, 2 points, xyz
   EXPECT_DOUBLE_EQ(scene["opacity"].get<double>(), 0.35);
+  EXPECT_TRUE(scene["animation"].is_null());  // a still: no player
 
   const json& top = scene["objects"][2];
   EXPECT_EQ(top["name"], "</script><!-- top");
@@ -181,4 +184,87 @@ TEST(ViewerPage, RefusesBadOptionsAndLeavesNoFile) {
   EXPECT_TRUE(dir.entries().empty());
   expect_error<InvalidArgument>([&] { export_structure(s, dir.file("a.htm"), ExportOptions{}); },
                                 "use one of: .glb, .gltf, .obj, .ply, .stl, .html");
+}
+
+namespace {
+
+// Ground and a block 0.3 m above it, falling freely for 0.2 s (0.196 m).
+Structure drop() {
+  Structure s;
+  s.add(std::make_shared<const Block>(make_box({4, 2, 0.5}, {0, 0, -0.25})), true, "ground");
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0.5, 0, 0.55})), false, "falling");
+  return s;
+}
+
+SimulationResult fall(const Structure& s) {
+  SimulationOptions options;
+  options.duration = 0.2;
+  return simulate(s, options);
+}
+
+// Track k's pose at key frame f equals `pose` to single precision.
+void expect_pose(const json& track, std::size_t f, const RigidPose& pose) {
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(track["positions"][3 * f + axis].get<double>(), pose.position[axis], 1e-6);
+  }
+  const double q[4] = {pose.rotation.x(), pose.rotation.y(), pose.rotation.z(), pose.rotation.w()};
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(track["rotations"][4 * f + c].get<double>(), q[c], 1e-6);
+}
+
+}  // namespace
+
+TEST(ViewerPage, AnimationTracksHoldTheSimulationsKeyFrames) {
+  const Structure s = drop();
+  const SimulationResult r = fall(s);
+  ASSERT_TRUE(r.moved);
+  ExportOptions options;
+  options.edges = true;
+  TempDir dir;
+  for (double fps : {30.0, 0.0}) {
+    write_viewer_page(s, r, fps, dir.file("drop.html"), options);
+    const json scene = json::parse(script_text(read_file(dir.file("drop.html")), "ashlar-scene"));
+    const json& animation = scene["animation"];
+    const AnimationFrames frames = animation_frames(r, fps);
+    const std::size_t n = frames.times.size();
+    // 30 fps: 0, 1/30, ..., then the end; 0: every recorded frame.
+    EXPECT_EQ(n, fps > 0 ? 7u : r.times.size()) << fps;
+    ASSERT_EQ(animation["times"].size(), n);
+    EXPECT_EQ(animation["times"][0], 0.0);
+    EXPECT_NEAR(animation["times"][n - 1].get<double>(), r.time, 1e-7);
+
+    // One track, the free block's; the ground stands still.
+    ASSERT_EQ(animation["tracks"].size(), 1u);
+    const json& track = animation["tracks"][0];
+    EXPECT_EQ(track["object"], 1);
+    EXPECT_EQ(scene["objects"][1]["name"], "falling");
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_NEAR(track["centroid"][axis].get<double>(), Vec3(0.5, 0.0, 0.55)[axis], 1e-12);
+    }
+    EXPECT_EQ(track["outline"], json({24, 48}));  // after the ground's 12 edges, its own 12
+    ASSERT_EQ(track["positions"].size(), 3 * n);
+    ASSERT_EQ(track["rotations"].size(), 4 * n);
+    expect_pose(track, 0, r.poses.front()[1]);
+    expect_pose(track, n - 1, r.poses.back()[1]);
+    for (std::size_t f = 0; f < n; ++f) expect_pose(track, f, frames.poses[f][1]);
+    // Free fall: z drops by g t^2 / 2 (to the time step's accuracy).
+    EXPECT_NEAR(track["positions"][3 * n - 1].get<double>(), 0.55 - 0.5 * 9.81 * 0.04, 2e-3);
+    EXPECT_NE(scene["summary"].get<std::string>().find("2 blocks, simulated for 0.2 s: moved"), std::string::npos)
+        << scene["summary"];
+  }
+}
+
+TEST(ViewerPage, AnimatedPageRefusesStillsOptionsAndOtherStructures) {
+  const Structure s = drop();
+  const SimulationResult r = fall(s);
+  TempDir dir;
+  ExportOptions options;
+  options.interfaces = true;
+  expect_error<InvalidArgument>([&] { write_viewer_page(s, r, 30.0, dir.file("a.html"), options); },
+                                "export: an animated page draws the blocks and their edges");
+  expect_error<InvalidArgument>([&] { write_viewer_page(s, r, -1.0, dir.file("a.html"), ExportOptions{}); },
+                                "export: fps must be a number of frames per second > 0 (0: the recorded "
+                                "frames), got -1");
+  expect_error<InvalidArgument>([&] { write_viewer_page(stack(), r, 30.0, dir.file("a.html"), ExportOptions{}); },
+                                "export: the simulation is of a structure with 2 blocks, this one has 3");
+  EXPECT_TRUE(dir.entries().empty());
 }
