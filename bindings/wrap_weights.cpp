@@ -58,6 +58,12 @@ private:
   int done_ = 0;
 };
 
+// The `threads` option of the per-block analyses: 0 (default) for one per core.
+int threads_option(const OptionTable& options) {
+  return static_cast<int>(
+      options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
+}
+
 int w_weight_sensitivity(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
@@ -93,8 +99,7 @@ int w_load_capacity(lua_State* L) {
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
     const AnalysisSettings settings = analysis_settings(options);
-    const int threads = static_cast<int>(
-        options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
+    const int threads = threads_option(options);
     BlockProgressLine line(options, "load_capacity", s.size());
     const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback());
     line.finish(capacity.status);
@@ -142,8 +147,7 @@ int w_important_weights(lua_State* L) {
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
     const AnalysisSettings settings = analysis_settings(options);
-    const int threads = static_cast<int>(
-        options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
+    const int threads = threads_option(options);
     BlockProgressLine line(options, "important_weights", s.size());
     const ImportantWeights important = important_weights(s, settings, threads, line.callback());
     line.finish(important.interrupted ? "interrupted" : "done");
