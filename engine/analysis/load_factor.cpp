@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/equilibrium_analysis.hpp"
 #include "analysis/equilibrium_program.hpp"
 #include "analysis/mechanism.hpp"
 #include "core/clock.hpp"
@@ -281,9 +282,12 @@ public:
 
 private:
   // Friction borrowed per body (scaled: a mean body weight) below which a
-  // program stands: Clp's rounding, about 1e-8 per body on a 305-block dome
-  // near its demand, where one more unit of the coefficient saves 400.
-  static constexpr double kBorrowedNothing = 1e-8;
+  // program stands. Borrowing is about proportional to how far below the
+  // demand the coefficient is (a block on an incline: 1 per unit of it),
+  // so this is the relative accuracy it allows; Clp's rounding only ever
+  // makes a coefficient seem too small, a rounding above the demand (the
+  // safe side).
+  static constexpr double kBorrowedNothing = 1e-10;
   // Scaled force at a vertex that is Clp's rounding (its tolerances are 1e-7).
   static constexpr double kRounding = 1e-9;
 
@@ -296,6 +300,50 @@ private:
 // Past this coefficient a structure that stands only without sliding is
 // called unstable: it leans on contacts with (nearly) no compression.
 constexpr double kLargestDemand = 1e6;
+
+// The relative width to which the equilibrium analyses bracket the demand
+// before the programs take over.
+constexpr double kAnalysedWidth = 1e-3;
+
+// The demand as the equilibrium analysis sees it, by bisection on its
+// verdicts to kAnalysedWidth from [0, `high`] (grown from 1 by doubling when
+// `high` is not finite): one QP each, warm from the last, about a tenth of a
+// second on a 305-block dome, where a program far from the demand takes
+// seconds. The upper end of the bracket, or infinity when no coefficient up
+// to kLargestDemand stands or an analysis gives no verdict. Only a guide:
+// the programs decide.
+double analysed_demand(const Structure& structure, const EquilibriumOptions& options, double high) {
+  AnalysisSettings settings;
+  settings.problem = options;
+  settings.problem.friction = 1.0;
+  EquilibriumAnalysis analysis(structure, settings);
+  bool warm = false;
+  int verdicts = 0;
+  auto stands = [&](double friction) {
+    settings.problem.friction = friction;
+    analysis.update(structure, settings);
+    const EquilibriumResult r = analysis.solve(warm);
+    warm = r.status == SolverStatus::converged || r.status == SolverStatus::inaccurate;
+    ++verdicts;
+    return has_no_answer(r.status) ? -1 : (r.stable ? 1 : 0);
+  };
+  double low = 0.0;
+  if (!std::isfinite(high)) {
+    for (high = 1.0;; high *= 2.0) {
+      const int verdict = stands(high);
+      if (verdict < 0 || (verdict == 0 && high >= kLargestDemand)) return kInfinity;
+      if (verdict == 1) break;
+      low = high;
+    }
+  }
+  while (high - low > kAnalysedWidth * high) {
+    const double middle = 0.5 * (low + high);
+    const int verdict = stands(middle);
+    if (verdict < 0) return kInfinity;
+    (verdict == 1 ? high : low) = middle;
+  }
+  return high;
+}
 
 }  // namespace
 
@@ -328,10 +376,42 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   if (status == 0) return finish("optimal", 0.0);
   if (status != 1) return finish(clp_failure(status), kNaN);
   double low = 0.0;
-  if (!std::isfinite(high)) {
+  bool high_stands = false;  // `unknowns` hold an equilibrium that stands with `high`
+  const double analysed = analysed_demand(structure, options, high);
+  if (std::isfinite(analysed)) {
+    // Confirm the analyses' bracket by programs, just outside each end.
+    const double above = analysed * (1.0 + kAnalysedWidth);
+    double borrowed = 0.0;
+    status = programs.stands(above, &unknowns, &borrowed);
+    if (status == 0) {
+      high = std::min(above, programs.needed(unknowns));
+      high_stands = true;
+    } else if (status == 1) {
+      low = above;
+      short_of.emplace_back(low, borrowed);
+    } else {
+      return finish(clp_failure(status), kNaN);
+    }
+    const double below = analysed * (1.0 - 2.0 * kAnalysedWidth);
+    std::vector<Eigen::Vector4d> at_below;
+    if (below > low && below < high) {
+      status = programs.stands(below, &at_below, &borrowed);
+      if (status == 1) {
+        low = below;
+        short_of.emplace_back(low, borrowed);
+      } else if (status == 0) {
+        high = std::min(below, programs.needed(at_below));
+        unknowns = std::move(at_below);
+        high_stands = true;
+      } else {
+        return finish(clp_failure(status), kNaN);
+      }
+    }
+  }
+  if (!high_stands && !std::isfinite(high)) {
     // The frictionless-in-the-limit equilibrium leaned on a vertex with no
     // compression: grow a finite coefficient until one stands.
-    high = 1.0;
+    high = std::max(1.0, 2.0 * low);
     double borrowed = 0.0;
     while ((status = programs.stands(high, &unknowns, &borrowed)) == 1 && high < kLargestDemand) {
       low = high;
@@ -344,7 +424,7 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     }
     if (status != 0) return finish(clp_failure(status), kNaN);
     high = std::min(high, programs.needed(unknowns));
-  } else {
+  } else if (!high_stands) {
     status = programs.stands(high, &unknowns);
     if (status != 0) return finish(status == 1 ? "numerical difficulties" : clp_failure(status), kNaN);
   }
