@@ -6,10 +6,12 @@
 // friction (equilibrium_program.hpp), which COIN-OR Clp solves exactly: the
 // load factor is one linear program in the contact forces and the factor;
 // the friction demand, where the coefficient multiplies the unknowns, is a
-// bracketing search over feasibility programs, each warm-started from the
-// last basis. Both are lower-bound (static) answers of limit analysis with
-// the options' friction cone approximation; with sliding they assume
-// associative friction, like the equilibrium analysis.
+// bracketing search (narrowed first by the equilibrium analysis's verdicts)
+// over programs of the friction an equilibrium must borrow beyond the
+// cones, each warm-started from the last basis. Both are lower-bound
+// (static) answers of limit analysis with the options' friction cone
+// approximation; with sliding they assume associative friction, like the
+// equilibrium analysis.
 #pragma once
 
 #include <string>
