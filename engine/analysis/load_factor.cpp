@@ -377,10 +377,11 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   if (status != 1) return finish(clp_failure(status), kNaN);
   double low = 0.0;
   bool high_stands = false;  // `unknowns` hold an equilibrium that stands with `high`
+  // Confirm the analyses' bracket by programs, just outside each end, where
+  // it improves on what the no-sliding equilibrium needs.
   const double analysed = analysed_demand(structure, options, high);
-  if (std::isfinite(analysed)) {
-    // Confirm the analyses' bracket by programs, just outside each end.
-    const double above = analysed * (1.0 + kAnalysedWidth);
+  const double above = analysed * (1.0 + kAnalysedWidth);
+  if (above < high) {
     double borrowed = 0.0;
     status = programs.stands(above, &unknowns, &borrowed);
     if (status == 0) {
