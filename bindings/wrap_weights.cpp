@@ -150,7 +150,8 @@ int w_important_weights(lua_State* L) {
     const int threads = threads_option(options);
     BlockProgressLine line(options, "important_weights", s.size());
     const ImportantWeights important = important_weights(s, settings, threads, line.callback());
-    line.finish(important.interrupted ? "interrupted" : "done");
+    const char* status = important.interrupted ? "interrupted" : "done";
+    line.finish(status);
     lua_createtable(L, s.size(), 3);
     set_list(L, important.per_volume);
     lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);
@@ -159,7 +160,7 @@ int w_important_weights(lua_State* L) {
       lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
     }
     lua_setfield(L, -2, "unstable");
-    set_string(L, "status", important.interrupted ? "interrupted" : "done");
+    set_string(L, "status", status);
     set_field(L, "solves", important.solves);
     set_field(L, "seconds", important.seconds);
     return 1;

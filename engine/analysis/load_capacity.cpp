@@ -13,6 +13,7 @@
 #include "analysis/equilibrium_program.hpp"
 #include "core/clock.hpp"
 #include "core/interrupt.hpp"
+#include "core/parallel_loop.hpp"
 
 namespace ashlar {
 
@@ -188,11 +189,6 @@ private:
   const Basis* as_built_;
   int ray_column_ = -1;
 };
-
-int worker_count(int requested, int blocks) {
-  const int available = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return std::max(1, std::min(requested > 0 ? requested : available, blocks));
-}
 
 }  // namespace
 

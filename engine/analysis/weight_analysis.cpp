@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -9,6 +10,7 @@
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
+#include "core/parallel_loop.hpp"
 
 namespace ashlar {
 
@@ -153,19 +155,17 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
                                    const BlockProgress& progress) {
   const auto start = Clock::now();
   check_analysis_settings(settings);
+  // The calling thread's problem, set up here: it tells which blocks are
+  // analysed, and throws for a structure the analysis refuses.
+  auto first_problem = std::make_unique<NecessaryWeightsProblem>(structure, settings);
   std::vector<int> blocks;  // the free blocks analysed, in block order
-  {
-    const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
-    for (int i = 0; i < structure.size(); ++i) {
-      if (problem.row_of_block[i] >= 0) blocks.push_back(i);
-    }
+  for (int i = 0; i < structure.size(); ++i) {
+    if (first_problem->problem().row_of_block[i] >= 0) blocks.push_back(i);
   }
   // Each worker takes a contiguous share of the blocks, in order, on a
   // problem and solver of its own, each solve warm from its own last one:
   // the shares, and so the sums, do not depend on timing.
-  const int available = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int workers =
-      std::max(1, std::min(threads > 0 ? threads : available, static_cast<int>(blocks.size())));
+  const int workers = worker_count(threads, static_cast<int>(blocks.size()));
   struct Share {
     std::vector<double> per_weight;  // N per block, summed over the share's blocks
     std::vector<int> unstable;
@@ -180,7 +180,9 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     const DeadlineScope scope(deadline);
     Share& share = shares[w];
     share.per_weight.assign(structure.size(), 0.0);
-    NecessaryWeightsProblem problem(structure, settings);
+    const std::unique_ptr<NecessaryWeightsProblem> own =
+        w == 0 ? std::move(first_problem) : std::make_unique<NecessaryWeightsProblem>(structure, settings);
+    NecessaryWeightsProblem& problem = *own;
     const size_t first = blocks.size() * w / workers, last = blocks.size() * (w + 1) / workers;
     for (size_t k = first; k < last; ++k) {
       const int i = blocks[k];

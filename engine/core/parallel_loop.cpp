@@ -4,6 +4,11 @@
 
 namespace ashlar {
 
+int worker_count(int requested, int items) {
+  const int available = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, std::min(requested > 0 ? requested : available, items));
+}
+
 namespace {
 
 // The first item of part `part` of `parts` over n items.

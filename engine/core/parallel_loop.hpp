@@ -13,6 +13,11 @@
 
 namespace ashlar {
 
+// Worker threads for `items` independent pieces of work: `requested`, or
+// one per hardware thread when it is 0 or less, but no more than the items
+// and at least one.
+int worker_count(int requested, int items);
+
 class ParallelLoop {
 public:
   // body(begin, end, part): the items [begin, end) of part `part`.

@@ -853,7 +853,9 @@ TEST(StructureOptimization, AThinArchIsMadeToStandByItsVerticesOrItsThickness) {
   EXPECT_TRUE(analyze_equilibrium(*moved.structure, analysis).stable);
   EXPECT_EQ(reports, moved.result.evaluations);
   for (int i = 0; i < arch.size(); ++i) {
-    if (arch.is_support(i)) EXPECT_EQ(moved.structure->block(i).vertices(), arch.block(i).vertices());
+    if (arch.is_support(i)) {
+      EXPECT_EQ(moved.structure->block(i).vertices(), arch.block(i).vertices());
+    }
   }
   for (const PositionRef& held : constraints.fixed) {
     EXPECT_EQ(moved.structure->block(held.block).vertices()[held.index],
