@@ -30,7 +30,7 @@ namespace {
 constexpr const char* kStructureMeta = "ashlar.Structure";
 
 void push_interface(lua_State* L, const Interface& contact) {
-  lua_createtable(L, 0, 10);
+  lua_createtable(L, 0, 11);
   set_index_field(L, "a", contact.a);
   set_index_field(L, "b", contact.b);
   set_field(L, "area", contact.area);
@@ -40,6 +40,8 @@ void push_interface(lua_State* L, const Interface& contact) {
   set_field(L, "v", contact.v);
   lua_pushboolean(L, contact.is_explicit);
   lua_setfield(L, -2, "explicit");
+  lua_pushboolean(L, contact.on_mid_plane);
+  lua_setfield(L, -2, "mid_plane");
   push_points(L, contact.vertices);
   lua_setfield(L, -2, "vertices");
   lua_createtable(L, static_cast<int>(contact.holes.size()), 0);

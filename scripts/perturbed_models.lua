@@ -14,9 +14,6 @@ local folder = arg[1] or "/tmp"
 local AMOUNT = 0.01      -- of each block's size (bounding-box diagonal): the largest vertex move
 local PLANARITY = 0.05   -- accepts faces warped by the moves (about 2 x AMOUNT of a face's size)
 local TOLERANCE = 2.5    -- contact tolerance, in multiples of AMOUNT x the mean block size
--- Contact angle (rad): a move of AMOUNT x the block size across a joint a
--- tenth of the block's size wide tilts its faces by up to about 11 degrees.
-local ANGLE = math.rad(15)
 local FRICTION = 0.7
 
 local function block_size(b)
@@ -28,6 +25,20 @@ local function mean_block_size(s)
   local sum = 0
   for i = 1, #s do sum = sum + block_size(s:block(i)) end
   return sum / #s
+end
+
+-- Contact angle (rad): at least 15 degrees, and more for joints so thin
+-- that the moves tilt their faces further. Two vertices across a joint of
+-- width w (the model's thickness) moving AMOUNT x the block size in
+-- opposite directions tilt a face by atan(2 x AMOUNT x size / w), largest
+-- on the largest free blocks (supports do not move); the joint's two copies
+-- may tilt opposite ways.
+local function contact_angle(s, thickness)
+  local largest = 0
+  for i = 1, #s do
+    if not s:is_support(i) then largest = math.max(largest, block_size(s:block(i))) end
+  end
+  return math.max(math.rad(15), 2 * math.atan(2 * AMOUNT * largest / thickness))
 end
 
 -- models.perturbed's copy of the model, through an OBJ file (the supports
@@ -56,27 +67,29 @@ local function interfaces_of(s, tolerance, angle)
   return count, area
 end
 
-print(("every free block's vertices moved by up to %g of its size; planarity %g; contact tolerance %g x that move, angle %g deg"):format(
-  AMOUNT, PLANARITY, TOLERANCE, math.deg(ANGLE)))
-print(("%-22s %-6s %6s %11s %11s %8s %8s %8s %9s"):format("model", "route", "blocks", "pairs", "area m^2", "area %",
-  "stable", "before", "tolerance"))
+print(("every free block's vertices moved by up to %g of its size; planarity %g; contact tolerance %g x that move"):format(
+  AMOUNT, PLANARITY, TOLERANCE))
+print(("%-22s %-6s %6s %11s %13s %8s %8s %8s %9s %6s"):format("model", "route", "blocks", "pairs", "area m^2", "area %",
+  "stable", "before", "tolerance", "angle"))
 local cases = {
-  { "barrel vault t/R 0.15", models.barrel_vault{ radius = 3, thickness = 0.45, voussoirs = 24, courses = 6, bond = "running" } },
-  { "barrel vault t/R 0.09", models.barrel_vault{ radius = 3, thickness = 0.27, voussoirs = 24, courses = 6, bond = "running" } },
-  { "dome t/R 0.1", models.dome{ radius = 5, thickness = 0.5 } },
-  { "dome t/R 0.02", models.dome{ radius = 5, thickness = 0.1 } },
+  { "barrel vault t/R 0.15", models.barrel_vault{ radius = 3, thickness = 0.45, voussoirs = 24, courses = 6, bond = "running" }, 0.45 },
+  { "barrel vault t/R 0.09", models.barrel_vault{ radius = 3, thickness = 0.27, voussoirs = 24, courses = 6, bond = "running" }, 0.27 },
+  { "dome t/R 0.1", models.dome{ radius = 5, thickness = 0.5 }, 0.5 },
+  { "dome t/R 0.02", models.dome{ radius = 5, thickness = 0.1 }, 0.1 },
 }
 for index, case in ipairs(cases) do
   local name, s = case[1], case[2]
+  local angle = contact_angle(s, case[3])
   local count, area = interfaces_of(s)
   local before = ashlar.analyze(s, { friction = FRICTION })
   for _, route in ipairs{ "obj", "compas" } do
     local p = perturbed_through(route, s, tostring(index), index)
     local tolerance = TOLERANCE * AMOUNT * mean_block_size(s)
-    local found, found_area = interfaces_of(p, tolerance, ANGLE)
-    local ok, r = pcall(ashlar.analyze, p, { friction = FRICTION, contact_tolerance = tolerance, contact_angle = ANGLE })
-    print(("%-22s %-6s %6d %5d/%-5d %5.2f/%-5.2f %+7.2f %8s %8s %9.4f"):format(name, route, #s, found, count, found_area,
-      area, 100 * (found_area - area) / area, ok and tostring(r.stable) or "error", tostring(before.stable), tolerance))
+    local found, found_area = interfaces_of(p, tolerance, angle)
+    local ok, r = pcall(ashlar.analyze, p, { friction = FRICTION, contact_tolerance = tolerance, contact_angle = angle })
+    print(("%-22s %-6s %6d %5d/%-5d %6.2f/%-6.2f %+7.2f %8s %8s %9.4f %6.1f"):format(name, route, #s, found, count, found_area,
+      area, 100 * (found_area - area) / area, ok and tostring(r.stable) or "error", tostring(before.stable), tolerance,
+      math.deg(angle)))
     if not ok then print("  " .. tostring(r)) end
   end
 end
@@ -86,7 +99,7 @@ local big = models.barrel_vault{ radius = 2, thickness = 0.4, voussoirs = 50, co
 local moved = models.perturbed(big, { amount = AMOUNT, planarity = PLANARITY })
 local tolerance = TOLERANCE * AMOUNT * mean_block_size(big)
 local t0 = ashlar.clock()
-local found, found_area = interfaces_of(moved, tolerance, ANGLE)
+local found, found_area = interfaces_of(moved, tolerance, contact_angle(big, 0.4))
 local seconds = ashlar.clock() - t0
 local count, area = interfaces_of(big)
 print(("%d-block vault: %d of %d contact pairs, area %+.2f %%, contact detection %.2f s (first s:interfaces() call, with its Lua tables)"):format(

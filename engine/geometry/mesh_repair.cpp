@@ -289,6 +289,80 @@ std::vector<FaceLoop> merge_coplanar_faces(const std::vector<Vec3>& points,
   return merged;
 }
 
+// With a planarity allowance, a warped quad that a mesh file holds as two
+// triangles is one face again: triangles across an edge that only they
+// share, whose quad lies within `planarity` of its size off its best-fit
+// plane and is convex there, pair up, the flattest quads first. The quad
+// starts at an end of the shared edge, so the fan that bounds a block's
+// solid (see Block) is the two triangles and the volume does not change.
+std::vector<FaceLoop> merge_warped_triangle_pairs(const std::vector<Vec3>& points,
+                                                  std::vector<FaceLoop> faces, double planarity) {
+  std::map<DirectedEdge, std::vector<int>> users;  // undirected edge -> triangles
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].size() != 3) continue;
+    for (size_t i = 0; i < 3; ++i) {
+      const int a = faces[f][i], b = faces[f][(i + 1) % 3];
+      users[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
+    }
+  }
+  struct Candidate {
+    double warp;  // relative to the quad's size
+    int first, second;
+    FaceLoop quad;
+  };
+  std::vector<Candidate> candidates;
+  for (const auto& [edge, list] : users) {
+    if (list.size() != 2 || list[0] == list[1]) continue;
+    // first runs x -> y -> p, second y -> x -> q: the quad is x q y p.
+    const FaceLoop& first = faces[list[0]];
+    const FaceLoop& second = faces[list[1]];
+    size_t at = 0;
+    while (!(first[at] == edge.first || first[at] == edge.second) ||
+           !(first[(at + 1) % 3] == edge.first || first[(at + 1) % 3] == edge.second)) {
+      ++at;
+    }
+    const int x = first[at], y = first[(at + 1) % 3], p = first[(at + 2) % 3];
+    int q = -1;
+    for (int index : second) {
+      if (index != x && index != y) q = index;
+    }
+    if (q < 0 || q == p) continue;
+    const FaceLoop quad{x, q, y, p};
+    const std::vector<FacePlane> plane = face_planes(points, {quad});
+    std::vector<Vec3> corners;
+    Box3 box;
+    for (int index : quad) {
+      corners.push_back(points[index]);
+      box.add(points[index]);
+    }
+    const double warp = largest_warp(points, {quad}, plane) / box.diagonal();
+    if (!(warp <= planarity)) continue;
+    const PlaneFrame frame = PlaneFrame::from_normal(corners[0], plane[0].normal);
+    Loop2 flat;
+    for (const Vec3& corner : corners) flat.push_back(frame.project(corner));
+    if (!is_convex(flat) || signed_area(flat) <= 0.0) continue;
+    candidates.push_back({warp, list[0], list[1], quad});
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.warp < y.warp; });
+  // The quad takes the place of the earlier of its triangles, so faces keep
+  // their order (and the numbers messages give them).
+  std::vector<bool> taken(faces.size(), false);
+  std::vector<bool> dropped(faces.size(), false);
+  for (const Candidate& candidate : candidates) {
+    if (taken[candidate.first] || taken[candidate.second]) continue;
+    taken[candidate.first] = taken[candidate.second] = true;
+    const auto [earlier, later] = std::minmax(candidate.first, candidate.second);
+    faces[earlier] = candidate.quad;
+    dropped[later] = true;
+  }
+  std::vector<FaceLoop> merged;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!dropped[f]) merged.push_back(std::move(faces[f]));
+  }
+  return merged;
+}
+
 // Removes vertices that only subdivide a straight edge between two faces
 // (clip points on the diagonals of triangulated faces, midpoints in mesh
 // files). The triangle each removal cuts off one face it adds to the other,
@@ -352,6 +426,7 @@ Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceL
   std::vector<FaceLoop> loops = reindex_faces(faces, weld(vertices, weld_tolerance));
   loops = drop_flat_faces(points, std::move(loops), size);
   loops = merge_coplanar_faces(points, loops, kPlaneTolerance * size);
+  if (style.planarity > 0.0) loops = merge_warped_triangle_pairs(points, std::move(loops), style.planarity);
   remove_edge_midpoints(points, loops, kCollinear * size);
   drop_unused_vertices(points, loops);
   // The defect is reported in the repaired mesh's numbering, so say what

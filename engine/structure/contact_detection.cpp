@@ -129,10 +129,24 @@ public:
   void add_contacts(int ia, int ib, const std::vector<FaceInfo>& fa,
                     const std::vector<FaceInfo>& fb, const Box3& box_a, const Box3& box_b,
                     std::vector<Interface>& out) const {
+    std::vector<std::pair<int, int>> near;
+    for_each_overlapping_face_pair(fa, box_a, fb, box_b, tol_, [&](int f, int g) { near.emplace_back(f, g); });
+    // A face that is one copy of a joint meets its other copy across the
+    // whole joint, and its neighbours only at edges: it takes no part in
+    // the cutting below.
+    std::vector<bool> paired_a(fa.size(), false), paired_b(fb.size(), false);
+    for (const auto& [f, g] : near) {
+      if (paired_a[f] || paired_b[g]) continue;
+      const std::optional<std::vector<int>> pairing = mid_plane_pairing(fa[f].loop, fb[g].loop, tol_);
+      if (pairing && add_mid_plane_contact(ia, ib, fa[f].loop, fb[g].loop, *pairing, out)) {
+        paired_a[f] = paired_b[g] = true;
+      }
+    }
     std::vector<PlaneContact> planes;
-    for_each_overlapping_face_pair(fa, box_a, fb, box_b, tol_, [&](int f, int g) {
+    for (const auto& [f, g] : near) {
+      if (paired_a[f] || paired_b[g]) continue;
       const FacePlane& pa = fa[f].plane;
-      if (!faces_may_touch(fa[f].loop, pa, fb[g].loop, fb[g].plane, tol_, opposite_)) return;
+      if (!faces_may_touch(fa[f].loop, pa, fb[g].loop, fb[g].plane, tol_, opposite_)) continue;
       PlaneContact* target = nullptr;
       for (PlaneContact& contact : planes) {
         if (on_same_plane(pa.normal, pa.offset, fa[contact.faces_a.front()].plane, tol_)) {
@@ -146,13 +160,47 @@ public:
       if (std::find(target->faces_b.begin(), target->faces_b.end(), g) == target->faces_b.end()) {
         target->faces_b.push_back(g);
       }
-    });
+    }
     for (const PlaneContact& contact : planes) {
       add_plane_contact(ia, ib, fa, fb, contact, out);
     }
   }
 
 private:
+  // The mid-polygon of two copies of one joint, projected onto its best-fit
+  // plane (Newell normal, through the mean of the midpoints), kept in
+  // loop_a's order so that interface vertex k comes from vertex k of each
+  // copy. False, and nothing added, when the polygon crosses itself or is
+  // a strip narrower than the tolerance: the faces are then cut as others.
+  bool add_mid_plane_contact(int ia, int ib, const std::vector<Vec3>& loop_a,
+                             const std::vector<Vec3>& loop_b, const std::vector<int>& pairing,
+                             std::vector<Interface>& out) const {
+    const std::vector<Vec3> midpoints = paired_midpoints(loop_a, loop_b, pairing);
+    Vec3 centre = Vec3::Zero();
+    for (const Vec3& p : midpoints) centre += p;
+    centre /= static_cast<double>(midpoints.size());
+    const PlaneFrame frame = PlaneFrame::from_normal(centre, newell_normal(midpoints).normalized());
+    Loop2 loop;
+    Box3 extent;
+    for (const Vec3& p : midpoints) {
+      loop.push_back(frame.project(p));
+      extent.add(p);
+    }
+    const double area = signed_area(loop);
+    if (area <= tol_ * extent.diagonal() || !is_simple_loop(loop)) return false;
+    Interface contact;
+    contact.a = ia;
+    contact.b = ib;
+    contact.normal = frame.normal;
+    contact.area = area;
+    contact.center = frame.lift(area_centroid(loop));
+    for (const Vec2& p : loop) contact.vertices.push_back(frame.lift(p));
+    contact.on_mid_plane = true;
+    set_frame_along_longest_edge(contact);
+    out.push_back(std::move(contact));
+    return true;
+  }
+
   void add_plane_contact(int ia, int ib, const std::vector<FaceInfo>& fa,
                          const std::vector<FaceInfo>& fb, const PlaneContact& contact,
                          std::vector<Interface>& out) const {
@@ -252,6 +300,41 @@ bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
 bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol) {
   return 1.0 - plane.normal.dot(normal) <= kSamePlaneNormals &&
          std::abs(plane.offset - offset) <= tol;
+}
+
+std::optional<std::vector<int>> mid_plane_pairing(const std::vector<Vec3>& loop_a,
+                                                  const std::vector<Vec3>& loop_b, double tol) {
+  const size_t n = loop_a.size();
+  if (n < 3 || loop_b.size() != n) return std::nullopt;
+  size_t first = 0;  // the vertex of b nearest a's first
+  for (size_t j = 1; j < n; ++j) {
+    if ((loop_b[j] - loop_a[0]).squaredNorm() < (loop_b[first] - loop_a[0]).squaredNorm()) first = j;
+  }
+  std::vector<int> pairing(n);
+  double largest = 0.0;
+  Box3 extent;
+  for (size_t i = 0; i < n; ++i) {
+    pairing[i] = static_cast<int>((first + n - i) % n);
+    const double distance = (loop_b[pairing[i]] - loop_a[i]).norm();
+    if (distance > tol) return std::nullopt;
+    largest = std::max(largest, distance);
+    extent.add(loop_a[i]);
+  }
+  if (largest <= kCoincidentCopies * extent.diagonal()) return std::nullopt;
+  for (const std::vector<Vec3>* loop : {&loop_a, &loop_b}) {
+    for (size_t i = 0; i < n; ++i) {
+      if (((*loop)[(i + 1) % n] - (*loop)[i]).norm() <= 2.0 * tol) return std::nullopt;
+    }
+  }
+  return pairing;
+}
+
+std::vector<Vec3> paired_midpoints(const std::vector<Vec3>& loop_a, const std::vector<Vec3>& loop_b,
+                                   const std::vector<int>& pairing) {
+  std::vector<Vec3> midpoints;
+  midpoints.reserve(loop_a.size());
+  for (size_t i = 0; i < loop_a.size(); ++i) midpoints.push_back(0.5 * (loop_a[i] + loop_b[pairing[i]]));
+  return midpoints;
 }
 
 double opposite_cosine(const ContactOptions& options) { return -std::cos(options.angle); }

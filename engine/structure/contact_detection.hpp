@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -35,10 +36,12 @@ double opposite_cosine(const ContactOptions& options);
 bool same_contacts(const ContactOptions& x, const ContactOptions& y);
 
 // Broad phase: overlapping bounding boxes (CGAL box intersection,
-// O(n log n + k)); narrow phase: face pairs with opposite normals whose
-// planes coincide within the tolerance, intersected in the face plane
-// (convex clipping, or exact general polygon intersection when a face is
-// non-convex or several faces share a plane). Sorted by (a, b).
+// O(n log n + k)); narrow phase: face pairs that describe one joint twice
+// (mid_plane_pairing) give their mid-polygon; other face pairs with
+// opposite normals whose planes coincide within the tolerance are
+// intersected in the face plane (convex clipping, or exact general polygon
+// intersection when a face is non-convex or several faces share a plane).
+// Sorted by (a, b).
 std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks,
                                          const ContactOptions& options);
 
@@ -85,6 +88,24 @@ bool faces_may_touch(const std::vector<Vec3>& loop_a, const FacePlane& plane_a,
                      double opposite);
 // Whether the plane (normal, offset) is `plane` within `tol` (m).
 bool on_same_plane(const Vec3& normal, double offset, const FacePlane& plane, double tol);
+
+// Two faces that describe one joint twice become one mid-plane interface
+// (Interface::on_mid_plane): faces with as many vertices, each vertex of
+// loop_a within `tol` (m) of one of loop_b (whose loop runs the other way,
+// its normal facing a's), every edge of both longer than 2 tol so that the
+// pairing is the only one, and the pairs not all coincident to rounding
+// (kCoincidentCopies of the face's size): coincident faces are cut as
+// before, which gives the same polygon. Returns pairing[i], the index in loop_b of the vertex
+// paired with loop_a[i], or nothing. The angle between the faces is not
+// tested: vertices that pair up within the tolerance are one joint, however
+// far the imprecision has tilted its narrow copies.
+constexpr double kCoincidentCopies = 1e-9;
+std::optional<std::vector<int>> mid_plane_pairing(const std::vector<Vec3>& loop_a,
+                                                  const std::vector<Vec3>& loop_b, double tol);
+
+// The midpoints of the paired vertices of two such faces, in loop_a's order.
+std::vector<Vec3> paired_midpoints(const std::vector<Vec3>& loop_a, const std::vector<Vec3>& loop_b,
+                                   const std::vector<int>& pairing);
 
 // The broad phase of contact and overlap detection: the pairs (i, j), i < j,
 // sorted, of blocks whose bounding boxes intersect when each is grown by

@@ -10,7 +10,8 @@ namespace ashlar {
 
 // The contact polygon where a face of block a meets a face of block b
 // (coplanar within the tolerance, opposite normals). One interface per
-// connected piece of contact. Vertices lie in the plane of block a's face.
+// connected piece of contact. Vertices lie in the plane of block a's face,
+// except on a mid-plane joint (see on_mid_plane).
 struct Interface {
   int a = -1, b = -1;            // 0-based block indices, a < b
   Vec3 normal = Vec3::Zero();    // unit, pointing from block a into block b
@@ -24,6 +25,12 @@ struct Interface {
   // interfaces), not found from the geometry: it does not move with the
   // blocks, so nothing differentiates it.
   bool is_explicit = false;
+  // Cut from two faces that describe one joint twice, each vertex of one
+  // within the tolerance of a vertex of the other but not on it (warped,
+  // perturbed, scanned models; see mid_plane_pairing): the polygon of the
+  // paired vertices' midpoints on its best-fit plane, so the joint keeps
+  // its whole area instead of the overlap of two imprecise copies.
+  bool on_mid_plane = false;
 };
 
 // Sets u along the polygon's longest edge (the first of equal ones) and

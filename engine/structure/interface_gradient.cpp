@@ -297,21 +297,19 @@ void frame_back(const Interface& contact, const InterfaceAdjoint& adjoint,
   d_plane.normal += adjoint.normal + u.cross(adjoint.v);
 }
 
-// Reverse of n = N / |N| (N the Newell normal of face A) and c = the mean of
-// face A's vertices.
-void plane_back(const Block& a, int face, const ContactPlane& plane, const PlaneAdjoint& d_plane,
-                std::vector<Vec3>& gradient_a) {
-  const FaceLoop& loop = a.faces()[face];
-  const std::vector<Vec3> points = face_loop(a, face);
+// Reverse of n = N / |N| (N the Newell normal of the loop `points`) and c =
+// the mean of the points: adds dP/d(point i) to d_points[i].
+void plane_back(const std::vector<Vec3>& points, const ContactPlane& plane, const PlaneAdjoint& d_plane,
+                std::vector<Vec3>& d_points) {
   const Vec3& n = plane.normal;
   const Vec3 d_newell =
       (d_plane.normal - n * n.dot(d_plane.normal)) / newell_normal(points).norm();
-  const size_t count = loop.size();
+  const size_t count = points.size();
   const Vec3 d_centre = d_plane.centre / static_cast<double>(count);
   for (size_t i = 0; i < count; ++i) {
     // N = sum_i q_i x q_(i+1), so dN/dq_i applied backwards is (q_(i+1) - q_(i-1)) x dP/dN.
     const Vec3 across = points[(i + 1) % count] - points[(i + count - 1) % count];
-    gradient_a[loop[i]] += d_centre + across.cross(d_newell);
+    d_points[i] += d_centre + across.cross(d_newell);
   }
 }
 
@@ -380,7 +378,77 @@ void accumulate_one(const Structure& structure, const Interface& contact,
         break;
     }
   }
-  plane_back(a, faces.plane_face, plane, d_plane, gradient_a);
+  std::vector<Vec3> d_face_a(face_a.size(), Vec3::Zero());
+  plane_back(face_a, plane, d_plane, d_face_a);
+  const FaceLoop& loop_a = a.faces()[faces.plane_face];
+  for (size_t i = 0; i < loop_a.size(); ++i) gradient_a[loop_a[i]] += d_face_a[i];
+}
+
+// The faces of a mid-plane interface: the pair of copies of its joint.
+struct JointCopies {
+  int face_a = -1, face_b = -1;
+  std::vector<int> pairing;  // as mid_plane_pairing gives it
+};
+
+// Detection keeps the midpoints in face A's order, so the copies are the
+// faces that pair up and whose first midpoint projects onto the interface's
+// first vertex.
+std::optional<JointCopies> find_joint_copies(const Block& a, const Block& b, const Interface& contact,
+                                             double tol) {
+  Box3 extent = bounds_of(contact.vertices);
+  const double match = kSamePoint * extent.diagonal() + kRounding * extent.hi.cwiseAbs().maxCoeff();
+  for (size_t f = 0; f < a.faces().size(); ++f) {
+    if (a.faces()[f].size() != contact.vertices.size()) continue;
+    const std::vector<Vec3> loop_a = face_loop(a, static_cast<int>(f));
+    if (!boxes_overlap(bounds_of(loop_a), extent, tol)) continue;
+    for (size_t g = 0; g < b.faces().size(); ++g) {
+      const std::vector<Vec3> loop_b = face_loop(b, static_cast<int>(g));
+      const std::optional<std::vector<int>> pairing = mid_plane_pairing(loop_a, loop_b, tol);
+      if (!pairing) continue;
+      const Vec3 first = 0.5 * (loop_a[0] + loop_b[pairing->front()]);
+      const Vec3 off_plane = contact.normal * contact.normal.dot(first - contact.vertices[0]);
+      if ((first - off_plane - contact.vertices[0]).norm() <= match) {
+        return JointCopies{static_cast<int>(f), static_cast<int>(g), *pairing};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+// A mid-plane interface (Interface::on_mid_plane): contact vertex k is
+// proj(m_k), m_k = (p_k + q_pairing(k)) / 2 the midpoint of vertex k of face
+// A and its pair on face B, projected onto the plane through the midpoints'
+// mean with their unit Newell normal; u and v as for any interface.
+void accumulate_mid_plane(const Structure& structure, const Interface& contact, const InterfaceAdjoint& adjoint,
+                          double tol, std::vector<std::vector<Vec3>>& gradient) {
+  const Block& a = structure.block(contact.a);
+  const Block& b = structure.block(contact.b);
+  const std::optional<JointCopies> copies = find_joint_copies(a, b, contact, tol);
+  if (!copies) {
+    throw InvalidArgument("interface gradient: no faces of " + describe_pair(structure, contact) +
+                          " are the two copies of their mid-plane joint");
+  }
+  const std::vector<Vec3> midpoints =
+      paired_midpoints(face_loop(a, copies->face_a), face_loop(b, copies->face_b), copies->pairing);
+  ContactPlane plane{contact.normal, Vec3::Zero()};
+  for (const Vec3& m : midpoints) plane.centre += m;
+  plane.centre /= static_cast<double>(midpoints.size());
+
+  std::vector<Vec3> d_vertices = adjoint.vertices;
+  d_vertices.resize(contact.vertices.size(), Vec3::Zero());
+  PlaneAdjoint d_plane;
+  frame_back(contact, adjoint, d_vertices, d_plane);
+  std::vector<Vec3> d_midpoints(midpoints.size(), Vec3::Zero());
+  for (size_t k = 0; k < midpoints.size(); ++k) {
+    d_midpoints[k] = projection_back(plane, midpoints[k], d_vertices[k], d_plane);
+  }
+  plane_back(midpoints, plane, d_plane, d_midpoints);
+  const FaceLoop& loop_a = a.faces()[copies->face_a];
+  const FaceLoop& loop_b = b.faces()[copies->face_b];
+  for (size_t k = 0; k < midpoints.size(); ++k) {
+    gradient[contact.a][loop_a[k]] += 0.5 * d_midpoints[k];
+    gradient[contact.b][loop_b[copies->pairing[k]]] += 0.5 * d_midpoints[k];
+  }
 }
 
 }  // namespace
@@ -419,7 +487,11 @@ void accumulate_interface_gradient(const Structure& structure, const ContactOpti
   const double tol = effective_tolerance(blocks, options);
   for (size_t k = 0; k < interfaces.size(); ++k) {
     if (all_zero(adjoints[k])) continue;
-    accumulate_one(structure, interfaces[k], adjoints[k], tol, opposite_cosine(options), gradient);
+    if (interfaces[k].on_mid_plane) {
+      accumulate_mid_plane(structure, interfaces[k], adjoints[k], tol, gradient);
+    } else {
+      accumulate_one(structure, interfaces[k], adjoints[k], tol, opposite_cosine(options), gradient);
+    }
   }
 }
 

@@ -57,6 +57,11 @@ struct InterfaceAdjoint {
 // optimiser that welds them does; a move that separates them changes the
 // provenance, and the derivative is then one-sided (the same for a vertex of one
 // face lying on an edge of the other, and for a tie between longest edges).
+// A mid-plane interface (Interface::on_mid_plane, two copies of one joint)
+// has instead x_k = proj(m_k) with m_k = (p_k + q_k) / 2, the midpoint of
+// vertex k of face A and the vertex of face B paired with it, on the plane
+// through the midpoints' mean with their unit Newell normal: the derivative
+// then reaches both faces, half each, and is smooth while the pairing holds.
 // Holes, center and area are not differentiated (nothing downstream uses them).
 //
 // Cost per interface: one scan of the face planes of blocks a and b, the

@@ -62,6 +62,28 @@ describe("planarity", function()
     assert.is_true(b:is_convex())
   end)
 
+  it("makes a warped quad that a file holds as two triangles one face again, with the same solid", function()
+    -- The warped top as two triangles, split along either diagonal: the
+    -- one through the raised corner (5-7) bounds a wedge of volume h / 3,
+    -- the other (6-8) one of h / 6 (only triangle 6 7 8 rises). Merged, the
+    -- quad starts at an end of that diagonal, so its fan is the file's two
+    -- triangles and the volume stays the file's.
+    for _, case in ipairs{ { "f 5 6 7\nf 5 7 8", h / 3 }, { "f 5 6 8\nf 6 7 8", h / 6 } } do
+      local triangles = folder .. "/triangles.obj"
+      support.write_file(triangles, (warped_cube_obj(h):gsub("f 5 6 7 8", case[1])))
+      local exact = ashlar.import(triangles):block(1)  -- triangles are planar: no planarity needed
+      assert.equal(7, #exact:faces())
+      assert.near(1 + case[2], exact:volume(), 1e-8)
+      local merged = ashlar.import(triangles, { planarity = 0.002 }):block(1)
+      assert.equal(6, #merged:faces())
+      for _, face in ipairs(merged:faces()) do assert.equal(4, #face) end
+      assert.near(exact:volume(), merged:volume(), 1e-14)
+      for k = 1, 3 do assert.near(exact:centroid()[k], merged:centroid()[k], 1e-14) end
+      -- A planarity below the quad's warp leaves the triangles as they are.
+      assert.equal(7, #ashlar.import(triangles, { planarity = 0.001 }):block(1):faces())
+    end
+  end)
+
   it("is kept by save and load, and given to load for files without it", function()
     local s = ashlar.import(path, { planarity = 0.002 })
     local saved = folder .. "/warped.json"

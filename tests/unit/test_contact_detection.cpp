@@ -177,6 +177,56 @@ TEST(ContactDetection, NearCoplanarWithinAndOutsideTolerance) {
   }
 }
 
+// Two copies of one joint (as an imprecise model holds it): the interface
+// is the polygon of the paired vertices' midpoints on its own plane, with the
+// whole joint's area, where intersecting the copies would lose a strip.
+TEST(ContactDetection, TwoCopiesOfOneJointMeetOnTheirMidPlane) {
+  ContactOptions options;
+  options.tolerance = 0.005;
+  {  // shifted by (0.002, -0.001) and lifted 0.0006: the intersection is 0.998 x 0.999
+    Structure s;
+    s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
+    s.add(box({1, 1, 1}, {0.002, -0.001, 0.5006}));
+    const std::vector<Interface>& found = s.interfaces(options);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].on_mid_plane);
+    EXPECT_NEAR(found[0].area, 1.0, 1e-12);
+    EXPECT_NEAR((found[0].normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((found[0].center - Vec3(0.001, -0.0005, 0.0003)).norm(), 0.0, 1e-12);
+    for (const Vec3& x : found[0].vertices) EXPECT_NEAR(x.z(), 0.0003, 1e-12);
+  }
+  {  // tilted by theta about the x axis: the midpoints lie on the plane tilted
+     // by theta / 2, their square foreshortened to cos(theta / 2) across it
+    const double theta = 0.004;
+    Structure s;
+    s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
+    s.add(std::make_shared<const Block>(make_box({1, 1, 1}, {0, 0, 0.5}).rotated(Vec3::UnitX(), theta, {0, 0, 0})));
+    const std::vector<Interface>& found = s.interfaces(options);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].on_mid_plane);
+    EXPECT_NEAR(found[0].area, std::cos(theta / 2), 1e-12);
+    EXPECT_NEAR((found[0].normal - Vec3(0, -std::sin(theta / 2), std::cos(theta / 2))).norm(), 0.0, 1e-12);
+  }
+  {  // a vertex further apart than the tolerance: the copies are cut as other faces
+    Structure s;
+    s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
+    s.add(box({1, 1, 1}, {0.006, 0, 0.5}));
+    const std::vector<Interface>& found = s.interfaces(options);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_FALSE(found[0].on_mid_plane);
+    EXPECT_NEAR(found[0].area, 0.994, 1e-12);
+  }
+  {  // coincident copies: the same polygon, cut as before
+    Structure s;
+    s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
+    s.add(box({1, 1, 1}, {0, 0, 0.5}));
+    const std::vector<Interface>& found = s.interfaces(options);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_FALSE(found[0].on_mid_plane);
+    EXPECT_NEAR(found[0].area, 1.0, 1e-12);
+  }
+}
+
 TEST(ContactDetection, EdgeAndCornerTouchesAreNotContacts) {
   Structure s;
   s.add(box({1, 1, 1}, {0, 0, 0}));

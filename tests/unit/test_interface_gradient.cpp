@@ -2,6 +2,8 @@
 // frames to block vertices, against central differences of contact detection.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -347,6 +349,21 @@ Model split_top() {
   return model;
 }
 
+// An irregular prism under a second copy of its top, turned by 4e-5 rad
+// about a skew axis and moved by 3.7e-5 m: two copies of one joint within the
+// tolerance (1e-4 m), which meet on their mid-plane; every vertex can move
+// alone.
+Model mid_plane_joint() {
+  const std::vector<Vec3> joint = at_height(kIrregularQuad, 0.0);
+  const Eigen::AngleAxisd turn(4e-5, Vec3(1.0, 2.0, 0.5).normalized());
+  std::vector<Vec3> copy;
+  for (const Vec3& p : joint) copy.push_back(turn * p + Vec3(2e-5, -1e-5, 3e-5));
+  Model model;
+  model.add(make_prism(joint, {0.0, 0.0, -0.45}));
+  model.add(make_prism(copy, {0.1, 0.05, 0.4}));
+  return model;
+}
+
 }  // namespace
 
 TEST(InterfaceGradient, SmallBlockOnLargeBlockIsFaceOfB) {
@@ -404,6 +421,15 @@ TEST(InterfaceGradient, SharedJointIsAttributedToBlockA) {
     EXPECT_GT(gradient[0][in_first - first.begin()].norm(), 1e-3);
   }
   EXPECT_EQ(shared, 4);
+}
+
+TEST(InterfaceGradient, MidPlaneJointReachesBothCopiesHalfEach) {
+  const Model model = mid_plane_joint();
+  const std::vector<Interface> found = model.build().interfaces(contact_options());
+  ASSERT_EQ(found.size(), 1u);
+  ASSERT_TRUE(found[0].on_mid_plane);
+  expect_kinds(model, 0, 0, 4);  // the midpoints are vertices of neither block
+  expect_agreement(model, 21, 0);
 }
 
 TEST(InterfaceGradient, TetrahedraOnTiltedPlane) {

@@ -156,13 +156,13 @@ TEST(MeshImport, UnreadableFilesAreIoErrorsNamingThePath) {
 TEST(MeshImport, PlyHeaderWithoutEndHeaderIsAnIoError) {
   TempDir dir;
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n";
-  for (const std::string& name : {"open.ply", "open.obj.txt"}) {
+  for (const char* name : {"open.ply", "open.obj.txt"}) {
     write_file_atomically(dir.file(name), header + "end_headerx\n0\n1\n2\n");
     const std::string message = error_of([&] { import_blocks(dir.file(name), {}); });
     EXPECT_TRUE(contains(message, "'" + dir.file(name) + "': its PLY header has no end_header line"))
         << message;
   }
-  for (const std::string& magic : {"PLY", "pLyYYY"}) {
+  for (const std::string magic : {"PLY", "pLyYYY"}) {
     const std::string name = magic + ".ply";
     write_file_atomically(dir.file(name), magic + header.substr(3));
     const std::string message = error_of([&] { import_blocks(dir.file(name), {}); });
