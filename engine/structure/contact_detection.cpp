@@ -140,6 +140,8 @@ public:
       const std::optional<std::vector<int>> pairing = mid_plane_pairing(fa[f].loop, fb[g].loop, tol_);
       if (pairing && add_mid_plane_contact(ia, ib, fa[f].loop, fb[g].loop, *pairing, out)) {
         paired_a[f] = paired_b[g] = true;
+        out.back().face_a = f;
+        out.back().face_b = g;
       }
     }
     std::vector<PlaneContact> planes;
@@ -232,7 +234,11 @@ private:
     std::vector<FacePlane> planes_b;
     for (int g : contact.faces_b) planes_b.push_back(fb[g].plane);
     for (const PolygonWithHoles2& piece : pieces) {
+      const size_t before = out.size();
       add_piece(ia, ib, frame, planes_b, piece, out);
+      if (out.size() == before) continue;
+      out.back().face_a = contact.faces_a.front();
+      out.back().face_b = contact.faces_b.front();
     }
   }
 

@@ -31,6 +31,11 @@ struct Interface {
   // paired vertices' midpoints on its best-fit plane, so the joint keeps
   // its whole area instead of the overlap of two imprecise copies.
   bool on_mid_plane = false;
+  // The faces (of blocks a and b) it was cut from, face_a the one whose
+  // plane it lies in (the first of each when several lie on one plane), or
+  // the two copies of a mid-plane joint; -1 for explicit interfaces. The
+  // interfaces' derivatives start from them.
+  int face_a = -1, face_b = -1;
 };
 
 // Sets u along the polygon's longest edge (the first of equal ones) and

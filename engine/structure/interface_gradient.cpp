@@ -48,24 +48,24 @@ struct ContactFaces {
   std::vector<int> faces_a, faces_b;
 };
 
+// Detection's faces: those of a on face A's plane and those of b facing
+// them that touch one of them.
 ContactFaces find_contact_faces(const Block& a, const Block& b, const Interface& contact,
                                 double tol, double opposite) {
-  const Vec3& n = contact.normal;
-  double offset = 0.0;
-  for (const Vec3& x : contact.vertices) offset += n.dot(x);
-  offset /= static_cast<double>(contact.vertices.size());
+  ContactFaces faces;
+  if (contact.face_a < 0 || contact.face_a >= static_cast<int>(a.faces().size())) return faces;
+  const FacePlane& plane_a = a.face_planes()[contact.face_a];
   std::vector<int> on_plane_a, facing_b;
   for (size_t f = 0; f < a.faces().size(); ++f) {
-    if (on_same_plane(n, offset, a.face_planes()[f], tol)) {
+    if (on_same_plane(plane_a.normal, plane_a.offset, a.face_planes()[f], tol)) {
       on_plane_a.push_back(static_cast<int>(f));
     }
   }
   for (size_t g = 0; g < b.faces().size(); ++g) {
-    if (b.face_planes()[g].normal.dot(n) <= opposite) {
+    if (b.face_planes()[g].normal.dot(plane_a.normal) <= opposite) {
       facing_b.push_back(static_cast<int>(g));
     }
   }
-  ContactFaces faces;
   std::vector<bool> touched_b(facing_b.size(), false);
   for (int f : on_plane_a) {
     bool touched = false;
@@ -77,17 +77,7 @@ ContactFaces find_contact_faces(const Block& a, const Block& b, const Interface&
   for (size_t j = 0; j < facing_b.size(); ++j) {
     if (touched_b[j]) faces.faces_b.push_back(facing_b[j]);
   }
-  if (faces.faces_a.empty() || faces.faces_b.empty()) return faces;
-  // The interface normal is face A's normal, normalised once more, bit for bit.
-  // Faces that share it exactly are told apart by detection's visiting order:
-  // the lowest index first.
-  faces.plane_face = faces.faces_a.front();
-  for (int f : faces.faces_a) {
-    if (a.face_planes()[f].normal.normalized() == n) {
-      faces.plane_face = f;
-      break;
-    }
-  }
+  if (!faces.faces_a.empty() && !faces.faces_b.empty()) faces.plane_face = contact.face_a;
   return faces;
 }
 
@@ -313,6 +303,23 @@ void plane_back(const std::vector<Vec3>& points, const ContactPlane& plane, cons
   }
 }
 
+// A face's plane as the projection uses it: its unit Newell normal and the mean of its vertices.
+ContactPlane face_plane(const Block& block, int face) {
+  ContactPlane plane{block.face_planes()[face].normal, Vec3::Zero()};
+  for (int index : block.faces()[face]) plane.centre += block.vertices()[index];
+  plane.centre /= static_cast<double>(block.faces()[face].size());
+  return plane;
+}
+
+// plane_back for a face of a block, added to the block's vertex gradient.
+void add_face_plane_back(const Block& block, int face, const ContactPlane& plane, const PlaneAdjoint& d_plane,
+                         std::vector<Vec3>& gradient) {
+  const FaceLoop& loop = block.faces()[face];
+  std::vector<Vec3> d_points(loop.size(), Vec3::Zero());
+  plane_back(face_loop(block, face), plane, d_plane, d_points);
+  for (size_t i = 0; i < loop.size(); ++i) gradient[loop[i]] += d_points[i];
+}
+
 bool all_zero(const InterfaceAdjoint& adjoint) {
   for (const Vec3& d : adjoint.vertices) {
     if (!d.isZero(0.0)) return false;
@@ -335,10 +342,7 @@ void accumulate_one(const Structure& structure, const Interface& contact,
     throw InvalidArgument("interface gradient: no faces of " + describe_pair(structure, contact) +
                           " meet on the plane of their interface");
   }
-  const std::vector<Vec3> face_a = face_loop(a, faces.plane_face);
-  ContactPlane plane{a.face_planes()[faces.plane_face].normal, Vec3::Zero()};
-  for (const Vec3& p : face_a) plane.centre += p;
-  plane.centre /= static_cast<double>(face_a.size());
+  const ContactPlane plane = face_plane(a, faces.plane_face);
 
   const Box3 extent = bounds_of(contact.vertices);
   double magnitude = 0.0;
@@ -378,10 +382,7 @@ void accumulate_one(const Structure& structure, const Interface& contact,
         break;
     }
   }
-  std::vector<Vec3> d_face_a(face_a.size(), Vec3::Zero());
-  plane_back(face_a, plane, d_plane, d_face_a);
-  const FaceLoop& loop_a = a.faces()[faces.plane_face];
-  for (size_t i = 0; i < loop_a.size(); ++i) gradient_a[loop_a[i]] += d_face_a[i];
+  add_face_plane_back(a, faces.plane_face, plane, d_plane, gradient_a);
 }
 
 // The faces of a mid-plane interface: the pair of copies of its joint.
@@ -390,29 +391,16 @@ struct JointCopies {
   std::vector<int> pairing;  // as mid_plane_pairing gives it
 };
 
-// Detection keeps the midpoints in face A's order, so the copies are the
-// faces that pair up and whose first midpoint projects onto the interface's
-// first vertex.
 std::optional<JointCopies> find_joint_copies(const Block& a, const Block& b, const Interface& contact,
                                              double tol) {
-  Box3 extent = bounds_of(contact.vertices);
-  const double match = kSamePoint * extent.diagonal() + kRounding * extent.hi.cwiseAbs().maxCoeff();
-  for (size_t f = 0; f < a.faces().size(); ++f) {
-    if (a.faces()[f].size() != contact.vertices.size()) continue;
-    const std::vector<Vec3> loop_a = face_loop(a, static_cast<int>(f));
-    if (!boxes_overlap(bounds_of(loop_a), extent, tol)) continue;
-    for (size_t g = 0; g < b.faces().size(); ++g) {
-      const std::vector<Vec3> loop_b = face_loop(b, static_cast<int>(g));
-      const std::optional<std::vector<int>> pairing = mid_plane_pairing(loop_a, loop_b, tol);
-      if (!pairing) continue;
-      const Vec3 first = 0.5 * (loop_a[0] + loop_b[pairing->front()]);
-      const Vec3 off_plane = contact.normal * contact.normal.dot(first - contact.vertices[0]);
-      if ((first - off_plane - contact.vertices[0]).norm() <= match) {
-        return JointCopies{static_cast<int>(f), static_cast<int>(g), *pairing};
-      }
-    }
+  if (contact.face_a < 0 || contact.face_a >= static_cast<int>(a.faces().size()) || contact.face_b < 0 ||
+      contact.face_b >= static_cast<int>(b.faces().size())) {
+    return std::nullopt;
   }
-  return std::nullopt;
+  std::optional<std::vector<int>> pairing =
+      mid_plane_pairing(face_loop(a, contact.face_a), face_loop(b, contact.face_b), tol);
+  if (!pairing) return std::nullopt;
+  return JointCopies{contact.face_a, contact.face_b, std::move(*pairing)};
 }
 
 // A mid-plane interface (Interface::on_mid_plane): contact vertex k is
