@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/enum_names.hpp"
-#include "optimize/design_space.hpp"
+#include "optimize/planar_chart.hpp"
 
 namespace ashlar {
 

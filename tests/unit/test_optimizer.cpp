@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "optimize/design_space.hpp"
+#include "optimize/planar_chart.hpp"
 #include "optimize/optimizer.hpp"
 #include "optimize/structure_optimization.hpp"
 #include "test_support.hpp"
