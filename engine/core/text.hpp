@@ -15,10 +15,14 @@ inline std::string join(const std::vector<std::string>& parts, const std::string
   return text;
 }
 
-// A measured value in an error message, to 3 significant digits: "0.0123".
-inline std::string message_number(double value) {
+// Significant digits that echo a value the user gave recognisably.
+constexpr int kGivenValueDigits = 10;
+
+// A value in a message, to `digits` significant digits: "0.0123" at 3, the
+// default for measured values.
+inline std::string message_number(double value, int digits = 3) {
   std::ostringstream text;
-  text.precision(3);
+  text.precision(digits);
   text << value;
   return text.str();
 }

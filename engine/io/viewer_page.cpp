@@ -11,6 +11,7 @@
 #include "analysis/equilibrium.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "core/version.hpp"
 #include "io/color_map.hpp"
 #include "io/json_document.hpp"
@@ -26,23 +27,18 @@ constexpr int kLegendStops = 33;
 // Read-outs carry 4 significant digits.
 constexpr int kReadoutDigits = 4;
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(kReadoutDigits);
-  text << value;
-  return text.str();
-}
+std::string readout(double value) { return message_number(value, kReadoutDigits); }
 
 // A force in N, kN or MN, whichever keeps it readable.
 std::string force(double newtons) {
   const double size = std::abs(newtons);
-  if (size >= 1e6) return number(newtons / 1e6) + " MN";
-  if (size >= 1e3) return number(newtons / 1e3) + " kN";
-  return number(newtons) + " N";
+  if (size >= 1e6) return readout(newtons / 1e6) + " MN";
+  if (size >= 1e3) return readout(newtons / 1e3) + " kN";
+  return readout(newtons) + " N";
 }
 
 std::string point(const Vec3& p) {
-  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ") m";
+  return "(" + readout(p.x()) + ", " + readout(p.y()) + ", " + readout(p.z()) + ") m";
 }
 
 using Rows = std::vector<std::pair<std::string, std::string>>;
@@ -50,10 +46,10 @@ using Rows = std::vector<std::pair<std::string, std::string>>;
 Rows block_rows(const Structure& structure, int i, const ExportOptions& options) {
   Rows rows{{"block", std::to_string(i + 1) + " of " + std::to_string(structure.size())},
             {"kind", structure.is_support(i) ? "support" : "free block"},
-            {"mass", number(structure.block(i).mass()) + " kg"}};
+            {"mass", readout(structure.block(i).mass()) + " kg"}};
   if (options.color_scale) {
     const std::string& label = options.color_scale->label;
-    rows.emplace_back(label.empty() ? "value" : label, number(options.color_scale->values[i]));
+    rows.emplace_back(label.empty() ? "value" : label, readout(options.color_scale->values[i]));
   }
   // A stable structure's tension is solver round-off.
   const EquilibriumResult* result = options.result;
@@ -66,15 +62,15 @@ Rows block_rows(const Structure& structure, int i, const ExportOptions& options)
 Rows interface_rows(const Structure& structure, int k, const ExportOptions& options) {
   const Interface& contact = structure.interfaces(options.contact).at(k);
   Rows rows{{"between", structure.name(contact.a) + " and " + structure.name(contact.b)},
-            {"area", number(contact.area) + " m²"}};
+            {"area", readout(contact.area) + " m²"}};
   if (const EquilibriumResult* result = options.result) {
     const InterfaceForces& f = result->interfaces.at(k);
     rows.emplace_back("normal force",
                       force(f.normal_force) + (f.normal_force >= 0 ? " (compression)" : " (tension)"));
     if (!result->stable) rows.emplace_back("tension", force(f.tension));
     rows.emplace_back("resultant", force(f.resultant.norm()) + " on " + structure.name(f.b));
-    rows.emplace_back("its components", "(" + number(f.resultant.x()) + ", " + number(f.resultant.y()) + ", " +
-                                            number(f.resultant.z()) + ") N");
+    rows.emplace_back("its components", "(" + readout(f.resultant.x()) + ", " + readout(f.resultant.y()) + ", " +
+                                            readout(f.resultant.z()) + ") N");
     rows.emplace_back("centre of pressure", point(f.center_of_pressure));
   }
   return rows;
@@ -117,7 +113,7 @@ json object_json(const Structure& structure, const SceneObject& object, const Ex
 std::string summary(const Structure& structure, const ExportOptions& options) {
   std::string text = std::to_string(structure.size()) + " blocks";
   if (const EquilibriumResult* result = options.result) {
-    text += result->stable ? ": stable" : ": unstable, infeasibility " + number(result->infeasibility);
+    text += result->stable ? ": stable" : ": unstable, infeasibility " + readout(result->infeasibility);
     text += std::string(" (") + kAnalysisMethodNames.name(result->method) + " method, solver " +
             kSolverStatusNames.name(result->status) + ")";
   }
@@ -130,8 +126,8 @@ json legend_json(const ColorScale& scale) {
   json stops = json::array();
   for (const Rgb& c : map_colors(samples, 0.0, 1.0, scale.map)) stops.push_back({c.r, c.g, c.b});
   return {{"label", scale.label.empty() ? "value" : scale.label},
-          {"lo", number(scale.lo)},
-          {"hi", number(scale.hi)},
+          {"lo", readout(scale.lo)},
+          {"hi", readout(scale.hi)},
           {"stops", std::move(stops)}};
 }
 
@@ -254,9 +250,9 @@ void write_page(const std::string& path, const json& scene) {
 }
 
 std::string simulation_summary(const Structure& structure, const SimulationResult& result) {
-  std::string text = std::to_string(structure.size()) + " blocks, simulated for " + number(result.time) + " s";
+  std::string text = std::to_string(structure.size()) + " blocks, simulated for " + readout(result.time) + " s";
   if (result.status != SimulationStatus::completed) return text + " (interrupted)";
-  text += result.moved ? ": moved, largest displacement " + number(result.max_displacement) + " m" : ": stayed";
+  text += result.moved ? ": moved, largest displacement " + readout(result.max_displacement) + " m" : ": stayed";
   return text + (result.settled ? ", settled" : ", still moving at the end");
 }
 

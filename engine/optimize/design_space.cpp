@@ -5,12 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <iomanip>
 #include <map>
-#include <sstream>
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "core/point_grid.hpp"
 #include "core/union_find.hpp"
 #include "geometry/block.hpp"
@@ -29,12 +28,6 @@ constexpr double kRelativeRowTolerance = 1e-12;
 // Rows weighing less than this fraction of the largest in a dependency are
 // not part of it.
 constexpr double kInvolved = 1e-6;
-
-std::string number(double value) {
-  std::ostringstream text;
-  text << std::setprecision(10) << value;
-  return text.str();
-}
 
 std::string describe(const PositionRef& ref) {
   if (ref.block == PositionRef::kFreePoint) return "point " + std::to_string(ref.index + 1);
@@ -158,7 +151,7 @@ void DesignSpace::check_input() const {
   const DesignConstraints& c = constraints_;
   if (c.weld_tolerance && !(std::isfinite(*c.weld_tolerance) && *c.weld_tolerance >= 0.0)) {
     throw InvalidArgument("weld_tolerance must be a finite number >= 0 (m), got " +
-                          number(*c.weld_tolerance));
+                          message_number(*c.weld_tolerance, kGivenValueDigits));
   }
   for (int block : c.fixed_blocks) check_block_index(block, initial_, "fixed_blocks");
   for (const PositionRef& ref : c.fixed) check_position(ref, initial_, "fixed");
@@ -186,11 +179,11 @@ void DesignSpace::check_input() const {
   }
   if (!(c.max_displacement > 0.0)) {
     throw InvalidArgument("max_displacement must be a number > 0 (m) or infinite, got " +
-                          number(c.max_displacement));
+                          message_number(c.max_displacement, kGivenValueDigits));
   }
   if (!(std::isfinite(c.min_block_volume) && c.min_block_volume >= 0.0)) {
     throw InvalidArgument("min_block_volume must be a finite number >= 0 (m^3), got " +
-                          number(c.min_block_volume));
+                          message_number(c.min_block_volume, kGivenValueDigits));
   }
 }
 
@@ -259,7 +252,7 @@ void DesignSpace::weld() {
         throw InvalidArgument("welding: vertices " + std::to_string(vertex_in_block[node] + 1) +
                               " and " + std::to_string(k + 1) + " of block " +
                               std::to_string(b + 1) + " are closer than the weld tolerance (" +
-                              number(weld_tolerance_) + " m)");
+                              message_number(weld_tolerance_, kGivenValueDigits) + " m)");
       }
       block_of_mark[node] = b;
       vertex_in_block[node] = k;
@@ -313,8 +306,8 @@ void DesignSpace::build_variables() {
         }
       });
       if (partner[g] < 0 && !fixed_class[classes.root(g)]) {
-        throw InvalidArgument("mirror: " + describe(nodes_[g].example) + " at (" + number(p.x()) +
-                              ", " + number(p.y()) + ", " + number(p.z()) +
+        throw InvalidArgument("mirror: " + describe(nodes_[g].example) + " at (" + message_number(p.x(), kGivenValueDigits) +
+                              ", " + message_number(p.y(), kGivenValueDigits) + ", " + message_number(p.z(), kGivenValueDigits) +
                               ") has no mirror image across the plane");
       }
     }
@@ -758,8 +751,8 @@ std::string DesignSpace::rejection(const Eigen::VectorXd& z) const {
     for (size_t g = 0; g < nodes_.size(); ++g) {
       const double moved = (positions[g] - nodes_[g].initial).cwiseAbs().maxCoeff();
       if (moved > bound + 1e-12 * model_size_) {
-        return describe(nodes_[g].example) + " moves " + number(moved) +
-               " m along an axis, beyond max_displacement (" + number(bound) + " m)";
+        return describe(nodes_[g].example) + " moves " + message_number(moved, kGivenValueDigits) +
+               " m along an axis, beyond max_displacement (" + message_number(bound, kGivenValueDigits) + " m)";
       }
     }
   }
@@ -767,7 +760,7 @@ std::string DesignSpace::rejection(const Eigen::VectorXd& z) const {
   for (int r = 0; r < constraint_count(); ++r) {
     const double off = std::abs(residuals[r]);
     if (off > kRowSlack * tolerances_[r] + start_residuals_[r]) {
-      return describe(groups_[rows_[r].group].face) + " is not planar (a vertex " + number(off) +
+      return describe(groups_[rows_[r].group].face) + " is not planar (a vertex " + message_number(off, kGivenValueDigits) +
              " m off its plane)";
     }
   }
@@ -775,10 +768,10 @@ std::string DesignSpace::rejection(const Eigen::VectorXd& z) const {
   for (size_t b = 0; b < faces_.size(); ++b) {
     const double volume = mass_properties(candidate.block_vertices[b], faces_[b]).volume;
     const std::string block = "block " + std::to_string(b + 1);
-    if (volume <= 0.0) return block + " is inverted or flat (volume " + number(volume) + " m^3)";
+    if (volume <= 0.0) return block + " is inverted or flat (volume " + message_number(volume, kGivenValueDigits) + " m^3)";
     if (volume < constraints_.min_block_volume) {
-      return block + " has volume " + number(volume) + " m^3, below min_block_volume (" +
-             number(constraints_.min_block_volume) + " m^3)";
+      return block + " has volume " + message_number(volume, kGivenValueDigits) + " m^3, below min_block_volume (" +
+             message_number(constraints_.min_block_volume, kGivenValueDigits) + " m^3)";
     }
   }
   return {};

@@ -4,14 +4,13 @@
 
 #include <cmath>
 #include <exception>
-#include <iomanip>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/clock.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar {
 namespace {
@@ -19,12 +18,6 @@ namespace {
 constexpr int kMaxLineSearchTrials = 20;
 constexpr double kArmijo = 1e-4;  // sufficient decrease: a fraction of the linear prediction
 constexpr double kAutomaticStep = 0.01;
-
-std::string number(double value) {
-  std::ostringstream text;
-  text << std::setprecision(10) << value;
-  return text.str();
-}
 
 // One evaluation, in the problem's variables v.
 struct Trial {
@@ -266,13 +259,13 @@ private:
     const double norm = free_gradient_norm();
     if (norm <= settings_.gradient_tolerance) {
       throw Stop{OptimizeStatus::converged, "converged" + after + ": the gradient norm " +
-                                                number(norm) + " is within gradient_tolerance"};
+                                                message_number(norm, kGivenValueDigits) + " is within gradient_tolerance"};
     }
     const double change = std::abs(previous - trial.value);
     if (!first && change <= settings_.value_tolerance * std::max(1.0, std::abs(trial.value))) {
       throw Stop{OptimizeStatus::converged, "converged" + after +
                                                 ": the last step changed the value by " +
-                                                number(change) + ", within value_tolerance"};
+                                                message_number(change, kGivenValueDigits) + ", within value_tolerance"};
     }
     if (step.iteration >= settings_.max_iterations) {
       throw Stop{OptimizeStatus::max_iterations,
@@ -440,7 +433,7 @@ void check_settings(const OptimizeSettings& settings) {
   const auto check = [](double value, const char* name, const char* unit) {
     if (!(std::isfinite(value) && value >= 0.0)) {
       throw InvalidArgument(std::string("optimize: ") + name + " must be a finite number >= 0" +
-                            unit + ", got " + number(value));
+                            unit + ", got " + message_number(value, kGivenValueDigits));
     }
   };
   check(settings.gradient_tolerance, "gradient_tolerance", "");
@@ -495,13 +488,13 @@ ParameterResult optimize_parameters(const Eigen::VectorXd& lower, const Eigen::V
   for (Eigen::Index i = 0; i < n; ++i) {
     const std::string which = "optimize parameters: parameter " + std::to_string(i + 1);
     if (std::isnan(lower[i]) || std::isnan(upper[i]) || lower[i] > upper[i]) {
-      throw InvalidArgument(which + ": its bounds [" + number(lower[i]) + ", " + number(upper[i]) +
+      throw InvalidArgument(which + ": its bounds [" + message_number(lower[i], kGivenValueDigits) + ", " + message_number(upper[i], kGivenValueDigits) +
                             "] are not an interval");
     }
     if (!std::isfinite(initial[i]) || initial[i] < lower[i] || initial[i] > upper[i]) {
-      throw InvalidArgument(which + ": its initial value " + number(initial[i]) +
-                            " is not within its bounds [" + number(lower[i]) + ", " +
-                            number(upper[i]) + "]");
+      throw InvalidArgument(which + ": its initial value " + message_number(initial[i], kGivenValueDigits) +
+                            " is not within its bounds [" + message_number(lower[i], kGivenValueDigits) + ", " +
+                            message_number(upper[i], kGivenValueDigits) + "]");
     }
     if (std::isfinite(upper[i] - lower[i])) widest = std::max(widest, upper[i] - lower[i]);
   }
