@@ -82,7 +82,7 @@ describe("the kinematic method", function()
   end)
 
   it("finds a semicircular arch's minimum thickness where the equilibrium method does", function()
-    -- 16 polyhedral voussoirs: t/R = 0.10708 (docs/DESIGN verification).
+    -- 16 polyhedral voussoirs: t/R = 0.10708 (docs/verification.md).
     for _, mu in ipairs{ math.huge, 10, 0.7 } do
       for _, case in ipairs{ { 0.104, false }, { 0.110, true } } do
         local s = models.arch{ radius = 5, thickness = 5 * case[1], voussoirs = 16 }

@@ -1,6 +1,6 @@
 -- The arch and barrel vault generators: topology, exact volumes, symmetry,
 -- option errors, and the minimum thickness of semicircular arches against
--- the references in DESIGN.md.
+-- the references in docs/verification.md.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
@@ -198,22 +198,22 @@ describe("models.barrel_vault", function()
 end)
 
 describe("semicircular arch equilibrium", function()
-  -- DESIGN.md's references are for voussoirs bounded by circular arcs. Ours
-  -- have straight chords for intrados and extrados (planar faces), which
+  -- docs/verification.md gives references for voussoirs bounded by circular
+  -- arcs. Ours have straight chords for intrados and extrados (planar faces), which
   -- moves the weight inwards and lowers the minimum by 0.0009 for 8
   -- voussoirs, less for more. The exact minima of the polyhedral arch
   -- come from the half-arch thrust-line problem: a horizontal crown thrust
   -- H at height e whose line of action, with the weights added joint by
   -- joint, crosses every joint between intrados and extrados.
   local references = {
-    { voussoirs = 8, design = 0.1009, polyhedral = 0.0999717 },
-    { voussoirs = 16, design = 0.1072, polyhedral = 0.1070762 },
-    { voussoirs = 64, design = 0.1074, polyhedral = 0.1073832 },
+    { voussoirs = 8, circular = 0.1009, polyhedral = 0.0999717 },
+    { voussoirs = 16, circular = 0.1072, polyhedral = 0.1070762 },
+    { voussoirs = 64, circular = 0.1074, polyhedral = 0.1073832 },
   }
   for _, reference in ipairs(references) do
     it(("minimum thickness of %d voussoirs without sliding"):format(reference.voussoirs), function()
       local ratio = minimum_thickness_ratio(reference.voussoirs, 0.09, 0.115, 1e-5)
-      near(ratio, reference.design, 1e-3, "against DESIGN.md")
+      near(ratio, reference.circular, 1e-3, "against circular voussoirs (docs/verification.md)")
       near(ratio, reference.polyhedral, 2e-5, "against the polyhedral arch")
     end)
   end

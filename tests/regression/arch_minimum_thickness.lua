@@ -4,8 +4,8 @@
 -- References: the thrust-line minimum of the same polyhedral arch (straight
 -- intrados and extrados chords), a small linear program in the crown thrust
 -- solved independently in tests/lua/edge_cases.lua (arch_threshold). They
--- sit just below DESIGN.md's values for voussoirs bounded by circular arcs
--- (about 0.1009, 0.1072, 0.1074): the chords move the weight inwards. With
+-- sit just below the values for voussoirs bounded by circular arcs
+-- (0.1009, 0.1072, 0.1074, docs/verification.md): the chords move the weight inwards. With
 -- 512 voussoirs it approaches Milankovitch's 0.1075 for the continuous arch.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
