@@ -10,6 +10,7 @@
 // place where exceptions become Lua errors, after every C++ local is gone.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <initializer_list>
 #include <memory>
@@ -31,6 +32,10 @@ namespace ashlar::sandbox {
 // When a sandboxed script's time is up (sandbox.hpp); the far future outside
 // a sandbox. Declared here so that guard() needs no more of the sandbox.
 Clock::time_point deadline_of(lua_State* L);
+// The userdata whose finalizer releases what it holds, which a sandboxed
+// state's allocator releases when Lua frees them unfinalized (sandbox.hpp).
+void watch_userdata(lua_State* L, void* memory, std::size_t size, void (*release)(void* memory));
+void forget_userdata(lua_State* L, const void* memory, std::size_t size);
 }  // namespace ashlar::sandbox
 
 namespace ashlar::lua {
@@ -239,6 +244,8 @@ void push_boxed(lua_State* L, std::shared_ptr<T> value, const char* metatable, i
   });
   new (lua_touserdata(L, -1)) Box<T>{std::move(value)};
   luaL_setmetatable(L, metatable);
+  sandbox::watch_userdata(L, lua_touserdata(L, -1), sizeof(Box<T>),
+                          [](void* memory) { static_cast<Box<T>*>(memory)->ptr.reset(); });
 }
 
 template <class T>
@@ -271,7 +278,10 @@ bool push_if_closed(lua_State* L, const char* metatable, const char* type) {
 
 template <class T>
 int release_boxed(lua_State* L, const char* metatable) {
-  if (Box<T>* box = test_boxed<T>(L, 1, metatable)) box->ptr.reset();
+  if (Box<T>* box = test_boxed<T>(L, 1, metatable)) {
+    box->ptr.reset();
+    sandbox::forget_userdata(L, box, sizeof(Box<T>));
+  }
   return 0;
 }
 

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <new>
 #include <system_error>
+#include <unordered_map>
 
 #include "ashlar_lua.hpp"
 #include "core/error.hpp"
@@ -35,12 +36,26 @@ struct Box {
   std::size_t refused_allocations = 0;
   std::uint64_t instructions = 0;
   Limit exceeded = Limit::none;
+  // Userdata to release if Lua frees them unfinalized, by the end of their
+  // memory, which is the end of the block Lua frees (see watch_userdata).
+  struct Watched {
+    void* memory;
+    void (*release)(void* memory);
+  };
+  std::unordered_map<const char*, Watched> watched;
 };
 
 void* limited_allocate(void* user_data, void* block, std::size_t old_size, std::size_t new_size) {
   Box& box = *static_cast<Box*>(user_data);
   const std::size_t old_bytes = block != nullptr ? old_size : 0;  // else old_size is a type tag
   if (new_size == 0) {
+    if (block != nullptr && !box.watched.empty()) {
+      const auto watched = box.watched.find(static_cast<const char*>(block) + old_bytes);
+      if (watched != box.watched.end()) {
+        watched->second.release(watched->second.memory);
+        box.watched.erase(watched);
+      }
+    }
     std::free(block);
     box.used -= old_bytes;
     return nullptr;
@@ -444,8 +459,20 @@ void restore_hook(lua_State* L) {
 
 void close_state(lua_State* L) {
   Box* box = box_of(L);
+  // Closing calls the finalizers, which takes memory (a stack for each
+  // call): at the cap a finalizer would be skipped, and what its userdata
+  // holds (an engine object) would leak.
+  if (box != nullptr) box->settings.memory_bytes = 0;
   lua_close(L);
   delete box;
+}
+
+void watch_userdata(lua_State* L, void* memory, std::size_t size, void (*release)(void* memory)) {
+  if (Box* box = box_of(L)) box->watched[static_cast<const char*>(memory) + size] = {memory, release};
+}
+
+void forget_userdata(lua_State* L, const void* memory, std::size_t size) {
+  if (Box* box = box_of(L)) box->watched.erase(static_cast<const char*>(memory) + size);
 }
 
 const Settings* settings_of(lua_State* L) {
