@@ -1,5 +1,8 @@
-// Links the C++ build of Lua, so a Lua error unwinds C++ frames as an
-// exception: locals with destructors are safe in every function below.
+// The host links the C++ build of Lua, where a Lua error unwinds C++ frames
+// as an exception; but ashlar.sandbox and a study's worker states set up
+// states with these functions in the C module too, whose Lua raises errors
+// by longjmp. So no function here calls Lua while a C++ object with a
+// destructor is alive.
 #include "host_state.hpp"
 
 #include <csignal>
@@ -10,6 +13,7 @@
 
 #include "ashlar_lua.hpp"
 #include "core/interrupt.hpp"
+#include "luax.hpp"
 #include "sandbox.hpp"
 
 namespace ashlar::host {
@@ -85,7 +89,7 @@ void remember_script(lua_State* L, const ScriptInvocation& invocation) {
 }
 
 const ScriptInvocation* remembered_script(lua_State* L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, kScriptKey);
+  lua::get_field(L, LUA_REGISTRYINDEX, kScriptKey);  // protected: the key may need memory
   auto* invocation = static_cast<ScriptInvocation*>(luaL_testudata(L, -1, kScriptMetatable));
   lua_pop(L, 1);
   return invocation;
@@ -104,7 +108,10 @@ void open_host_libraries(lua_State* L) {
   ashlar_add_model_path(L);
 }
 
-void prepend_script_folder_to_path(lua_State* L, const char* script) {
+namespace {
+
+// The absolute folder of `script`, without a trailing '/'.
+std::string script_folder(const char* script) {
   namespace fs = std::filesystem;
   fs::path folder = fs::path(script).parent_path();
   if (folder.empty()) folder = ".";
@@ -113,15 +120,27 @@ void prepend_script_folder_to_path(lua_State* L, const char* script) {
   if (!absolute.empty()) folder = absolute.lexically_normal();
   std::string directory = folder.string();
   if (directory.size() > 1 && directory.back() == '/') directory.pop_back();
+  return directory;
+}
 
+}  // namespace
+
+void prepend_script_folder_to_path(lua_State* L, const char* script) {
+  if (!lua::push_message(L, script_folder(script).c_str())) lua_error(L);
+  const int folder = lua_gettop(L);
   lua_getglobal(L, "package");
-  lua_getfield(L, -1, "path");
-  const std::string path = directory + "/?.lua;" + directory + "/?/init.lua;" +
-                           (lua_tostring(L, -1) ? lua_tostring(L, -1) : "");
-  lua_pop(L, 1);
-  lua_pushlstring(L, path.data(), path.size());
-  lua_setfield(L, -2, "path");
-  lua_pop(L, 1);
+  lua_pushvalue(L, folder);
+  lua_pushliteral(L, "/?.lua;");
+  lua_pushvalue(L, folder);
+  lua_pushliteral(L, "/?/init.lua;");
+  lua_getfield(L, folder + 1, "path");
+  if (!lua_isstring(L, -1)) {
+    lua_pop(L, 1);
+    lua_pushliteral(L, "");
+  }
+  lua_concat(L, 5);
+  lua_setfield(L, folder + 1, "path");
+  lua_settop(L, folder - 1);
 }
 
 int call_with_traceback(lua_State* L, int argument_count, int result_count) {

@@ -27,7 +27,8 @@ void create_arg_table(lua_State* L, const std::vector<std::string>& argv, int sc
 // it back to start worker states that run it again. Not called for stdin or
 // -e chunks, which cannot be run again.
 void remember_script(lua_State* L, const ScriptInvocation& invocation);
-// The remembered script, or nullptr (the C module, stdin, -e).
+// The remembered script, or nullptr (the C module, stdin, -e). Throws
+// lua::LuaError when Lua raises while reading it (no memory).
 const ScriptInvocation* remembered_script(lua_State* L);
 
 // Opens the standard libraries and preloads `ashlar`, with the model library

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 #include "core/text.hpp"
@@ -14,10 +15,66 @@ namespace {
 // Position of the calling Lua code ("file:line: "), as luaL_error gives.
 void push_where(lua_State* L) { luaL_where(L, 1); }
 
+struct Text {
+  const char* data;
+  std::size_t size;
+};
+
+int push_text(lua_State* L) {
+  const Text& text = *static_cast<const Text*>(lua_touserdata(L, 1));
+  lua_pushlstring(L, text.data, text.size);
+  return 1;
+}
+
+// Pushes `text` under lua_pcall: false, with the error's object pushed
+// instead, when Lua has no memory for it.
+bool push_text_protected(lua_State* L, Text text) {
+  lua_pushcfunction(L, push_text);
+  lua_pushlightuserdata(L, &text);
+  return lua_pcall(L, 1, 1, 0) == LUA_OK;
+}
+
 }  // namespace
+
+bool push_message(lua_State* L, const char* text) {
+  // An error is raised next: the arguments may go if the stack cannot grow.
+  if (!lua_checkstack(L, 2)) lua_settop(L, 0);
+  return push_text_protected(L, Text{text, std::strlen(text)});
+}
+
+int get_field(lua_State* L, int idx, const char* key) {
+  lua_pushvalue(L, idx);
+  call_protected(L, 1, [key](lua_State* S) {
+    lua_getfield(S, 1, key);
+    return 1;
+  });
+  return lua_type(L, -1);
+}
+
+bool matches_pattern(lua_State* L, const char* text, const char* pattern) {
+  call_protected(L, 0, [&](lua_State* S) {  // string.find, the text, the pattern
+    lua_getglobal(S, "string");
+    lua_getfield(S, -1, "find");
+    lua_remove(S, -2);
+    lua_pushstring(S, text);
+    lua_pushstring(S, pattern);
+    return 3;
+  });
+  protected_call(L, 2, 1);
+  const bool found = !lua_isnil(L, -1);
+  lua_pop(L, 1);
+  return found;
+}
+
+int push_string(lua_State* L, const std::string& text) {
+  if (!lua_checkstack(L, 2)) throw std::bad_alloc();
+  if (!push_text_protected(L, Text{text.data(), text.size()})) throw LuaError();
+  return 1;
+}
 
 int raise_pending_error(lua_State* L, int arg) {
   // The message is on top of the stack; no C++ object is alive any more.
+  if (arg == kRaiseAsIs) return lua_error(L);
   if (arg > 0) return luaL_argerror(L, arg, lua_tostring(L, -1));
   push_where(L);
   lua_insert(L, -2);
@@ -58,6 +115,14 @@ bool finite_number_at(lua_State* L, int idx, double& out) {
 std::string number_text(double value) {
   char text[32];
   std::snprintf(text, sizeof text, LUA_NUMBER_FMT, value);
+  return text;
+}
+
+std::string lua_number_text(lua_State* L, int idx) {
+  if (lua_isinteger(L, idx)) return std::to_string(lua_tointeger(L, idx));
+  std::string text = number_text(lua_tonumber(L, idx));
+  // Lua marks a float that looks like an integer: 2.0, not 2.
+  if (text.find_first_not_of("-0123456789") == std::string::npos) text += ".0";
   return text;
 }
 
@@ -260,7 +325,7 @@ int OptionTable::push(const char* key) const {
     lua_pushnil(L_);
     return LUA_TNIL;
   }
-  return lua_getfield(L_, index_, key);
+  return get_field(L_, index_, key);
 }
 
 bool OptionTable::has(const char* key) const {
@@ -338,7 +403,7 @@ std::optional<lua_Integer> OptionTable::whole(const char* key, lua_Integer least
   int is_integer = 0;
   const lua_Integer value = lua_tointegerx(L_, -1, &is_integer);
   const bool number = lua_type(L_, -1) == LUA_TNUMBER;
-  const std::string got = number ? lua_tostring(L_, -1) : type_name(L_, -1);
+  const std::string got = number ? lua_number_text(L_, -1) : type_name(L_, -1);
   lua_pop(L_, 1);
   if (!number || !is_integer || value < least || value > most) {
     fail(key, "expected " + expected + ", got " + got);

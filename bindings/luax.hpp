@@ -1,12 +1,16 @@
 // Helpers shared by the wrap_*.cpp bindings: argument checking, option
 // tables, userdata boxes and the exception boundary.
 //
-// Argument readers here throw ArgError instead of calling luaL_argerror, so
-// that no Lua error unwinds (or, with a C-compiled Lua, longjmps) across C++
-// frames that own resources. guard() is the single place where C++
-// exceptions become Lua errors, after every C++ local is gone.
+// No Lua error may unwind (or, with the C-compiled Lua of the C module,
+// longjmp) across C++ frames that own resources: a longjmp skips their
+// destructors. So argument readers here throw ArgError instead of calling
+// luaL_argerror; Lua calls that can raise (that allocate, or run a
+// metamethod) while C++ objects are alive go through call_protected, which
+// turns the error into a LuaError exception; and guard() is the single
+// place where exceptions become Lua errors, after every C++ local is gone.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <initializer_list>
 #include <memory>
@@ -14,6 +18,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <lua.hpp>
@@ -27,6 +32,10 @@ namespace ashlar::sandbox {
 // When a sandboxed script's time is up (sandbox.hpp); the far future outside
 // a sandbox. Declared here so that guard() needs no more of the sandbox.
 Clock::time_point deadline_of(lua_State* L);
+// The userdata whose finalizer releases what it holds, which a sandboxed
+// state's allocator releases when Lua frees them unfinalized (sandbox.hpp).
+void watch_userdata(lua_State* L, void* memory, std::size_t size, void (*release)(void* memory));
+void forget_userdata(lua_State* L, const void* memory, std::size_t size);
 }  // namespace ashlar::sandbox
 
 namespace ashlar::lua {
@@ -41,26 +50,83 @@ private:
   int arg_;
 };
 
+// A Lua error that call_protected caught: its error object is on top of
+// the stack, and guard raises it as it is.
+class LuaError : public std::exception {
+public:
+  const char* what() const noexcept override { return "Lua error (its object is on the stack)"; }
+};
+
+// Pushes `text`; when Lua has no memory for it, pushes the memory error's
+// object instead and returns false.
+bool push_message(lua_State* L, const char* text);
+
+// Calls fn(L) under lua_pcall with the `nargs` values on top of the stack as
+// its arguments (stack indices 1..nargs inside fn, whose frame is its own)
+// and returns how many values it returned, now on top of the stack. When
+// Lua raises meanwhile (no memory, a metamethod that fails), throws
+// LuaError with the error object on the stack. fn holds no C++ object with
+// a destructor while it calls Lua; what it reads lives outside, in the
+// caller's frame, which unwinds as C++ does. An exception fn throws (a
+// nested call_protected's LuaError included) becomes the Lua error.
+template <class Fn>
+int call_protected(lua_State* L, int nargs, Fn&& fn) {
+  using F = std::remove_reference_t<Fn>;
+  if (!lua_checkstack(L, 2)) throw std::bad_alloc();
+  const int base = lua_gettop(L) - nargs;
+  lua_pushcfunction(L, [](lua_State* S) -> int {
+    F& f = *static_cast<F*>(lua_touserdata(S, -1));
+    lua_pop(S, 1);
+    int results = -1;
+    try {
+      results = f(S);
+    } catch (const LuaError&) {
+      // The error object is on top already.
+    } catch (const std::exception& e) {
+      push_message(S, e.what());  // or, without memory for it, that error's object
+    }
+    // Raised here, out of the handlers: a longjmp from inside one would
+    // leave the exception object behind.
+    return results >= 0 ? results : lua_error(S);
+  });
+  lua_insert(L, base + 1);
+  lua_pushlightuserdata(L, const_cast<void*>(static_cast<const void*>(&fn)));
+  if (lua_pcall(L, nargs + 1, LUA_MULTRET, 0) != LUA_OK) throw LuaError();
+  return lua_gettop(L) - base;
+}
+
+// lua_getfield under call_protected (a table's __index may raise, and a key
+// may need memory): pushes t[key] for the table at idx, returns its type.
+int get_field(lua_State* L, int idx, const char* key);
+
+// Whether string.find(text, pattern) finds the Lua pattern in text; a
+// malformed pattern throws with Lua's message.
+bool matches_pattern(lua_State* L, const char* text, const char* pattern);
+
+// Pushes `text` and returns 1, under call_protected: for a string the
+// caller's C++ objects hold.
+int push_string(lua_State* L, const std::string& text);
+
 // Runs a binding body and converts any C++ exception into a Lua error that
 // carries the calling script's file:line. Lua's own errors (the C++ build of
 // Lua throws a non-std type) pass through untouched.
+constexpr int kRaiseAsIs = -1;  // raise_pending_error's arg for an error object to raise unchanged
 int raise_pending_error(lua_State* L, int arg);
 template <class Body>
 int guard(lua_State* L, Body&& body) {
-  int arg = -1;
+  int arg = kRaiseAsIs;
   try {
     // The engine's long loops stop at a sandboxed script's deadline.
     const DeadlineScope deadline(sandbox::deadline_of(L));
     return body();
+  } catch (const LuaError&) {
+    arg = kRaiseAsIs;
   } catch (const ArgError& e) {
-    arg = e.arg();
-    lua_pushstring(L, e.what());
+    arg = push_message(L, e.what()) ? e.arg() : kRaiseAsIs;
   } catch (const std::bad_alloc&) {
-    arg = 0;
-    lua_pushliteral(L, "not enough memory (the engine's allocation failed)");
+    arg = push_message(L, "not enough memory (the engine's allocation failed)") ? 0 : kRaiseAsIs;
   } catch (const std::exception& e) {
-    arg = 0;
-    lua_pushstring(L, e.what());
+    arg = push_message(L, e.what()) ? 0 : kRaiseAsIs;
   }
   return raise_pending_error(L, arg);
 }
@@ -100,6 +166,9 @@ void set_index_field(lua_State* L, const char* key, int zero_based);
 // key and the allowed ones otherwise. Readers name the key in their errors.
 // As Lua prints numbers: 0 and 2.5, not 0.000000 and 2.500000.
 std::string number_text(double value);
+// The number at idx as tostring gives it (2, 2.0, 2.5), without the
+// allocation of lua_tostring, which converts the value in place.
+std::string lua_number_text(lua_State* L, int idx);
 
 class OptionTable {
 public:
@@ -163,11 +232,20 @@ struct Box {
   std::shared_ptr<T> ptr;
 };
 
+// With `user_values` user values (push_cached_table keeps its tables in
+// the first).
 template <class T>
-void push_boxed(lua_State* L, std::shared_ptr<T> value, const char* metatable) {
-  void* memory = lua_newuserdatauv(L, sizeof(Box<T>), 0);
-  new (memory) Box<T>{std::move(value)};
+void push_boxed(lua_State* L, std::shared_ptr<T> value, const char* metatable, int user_values = 0) {
+  // Allocated before the box holds `value`, which then belongs to the
+  // userdata: setting a registered metatable allocates nothing.
+  call_protected(L, 0, [user_values](lua_State* S) {
+    lua_newuserdatauv(S, sizeof(Box<T>), user_values);
+    return 1;
+  });
+  new (lua_touserdata(L, -1)) Box<T>{std::move(value)};
   luaL_setmetatable(L, metatable);
+  sandbox::watch_userdata(L, lua_touserdata(L, -1), sizeof(Box<T>),
+                          [](void* memory) { static_cast<Box<T>*>(memory)->ptr.reset(); });
 }
 
 template <class T>
@@ -200,7 +278,10 @@ bool push_if_closed(lua_State* L, const char* metatable, const char* type) {
 
 template <class T>
 int release_boxed(lua_State* L, const char* metatable) {
-  if (Box<T>* box = test_boxed<T>(L, 1, metatable)) box->ptr.reset();
+  if (Box<T>* box = test_boxed<T>(L, 1, metatable)) {
+    box->ptr.reset();
+    sandbox::forget_userdata(L, box, sizeof(Box<T>));
+  }
   return 0;
 }
 

@@ -93,15 +93,21 @@ int w_Block_mass(lua_State* L) {
 
 int w_Block_centroid(lua_State* L) {
   return guard(L, [&] {
-    push_vec3(L, luax_checkBlock(L, 1)->centroid());
-    return 1;
+    const Vec3 centroid = luax_checkBlock(L, 1)->centroid();
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_vec3(L, centroid);
+      return 1;
+    });
   });
 }
 
 int w_Block_vertices(lua_State* L) {
   return guard(L, [&] {
-    push_points(L, luax_checkBlock(L, 1)->vertices());
-    return 1;
+    const BlockPtr block = luax_checkBlock(L, 1);
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_points(L, block->vertices());
+      return 1;
+    });
   });
 }
 
@@ -109,26 +115,29 @@ int w_Block_faces(lua_State* L) {
   return guard(L, [&] {
     const BlockPtr block = luax_checkBlock(L, 1);
     const std::vector<FaceLoop>& faces = block->faces();
-    lua_createtable(L, static_cast<int>(faces.size()), 0);
-    for (size_t f = 0; f < faces.size(); ++f) {
-      lua_createtable(L, static_cast<int>(faces[f].size()), 0);
-      for (size_t k = 0; k < faces[f].size(); ++k) {
-        lua_pushinteger(L, faces[f][k] + 1);
-        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(faces.size()), 0);
+      for (size_t f = 0; f < faces.size(); ++f) {
+        lua_createtable(L, static_cast<int>(faces[f].size()), 0);
+        for (size_t k = 0; k < faces[f].size(); ++k) {
+          lua_pushinteger(L, faces[f][k] + 1);
+          lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+        }
+        lua_rawseti(L, -2, static_cast<lua_Integer>(f + 1));
       }
-      lua_rawseti(L, -2, static_cast<lua_Integer>(f + 1));
-    }
-    return 1;
+      return 1;
+    });
   });
 }
 
 int w_Block_name(lua_State* L) {
   return guard(L, [&] {
     const BlockPtr block = luax_checkBlock(L, 1);
-    const std::string& name = block->name();
-    if (name.empty()) lua_pushnil(L);
-    else lua_pushlstring(L, name.data(), name.size());
-    return 1;
+    if (block->name().empty()) {
+      lua_pushnil(L);
+      return 1;
+    }
+    return push_string(L, block->name());
   });
 }
 
@@ -155,11 +164,12 @@ int w_Block_warp(lua_State* L) {
 
 int w_Block_bounds(lua_State* L) {
   return guard(L, [&] {
-    const BlockPtr block = luax_checkBlock(L, 1);
-    const Box3& box = block->bounds();
-    push_vec3(L, box.lo);
-    push_vec3(L, box.hi);
-    return 2;
+    const Box3 box = luax_checkBlock(L, 1)->bounds();
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_vec3(L, box.lo);
+      push_vec3(L, box.hi);
+      return 2;
+    });
   });
 }
 
@@ -223,8 +233,7 @@ int w_Block_tostring(lua_State* L) {
     if (!block->name().empty()) text << " '" << block->name() << "'";
     text << " (" << block->vertices().size() << " vertices, " << block->faces().size()
          << " faces, volume " << block->volume() << " m^3)";
-    lua_pushstring(L, text.str().c_str());
-    return 1;
+    return push_string(L, text.str());
   });
 }
 

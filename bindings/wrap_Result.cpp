@@ -2,6 +2,7 @@
 
 #include "analysis/kinematic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -93,13 +94,13 @@ int w_analyze(lua_State* L) {
     AnalysisSettings settings = analysis_settings(options);
     settings.verdict_only = options.boolean("verdict_only").value_or(false);
     read_method(options, settings);
-    if (settings.method == AnalysisMethod::kinematic && lua_type(L, 2) == LUA_TTABLE &&
-        lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
+    lua_settop(L, 2);
+    const bool warm_start = options.push("warm_start") != LUA_TNIL;
+    if (settings.method == AnalysisMethod::kinematic && warm_start) {
       throw ArgError(2, "warm_start: not with method = \"kinematic\" (its rounds start from no prestress)");
     }
-    lua_settop(L, 2);
     std::shared_ptr<const AnalysisRecord> warm;
-    if (lua_type(L, 2) == LUA_TTABLE && lua_getfield(L, 2, "warm_start") != LUA_TNIL) {
+    if (warm_start) {
       const Box<AnalysisRecord>* previous = test_boxed<AnalysisRecord>(L, -1, kResultMeta);
       if (!previous) {
         throw ArgError(2, "warm_start: expected a Result of ashlar.analyze, got " +
@@ -138,29 +139,33 @@ int w_compare_methods(lua_State* L) {
     }
     MethodComparison comparison = compare_methods(s, settings, dynamics ? &*dynamics : nullptr);
     if (progress) progress->finish(*comparison.dynamic);
-    lua_createtable(L, 0, 5);
-    if (comparison.dynamic) {
-      luax_pushSimulation(L, s, std::move(*comparison.dynamic));
-      lua_setfield(L, -2, "dynamic");
-    }
+    if (comparison.dynamic) luax_pushSimulation(L, s, std::move(*comparison.dynamic));
+    else lua_pushnil(L);
     luax_pushResult(L, s, std::move(comparison.equilibrium));
-    lua_setfield(L, -2, "equilibrium");
     luax_pushResult(L, s, std::move(comparison.kinematic));
-    lua_setfield(L, -2, "kinematic");
     const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
-    lua_createtable(L, static_cast<int>(comparison.borrowed.size()), 0);
-    for (size_t k = 0; k < comparison.borrowed.size(); ++k) {
-      const MethodComparison::Borrowed& entry = comparison.borrowed[k];
+    return call_protected(L, 3, [&](lua_State* L) {
       lua_createtable(L, 0, 5);
-      set_field(L, "interface", entry.interface + 1);
-      set_index_field(L, "a", interfaces[entry.interface].a);
-      set_index_field(L, "b", interfaces[entry.interface].b);
-      set_field(L, "friction", entry.friction);
-      set_field(L, "available", entry.available);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "borrowed");
-    return 1;
+      lua_pushvalue(L, 1);  // nil without the dynamic verdict
+      lua_setfield(L, -2, "dynamic");
+      lua_pushvalue(L, 2);
+      lua_setfield(L, -2, "equilibrium");
+      lua_pushvalue(L, 3);
+      lua_setfield(L, -2, "kinematic");
+      lua_createtable(L, static_cast<int>(comparison.borrowed.size()), 0);
+      for (size_t k = 0; k < comparison.borrowed.size(); ++k) {
+        const MethodComparison::Borrowed& entry = comparison.borrowed[k];
+        lua_createtable(L, 0, 5);
+        set_field(L, "interface", entry.interface + 1);
+        set_index_field(L, "a", interfaces[entry.interface].a);
+        set_index_field(L, "b", interfaces[entry.interface].b);
+        set_field(L, "friction", entry.friction);
+        set_field(L, "available", entry.available);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "borrowed");
+      return 1;
+    });
   });
 }
 
@@ -192,28 +197,35 @@ void push_interfaces(lua_State* L, const EquilibriumResult& result) {
 }
 
 void push_blocks(lua_State* L, const EquilibriumResult& result) {
-  lua_createtable(L, static_cast<int>(result.block_tension.size()), 0);
-  // For floating blocks, the contact they miss (if one is near).
-  std::vector<const MissedContact*> missed(result.block_tension.size(), nullptr);
-  std::vector<bool> floating(result.block_tension.size(), false);
+  // For floating blocks, the contact they miss (if one is near): scratch
+  // memory in a userdata, which Lua frees however this ends.
+  const size_t count = result.block_tension.size();
+  struct Floating {
+    bool floating;
+    const MissedContact* missed;
+  };
+  auto* blocks = static_cast<Floating*>(lua_newuserdatauv(L, std::max<size_t>(count, 1) * sizeof(Floating), 0));
+  std::fill(blocks, blocks + count, Floating{false, nullptr});
   for (size_t k = 0; k < result.floating_blocks.size(); ++k) {
-    floating[result.floating_blocks[k]] = true;
+    blocks[result.floating_blocks[k]].floating = true;
     if (k < result.floating_gaps.size() && result.floating_gaps[k].block >= 0) {
-      missed[result.floating_blocks[k]] = &result.floating_gaps[k];
+      blocks[result.floating_blocks[k]].missed = &result.floating_gaps[k];
     }
   }
-  for (size_t i = 0; i < result.block_tension.size(); ++i) {
+  lua_createtable(L, static_cast<int>(count), 0);
+  for (size_t i = 0; i < count; ++i) {
     lua_createtable(L, 0, 3);
     set_field(L, "tension", result.block_tension[i]);
     set_field(L, "virtual_torque", result.virtual_torques[i]);
-    set_boolean(L, "floating", floating[i]);
-    if (missed[i]) {
-      lua_pushinteger(L, missed[i]->block + 1);
+    set_boolean(L, "floating", blocks[i].floating);
+    if (const MissedContact* missed = blocks[i].missed) {
+      lua_pushinteger(L, missed->block + 1);
       lua_setfield(L, -2, "nearest");
-      set_field(L, "gap", missed[i]->tolerance);
+      set_field(L, "gap", missed->tolerance);
     }
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
+  lua_remove(L, -2);  // the scratch memory
 }
 
 void push_vertices(lua_State* L, const EquilibriumResult& result) {
@@ -244,20 +256,26 @@ void push_cables(lua_State* L, const EquilibriumResult& result) {
 // Tables built on first access and kept in the userdata's user value.
 int w_Result_thrust_line(lua_State* L) {
   return guard(L, [&] {
-    push_points(L, check_record(L, 1)->thrust);
-    return 1;
+    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_points(L, record->thrust);
+      return 1;
+    });
   });
 }
 
 int w_Result_thrust_lines(lua_State* L) {
   return guard(L, [&] {
-    const std::vector<std::vector<Vec3>>& branches = check_record(L, 1)->thrust_branches;
-    lua_createtable(L, static_cast<int>(branches.size()), 0);
-    for (size_t k = 0; k < branches.size(); ++k) {
-      push_points(L, branches[k]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    return 1;
+    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const std::vector<std::vector<Vec3>>& branches = record->thrust_branches;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(branches.size()), 0);
+      for (size_t k = 0; k < branches.size(); ++k) {
+        push_points(L, branches[k]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      return 1;
+    });
   });
 }
 
@@ -265,48 +283,55 @@ int w_Result_index(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
     const EquilibriumResult& r = record->result;
-    const char* key = lua_tostring(L, 2);
+    // Not lua_tostring: it would turn a number key into a string, which allocates.
+    const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : nullptr;
     if (!key) return 0;
     auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
-    if (is("thrust_line")) lua_pushcfunction(L, w_Result_thrust_line);
-    else if (is("thrust_lines")) lua_pushcfunction(L, w_Result_thrust_lines);
-    else if (is("stable")) lua_pushboolean(L, r.stable);
-    else if (is("infeasibility")) lua_pushnumber(L, r.infeasibility);
-    else if (is("penalty")) lua_pushnumber(L, r.penalty);
-    else if (is("objective")) lua_pushnumber(L, r.objective);
-    else if (is("status")) lua_pushstring(L, status_name(r.status));
-    else if (is("iterations")) lua_pushinteger(L, r.iterations);
-    else if (is("factorizations")) lua_pushinteger(L, r.factorizations);
-    else if (is("seconds")) lua_pushnumber(L, r.seconds);
-    else if (is("imbalance_without_tension")) lua_pushnumber(L, r.imbalance_without_tension);
-    else if (is("borderline")) lua_pushboolean(L, r.borderline);
-    else if (is("timings")) {
-      lua_createtable(L, 0, 4);
-      set_field(L, "setup", r.timings.setup);
-      set_field(L, "assembly", r.timings.assembly);
-      set_field(L, "factorization", r.timings.factorization);
-      set_field(L, "solve", r.timings.solve);
-    } else if (is("floating")) {
-      lua_createtable(L, static_cast<int>(r.floating_blocks.size()), 0);
-      for (size_t i = 0; i < r.floating_blocks.size(); ++i) {
-        lua_pushinteger(L, r.floating_blocks[i] + 1);
-        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-      }
-    } else if (is("method")) {
-      lua_pushstring(L, kAnalysisMethodNames.name(r.method));
-    } else if (is("rounds")) {
-      lua_pushinteger(L, r.rounds);
-    } else if (is("mechanism")) {
-      if (r.mechanism.empty()) return 0;
-      push_mechanism(L, r.mechanism);
-    } else if (is("limit")) {
-      push_limit(L, r.limit, [&](int k) { return std::array<int, 2>{r.interfaces[k].a, r.interfaces[k].b}; });
-    } else if (is("interfaces")) return push_cached_table(L, "interfaces", r, push_interfaces);
-    else if (is("blocks")) return push_cached_table(L, "blocks", r, push_blocks);
-    else if (is("vertices")) return push_cached_table(L, "vertices", r, push_vertices);
-    else if (is("cables")) return push_cached_table(L, "cables", r, push_cables);
-    else return 0;
-    return 1;
+    const std::function<std::array<int, 2>(int)> ends_of = [&r](int k) {
+      return std::array<int, 2>{r.interfaces[k].a, r.interfaces[k].b};
+    };
+    lua_pushvalue(L, 1);  // the Result, where push_cached_table keeps its tables
+    return call_protected(L, 1, [&](lua_State* L) {
+      if (is("thrust_line")) lua_pushcfunction(L, w_Result_thrust_line);
+      else if (is("thrust_lines")) lua_pushcfunction(L, w_Result_thrust_lines);
+      else if (is("stable")) lua_pushboolean(L, r.stable);
+      else if (is("infeasibility")) lua_pushnumber(L, r.infeasibility);
+      else if (is("penalty")) lua_pushnumber(L, r.penalty);
+      else if (is("objective")) lua_pushnumber(L, r.objective);
+      else if (is("status")) lua_pushstring(L, status_name(r.status));
+      else if (is("iterations")) lua_pushinteger(L, r.iterations);
+      else if (is("factorizations")) lua_pushinteger(L, r.factorizations);
+      else if (is("seconds")) lua_pushnumber(L, r.seconds);
+      else if (is("imbalance_without_tension")) lua_pushnumber(L, r.imbalance_without_tension);
+      else if (is("borderline")) lua_pushboolean(L, r.borderline);
+      else if (is("timings")) {
+        lua_createtable(L, 0, 4);
+        set_field(L, "setup", r.timings.setup);
+        set_field(L, "assembly", r.timings.assembly);
+        set_field(L, "factorization", r.timings.factorization);
+        set_field(L, "solve", r.timings.solve);
+      } else if (is("floating")) {
+        lua_createtable(L, static_cast<int>(r.floating_blocks.size()), 0);
+        for (size_t i = 0; i < r.floating_blocks.size(); ++i) {
+          lua_pushinteger(L, r.floating_blocks[i] + 1);
+          lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+        }
+      } else if (is("method")) {
+        lua_pushstring(L, kAnalysisMethodNames.name(r.method));
+      } else if (is("rounds")) {
+        lua_pushinteger(L, r.rounds);
+      } else if (is("mechanism")) {
+        if (r.mechanism.empty()) return 0;
+        push_mechanism(L, r.mechanism);
+      } else if (is("limit")) {
+        push_limit(L, r.limit, ends_of);
+      } else if (is("interfaces")) return push_cached_table(L, "interfaces", r, push_interfaces);
+      else if (is("blocks")) return push_cached_table(L, "blocks", r, push_blocks);
+      else if (is("vertices")) return push_cached_table(L, "vertices", r, push_vertices);
+      else if (is("cables")) return push_cached_table(L, "cables", r, push_cables);
+      else return 0;
+      return 1;
+    });
   });
 }
 
@@ -330,8 +355,7 @@ int w_Result_tostring(lua_State* L) {
       }
     }
     text << ")";
-    lua_pushstring(L, text.str().c_str());
-    return 1;
+    return push_string(L, text.str());
   });
 }
 
@@ -345,9 +369,7 @@ void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult
   record->thrust = thrust_line(structure, record->result);
   record->thrust_branches = thrust_polylines(structure, record->result);
   record->block_count = structure.size();
-  void* memory = lua_newuserdatauv(L, sizeof(Box<AnalysisRecord>), 1);
-  new (memory) Box<AnalysisRecord>{std::move(record)};
-  luaL_setmetatable(L, kResultMeta);
+  push_boxed(L, std::move(record), kResultMeta, 1);
 }
 
 void push_mechanism(lua_State* L, const std::vector<BlockMotion>& mechanism) {

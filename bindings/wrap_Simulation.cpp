@@ -57,26 +57,28 @@ int w_Simulation_trajectory(lua_State* L) {
     const int i = check_block_index(L, record->structure, 2, 2, "block");
     const SimulationResult& r = record->result;
     const int frames = static_cast<int>(r.times.size());
-    lua_createtable(L, 0, 3);
-    lua_createtable(L, frames, 0);
-    for (int k = 0; k < frames; ++k) {
-      lua_pushnumber(L, r.times[k]);
-      lua_rawseti(L, -2, k + 1);
-    }
-    lua_setfield(L, -2, "times");
-    lua_createtable(L, frames, 0);
-    for (int k = 0; k < frames; ++k) {
-      push_vec3(L, r.poses[k][i].position);
-      lua_rawseti(L, -2, k + 1);
-    }
-    lua_setfield(L, -2, "positions");
-    lua_createtable(L, frames, 0);
-    for (int k = 0; k < frames; ++k) {
-      push_vec3(L, rotation_vector(r.poses[k][i].rotation));
-      lua_rawseti(L, -2, k + 1);
-    }
-    lua_setfield(L, -2, "rotations");
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 3);
+      lua_createtable(L, frames, 0);
+      for (int k = 0; k < frames; ++k) {
+        lua_pushnumber(L, r.times[k]);
+        lua_rawseti(L, -2, k + 1);
+      }
+      lua_setfield(L, -2, "times");
+      lua_createtable(L, frames, 0);
+      for (int k = 0; k < frames; ++k) {
+        push_vec3(L, r.poses[k][i].position);
+        lua_rawseti(L, -2, k + 1);
+      }
+      lua_setfield(L, -2, "positions");
+      lua_createtable(L, frames, 0);
+      for (int k = 0; k < frames; ++k) {
+        push_vec3(L, rotation_vector(r.poses[k][i].rotation));
+        lua_rawseti(L, -2, k + 1);
+      }
+      lua_setfield(L, -2, "rotations");
+      return 1;
+    });
   });
 }
 
@@ -155,35 +157,39 @@ int w_Simulation_index(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
     const SimulationResult& r = record->result;
-    const char* key = lua_tostring(L, 2);
+    // Not lua_tostring: it would turn a number key into a string, which allocates.
+    const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : nullptr;
     if (!key) return 0;
     const bool verdict = r.status == SimulationStatus::completed;
     auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
-    if (is("trajectory")) lua_pushcfunction(L, w_Simulation_trajectory);
-    else if (is("export")) lua_pushcfunction(L, w_Simulation_export);
-    else if (is("structure")) lua_pushcfunction(L, w_Simulation_structure);
-    else if (is("status")) lua_pushstring(L, kSimulationStatusNames.name(r.status));
-    else if (is("moved")) {
-      if (!verdict) return 0;
-      lua_pushboolean(L, r.moved);
-    } else if (is("settled")) {
-      if (!verdict) return 0;
-      lua_pushboolean(L, r.settled);
-    } else if (is("max_displacement")) lua_pushnumber(L, r.max_displacement);
-    else if (is("max_displacement_block")) {
-      if (r.max_displacement_block < 0) return 0;
-      lua_pushinteger(L, r.max_displacement_block + 1);
-    } else if (is("steps")) lua_pushinteger(L, r.steps);
-    else if (is("time")) lua_pushnumber(L, r.time);
-    else if (is("seconds")) lua_pushnumber(L, r.seconds);
-    else if (is("frames")) lua_pushinteger(L, static_cast<lua_Integer>(r.times.size()));
-    else if (is("sweeps")) lua_pushinteger(L, static_cast<lua_Integer>(r.sweeps));
-    else if (is("unconverged_steps")) lua_pushinteger(L, r.unconverged_steps);
-    else if (is("searches")) lua_pushinteger(L, r.searches);
-    else if (is("max_active_contacts")) lua_pushinteger(L, r.max_active_contacts);
-    else if (is("displacements")) return push_cached_table(L, "displacements", r, push_displacements);
-    else return 0;
-    return 1;
+    lua_pushvalue(L, 1);  // the userdata, where push_cached_table keeps its tables
+    return call_protected(L, 1, [&](lua_State* L) {
+      if (is("trajectory")) lua_pushcfunction(L, w_Simulation_trajectory);
+      else if (is("export")) lua_pushcfunction(L, w_Simulation_export);
+      else if (is("structure")) lua_pushcfunction(L, w_Simulation_structure);
+      else if (is("status")) lua_pushstring(L, kSimulationStatusNames.name(r.status));
+      else if (is("moved")) {
+        if (!verdict) return 0;
+        lua_pushboolean(L, r.moved);
+      } else if (is("settled")) {
+        if (!verdict) return 0;
+        lua_pushboolean(L, r.settled);
+      } else if (is("max_displacement")) lua_pushnumber(L, r.max_displacement);
+      else if (is("max_displacement_block")) {
+        if (r.max_displacement_block < 0) return 0;
+        lua_pushinteger(L, r.max_displacement_block + 1);
+      } else if (is("steps")) lua_pushinteger(L, r.steps);
+      else if (is("time")) lua_pushnumber(L, r.time);
+      else if (is("seconds")) lua_pushnumber(L, r.seconds);
+      else if (is("frames")) lua_pushinteger(L, static_cast<lua_Integer>(r.times.size()));
+      else if (is("sweeps")) lua_pushinteger(L, static_cast<lua_Integer>(r.sweeps));
+      else if (is("unconverged_steps")) lua_pushinteger(L, r.unconverged_steps);
+      else if (is("searches")) lua_pushinteger(L, r.searches);
+      else if (is("max_active_contacts")) lua_pushinteger(L, r.max_active_contacts);
+      else if (is("displacements")) return push_cached_table(L, "displacements", r, push_displacements);
+      else return 0;
+      return 1;
+    });
   });
 }
 
@@ -198,8 +204,7 @@ int w_Simulation_tostring(lua_State* L) {
       text << ", " << (r.moved ? "moved" : "stayed") << ", " << (r.settled ? "settled" : "still moving");
     }
     text << ", largest displacement " << message_number(r.max_displacement) << " m)";
-    lua_pushstring(L, text.str().c_str());
-    return 1;
+    return push_string(L, text.str());
   });
 }
 
@@ -283,9 +288,7 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
 
 void luax_pushSimulation(lua_State* L, const Structure& structure, SimulationResult result) {
   auto record = std::make_shared<SimulationRecord>(SimulationRecord{structure, std::move(result)});
-  void* memory = lua_newuserdatauv(L, sizeof(Box<SimulationRecord>), 1);
-  new (memory) Box<SimulationRecord>{std::move(record)};
-  luaL_setmetatable(L, kSimulationMeta);
+  push_boxed(L, std::move(record), kSimulationMeta, 1);
 }
 
 void register_Simulation(lua_State* L) {

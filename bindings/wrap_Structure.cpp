@@ -193,24 +193,26 @@ int w_Structure_cables(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    lua_createtable(L, static_cast<int>(s.cables().size()), 0);
-    for (size_t c = 0; c < s.cables().size(); ++c) {
-      const Cable& cable = s.cables()[c];
-      lua_createtable(L, 0, 4);
-      const std::pair<const CableEnd*, const char*> ends[2] = {{&cable.from, "from"},
-                                                               {&cable.to, "to"}};
-      for (const auto& [end, key] : ends) {
-        lua_createtable(L, 0, 2);
-        if (end->block >= 0) set_index_field(L, "block", end->block);
-        set_field(L, "point", end->point);
-        lua_setfield(L, -2, key);
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(s.cables().size()), 0);
+      for (size_t c = 0; c < s.cables().size(); ++c) {
+        const Cable& cable = s.cables()[c];
+        lua_createtable(L, 0, 4);
+        const std::pair<const CableEnd*, const char*> ends[2] = {{&cable.from, "from"},
+                                                                 {&cable.to, "to"}};
+        for (const auto& [end, key] : ends) {
+          lua_createtable(L, 0, 2);
+          if (end->block >= 0) set_index_field(L, "block", end->block);
+          set_field(L, "point", end->point);
+          lua_setfield(L, -2, key);
+        }
+        set_field(L, "mass_per_length", cable.mass_per_length);
+        if (std::isfinite(cable.max_tension)) set_field(L, "max_tension", cable.max_tension);
+        set_field(L, "length", (cable.to.point - cable.from.point).norm());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(c + 1));
       }
-      set_field(L, "mass_per_length", cable.mass_per_length);
-      if (std::isfinite(cable.max_tension)) set_field(L, "max_tension", cable.max_tension);
-      set_field(L, "length", (cable.to.point - cable.from.point).norm());
-      lua_rawseti(L, -2, static_cast<lua_Integer>(c + 1));
-    }
-    return 1;
+      return 1;
+    });
   });
 }
 
@@ -234,8 +236,7 @@ int w_Structure_name(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    lua_pushstring(L, s.name(check_block_index(L, s, 2, 2, "block")).c_str());
-    return 1;
+    return push_string(L, s.name(check_block_index(L, s, 2, 2, "block")));
   });
 }
 
@@ -263,16 +264,18 @@ int w_Structure_loads(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    lua_createtable(L, static_cast<int>(s.loads().size()), 0);
-    for (size_t i = 0; i < s.loads().size(); ++i) {
-      const PointLoad& load = s.loads()[i];
-      lua_createtable(L, 0, 3);
-      set_index_field(L, "block", load.block);
-      set_field(L, "force", load.force);
-      set_field(L, "at", load.at);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-    }
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(s.loads().size()), 0);
+      for (size_t i = 0; i < s.loads().size(); ++i) {
+        const PointLoad& load = s.loads()[i];
+        lua_createtable(L, 0, 3);
+        set_index_field(L, "block", load.block);
+        set_field(L, "force", load.force);
+        set_field(L, "at", load.at);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+      }
+      return 1;
+    });
   });
 }
 
@@ -280,9 +283,11 @@ int w_Structure_bounds(lua_State* L) {
   return guard(L, [&] {
     const Box3 box = luax_checkStructure(L, 1)->bounds();
     if (box.empty()) return 0;
-    push_vec3(L, box.lo);
-    push_vec3(L, box.hi);
-    return 2;
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_vec3(L, box.lo);
+      push_vec3(L, box.hi);
+      return 2;
+    });
   });
 }
 
@@ -293,12 +298,14 @@ int w_Structure_interfaces(lua_State* L) {
     const OptionTable options(L, 2, {"tolerance", "angle", "min_area"});
     const ContactOptions contact = contact_options(options, "tolerance", "angle", "min_area");
     const std::vector<Interface>& found = s.interfaces(contact);
-    lua_createtable(L, static_cast<int>(found.size()), 0);
-    for (size_t k = 0; k < found.size(); ++k) {
-      push_interface(L, found[k]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(found.size()), 0);
+      for (size_t k = 0; k < found.size(); ++k) {
+        push_interface(L, found[k]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      return 1;
+    });
   });
 }
 
@@ -328,13 +335,15 @@ int w_Structure_contact_report(lua_State* L) {
     const double tolerance = s.contact_tolerance(contact);
     const std::vector<NearMiss> gaps = s.near_misses(range * tolerance, contact);
     const std::vector<BlockOverlap>& overlaps = s.overlaps(contact);
-    lua_createtable(L, 0, 3);
-    set_field(L, "tolerance", tolerance);
-    push_block_pairs(L, gaps, "gap", [](const NearMiss& gap) { return gap.tolerance; });
-    lua_setfield(L, -2, "gaps");
-    push_block_pairs(L, overlaps, "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
-    lua_setfield(L, -2, "overlaps");
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 3);
+      set_field(L, "tolerance", tolerance);
+      push_block_pairs(L, gaps, "gap", [](const NearMiss& gap) { return gap.tolerance; });
+      lua_setfield(L, -2, "gaps");
+      push_block_pairs(L, overlaps, "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
+      lua_setfield(L, -2, "overlaps");
+      return 1;
+    });
   });
 }
 
@@ -344,8 +353,11 @@ int w_Structure_overlaps(lua_State* L) {
     const OptionTable options(L, 2, {"tolerance"});
     ContactOptions contact;
     contact.tolerance = options.positive("tolerance", 0.0, true);
-    push_block_pairs(L, s.overlaps(contact), "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
-    return 1;
+    const std::vector<BlockOverlap>& overlaps = s.overlaps(contact);
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_block_pairs(L, overlaps, "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
+      return 1;
+    });
   });
 }
 
@@ -387,8 +399,7 @@ int w_Structure_tostring(lua_State* L) {
     std::ostringstream text;
     text << "Structure (" << s.size() << " blocks, " << supports << " supports, "
          << s.loads().size() << " loads)";
-    lua_pushstring(L, text.str().c_str());
-    return 1;
+    return push_string(L, text.str());
   });
 }
 

@@ -1,6 +1,7 @@
 // The `ashlar` library table: version, constructors, files.
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include "ashlar_lua.hpp"
@@ -44,7 +45,7 @@ std::vector<std::vector<Vec3>> load_traces(lua_State* L, const OptionTable& opti
     lua_pop(L, 1);
     return traces;
   }
-  if (lua_type(L, -1) != LUA_TTABLE || lua_getfield(L, -1, "polylines") != LUA_TTABLE) {
+  if (lua_type(L, -1) != LUA_TTABLE || get_field(L, -1, "polylines") != LUA_TTABLE) {
     throw ArgError(arg, "traces: expected the table ashlar.trace_loads returned (with polylines)");
   }
   const lua_Unsigned count = lua_rawlen(L, -1);
@@ -156,20 +157,11 @@ bool is_support(lua_State* L, int rule, const ImportedBlock& imported) {
   switch (lua_type(L, rule)) {
     case LUA_TNIL:
       return false;
-    case LUA_TSTRING: {
-      lua_getglobal(L, "string");
-      lua_getfield(L, -1, "find");
-      lua_remove(L, -2);
-      lua_pushstring(L, imported.name.c_str());
-      lua_pushvalue(L, rule);
-      protected_call(L, 2, 1);
-      const bool found = !lua_isnil(L, -1);
-      lua_pop(L, 1);
-      return found;
-    }
+    case LUA_TSTRING:
+      return matches_pattern(L, imported.name.c_str(), lua_tostring(L, rule));
     case LUA_TFUNCTION: {
       lua_pushvalue(L, rule);
-      lua_pushstring(L, imported.name.c_str());
+      push_string(L, imported.name);
       luax_pushBlock(L, std::make_shared<const Block>(imported.block));
       protected_call(L, 2, 1);
       const bool chosen = lua_toboolean(L, -1);
@@ -235,12 +227,14 @@ int w_memory(lua_State* L) {
     const OptionTable options(L, 1, {"reset_peak"});
     if (options.boolean("reset_peak").value_or(false)) reset_peak_memory();
     const MemoryUse use = memory_use();
-    lua_createtable(L, 0, 2);
-    lua_pushnumber(L, use.resident_mb);
-    lua_setfield(L, -2, "resident_mb");
-    lua_pushnumber(L, use.peak_mb);
-    lua_setfield(L, -2, "peak_mb");
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 2);
+      lua_pushnumber(L, use.resident_mb);
+      lua_setfield(L, -2, "resident_mb");
+      lua_pushnumber(L, use.peak_mb);
+      lua_setfield(L, -2, "peak_mb");
+      return 1;
+    });
   });
 }
 
@@ -281,22 +275,23 @@ int ashlar_open_library(lua_State* L) {
   return 1;
 }
 
+// With Lua strings only: it runs while a sandboxed state is made, and may
+// run out of memory at any call.
 void ashlar_add_model_path(lua_State* L) {
   const char* env = std::getenv("ASHLAR_MODELS");
-  const std::string folder = env && *env ? env : ASHLAR_MODELS_DIR;
-  const std::string entries = folder + "/?.lua;" + folder + "/?/init.lua";
+  const char* folder = env && *env ? env : ASHLAR_MODELS_DIR;
   lua_getglobal(L, "package");
   if (!lua_istable(L, -1)) {
     lua_pop(L, 1);
     return;
   }
-  lua_getfield(L, -1, "path");
-  const std::string path = lua_isstring(L, -1) ? lua_tostring(L, -1) : "";
-  lua_pop(L, 1);
-  if (path.find(entries) == std::string::npos) {
-    const std::string joined = path.empty() ? entries : path + ";" + entries;
-    lua_pushstring(L, joined.c_str());
-    lua_setfield(L, -2, "path");
+  const char* entries = lua_pushfstring(L, "%s/?.lua;%s/?/init.lua", folder, folder);
+  lua_getfield(L, -2, "path");
+  const char* path = lua_isstring(L, -1) ? lua_tostring(L, -1) : "";
+  if (std::strstr(path, entries) == nullptr) {
+    if (*path == '\0') lua_pushstring(L, entries);
+    else lua_pushfstring(L, "%s;%s", path, entries);
+    lua_setfield(L, -4, "path");
   }
-  lua_pop(L, 1);
+  lua_pop(L, 3);
 }

@@ -148,8 +148,10 @@ int w_chart(lua_State* L) {
     RowSeries lines = series_from_rows(rows, columns);
     spec.series = lines.series;
     draw_chart(path, spec);
-    push_chart_result(L, path, lines);
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_chart_result(L, path, lines);
+      return 1;
+    });
   });
 }
 

@@ -63,9 +63,7 @@ int w_fea(lua_State* L) {
     record->mesh = std::make_unique<FeaMesh>(record->structure, refine, element_size);
     record->result = analyze_fea(record->structure, *record->mesh, settings);
     record->contact = settings.contact;
-    void* memory = lua_newuserdatauv(L, sizeof(Box<FeaRecord>), 1);
-    new (memory) Box<FeaRecord>{std::move(record)};
-    luaL_setmetatable(L, kFeaMeta);
+    push_boxed(L, std::move(record), kFeaMeta, 1);
     return 1;
   });
 }
@@ -210,34 +208,38 @@ int w_FeaResult_index(lua_State* L) {
     const std::shared_ptr<FeaRecord> kept = check_record(L, 1);
     const FeaRecord& record = *kept;
     const FeaResult& r = record.result;
-    const char* key = lua_tostring(L, 2);
+    // Not lua_tostring: it would turn a number key into a string, which allocates.
+    const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : nullptr;
     if (!key) return 0;
     auto is = [&](const char* name) { return std::strcmp(key, name) == 0; };
-    if (is("export")) lua_pushcfunction(L, w_FeaResult_export);
-    else if (is("status")) lua_pushstring(L, fea_status_name(r.status));
-    else if (is("compression_only")) lua_pushboolean(L, r.compression_only);
-    else if (is("iterations")) lua_pushinteger(L, r.iterations);
-    else if (is("max_displacement")) lua_pushnumber(L, r.max_displacement);
-    else if (is("max_penetration")) lua_pushnumber(L, r.max_penetration);
-    else if (is("total_weight")) lua_pushnumber(L, r.total_weight);
-    else if (is("dofs")) lua_pushinteger(L, r.dofs);
-    else if (is("element_count")) lua_pushinteger(L, static_cast<lua_Integer>(record.mesh->elements().size()));
-    else if (is("factor_nonzeros")) lua_pushnumber(L, static_cast<double>(r.factor_nonzeros));
-    else if (is("seconds")) lua_pushnumber(L, r.seconds);
-    else if (is("nodes")) return push_cached_table(L, "nodes", record, push_nodes);
-    else if (is("displacements")) return push_cached_table(L, "displacements", record, push_displacements);
-    else if (is("elements")) return push_cached_table(L, "elements", record, push_elements);
-    else if (is("element_blocks")) return push_cached_table(L, "element_blocks", record, push_element_blocks);
-    else if (is("node_blocks")) return push_cached_table(L, "node_blocks", record, push_node_blocks);
-    else if (is("contacts")) return push_cached_table(L, "contacts", record, push_contacts);
-    else if (is("released")) return push_cached_table(L, "released", record, push_released);
-    else if (is("interfaces")) return push_cached_table(L, "interfaces", record, push_interfaces);
-    else if (is("history")) return push_cached_table(L, "history", record, push_history);
-    else if (is("stresses")) {
-      if (r.stresses.empty() && !record.mesh->elements().empty()) return 0;  // not asked for
-      return push_cached_table(L, "stresses", record, push_stresses);
-    } else return 0;
-    return 1;
+    lua_pushvalue(L, 1);  // the userdata, where push_cached_table keeps its tables
+    return call_protected(L, 1, [&](lua_State* L) {
+      if (is("export")) lua_pushcfunction(L, w_FeaResult_export);
+      else if (is("status")) lua_pushstring(L, fea_status_name(r.status));
+      else if (is("compression_only")) lua_pushboolean(L, r.compression_only);
+      else if (is("iterations")) lua_pushinteger(L, r.iterations);
+      else if (is("max_displacement")) lua_pushnumber(L, r.max_displacement);
+      else if (is("max_penetration")) lua_pushnumber(L, r.max_penetration);
+      else if (is("total_weight")) lua_pushnumber(L, r.total_weight);
+      else if (is("dofs")) lua_pushinteger(L, r.dofs);
+      else if (is("element_count")) lua_pushinteger(L, static_cast<lua_Integer>(record.mesh->elements().size()));
+      else if (is("factor_nonzeros")) lua_pushnumber(L, static_cast<double>(r.factor_nonzeros));
+      else if (is("seconds")) lua_pushnumber(L, r.seconds);
+      else if (is("nodes")) return push_cached_table(L, "nodes", record, push_nodes);
+      else if (is("displacements")) return push_cached_table(L, "displacements", record, push_displacements);
+      else if (is("elements")) return push_cached_table(L, "elements", record, push_elements);
+      else if (is("element_blocks")) return push_cached_table(L, "element_blocks", record, push_element_blocks);
+      else if (is("node_blocks")) return push_cached_table(L, "node_blocks", record, push_node_blocks);
+      else if (is("contacts")) return push_cached_table(L, "contacts", record, push_contacts);
+      else if (is("released")) return push_cached_table(L, "released", record, push_released);
+      else if (is("interfaces")) return push_cached_table(L, "interfaces", record, push_interfaces);
+      else if (is("history")) return push_cached_table(L, "history", record, push_history);
+      else if (is("stresses")) {
+        if (r.stresses.empty() && !record.mesh->elements().empty()) return 0;  // not asked for
+        return push_cached_table(L, "stresses", record, push_stresses);
+      } else return 0;
+      return 1;
+    });
   });
 }
 
@@ -246,9 +248,11 @@ int w_FeaResult_tostring(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<FeaRecord> record = check_record(L, 1);
     const FeaResult& r = record->result;
-    lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
-                    fea_status_name(r.status), r.iterations, r.max_displacement);
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
+                      fea_status_name(r.status), r.iterations, r.max_displacement);
+      return 1;
+    });
   });
 }
 

@@ -75,8 +75,11 @@ int w_trace_loads(lua_State* L) {
     const OptionTable options(L, 3, {ASHLAR_ANALYSIS_OPTIONS, "traces", "seed", "start",
                                      "max_steps", "turn_back"});
     const AnalysisSettings settings = analysis_settings(options);
-    push_force_flow(L, trace_loads(s, block, flow_options(options), settings));
-    return 1;
+    const ForceFlow flow = trace_loads(s, block, flow_options(options), settings);
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_force_flow(L, flow);
+      return 1;
+    });
   });
 }
 

@@ -41,8 +41,11 @@ int w_gradient(lua_State* L) {
     const Structure& s = *structure;
     const AnalysisSettings settings =
         analysis_settings(OptionTable(L, 2, {ASHLAR_ANALYSIS_OPTIONS}));
-    push_structural_gradient(L, structural_gradient(s, settings));
-    return 1;
+    const StructuralGradient gradient = structural_gradient(s, settings);
+    return call_protected(L, 0, [&](lua_State* L) {
+      push_structural_gradient(L, gradient);
+      return 1;
+    });
   });
 }
 

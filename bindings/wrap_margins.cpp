@@ -34,41 +34,50 @@ int w_load_factor(lua_State* L) {
     if (analysis.method == AnalysisMethod::kinematic) {
       const KinematicLoadFactor factor =
           kinematic_load_factor(s, settings, analysis, options.positive("tolerance", 1e-3));
-      lua_createtable(L, 0, 8);
-      set_string(L, "method", kAnalysisMethodNames.name(AnalysisMethod::kinematic));
-      set_field(L, "factor", factor.factor);
-      set_string(L, "status", factor.status.c_str());
-      set_boolean(L, "stable", factor.status == "optimal" ? factor.factor >= 0.0 : factor.status == "unbounded");
-      set_field(L, "equilibrium_factor", factor.equilibrium_factor);
-      lua_pushinteger(L, factor.analyses);
-      lua_setfield(L, -2, "analyses");
-      set_field(L, "seconds", factor.seconds);
-      if (!factor.failure.mechanism.empty()) {
-        push_mechanism(L, factor.failure.mechanism);
-        lua_setfield(L, -2, "mechanism");
-        const EquilibriumResult& failure = factor.failure;
-        push_limit(L, failure.limit,
-                   [&](int k) { return std::array<int, 2>{failure.interfaces[k].a, failure.interfaces[k].b}; });
-        lua_setfield(L, -2, "limit");
-      }
-      return 1;
+      const EquilibriumResult& failure = factor.failure;
+      const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
+        return std::array<int, 2>{failure.interfaces[k].a, failure.interfaces[k].b};
+      };
+      return call_protected(L, 0, [&](lua_State* L) {
+        lua_createtable(L, 0, 8);
+        set_string(L, "method", kAnalysisMethodNames.name(AnalysisMethod::kinematic));
+        set_field(L, "factor", factor.factor);
+        set_string(L, "status", factor.status.c_str());
+        set_boolean(L, "stable", factor.status == "optimal" ? factor.factor >= 0.0 : factor.status == "unbounded");
+        set_field(L, "equilibrium_factor", factor.equilibrium_factor);
+        lua_pushinteger(L, factor.analyses);
+        lua_setfield(L, -2, "analyses");
+        set_field(L, "seconds", factor.seconds);
+        if (!failure.mechanism.empty()) {
+          push_mechanism(L, failure.mechanism);
+          lua_setfield(L, -2, "mechanism");
+          push_limit(L, failure.limit, ends_of);
+          lua_setfield(L, -2, "limit");
+        }
+        return 1;
+      });
     }
     if (options.has("tolerance")) throw ArgError(2, "tolerance: only with method = \"kinematic\" (a bisection)");
     const LoadFactor factor = load_factor(s, settings);
     const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
-    lua_createtable(L, 0, 8);
-    set_field(L, "factor", factor.factor);
-    set_string(L, "status", factor.status.c_str());
-    set_boolean(L, "stable", factor.stable);
-    set_field(L, "iterations", factor.iterations);
-    set_field(L, "seconds", factor.seconds);
-    push_limit(L, factor.limit, [&](int k) { return std::array<int, 2>{interfaces[k].a, interfaces[k].b}; });
-    lua_setfield(L, -2, "limit");
-    if (!factor.mechanism.empty()) {
-      push_mechanism(L, factor.mechanism);
-      lua_setfield(L, -2, "mechanism");
-    }
-    return 1;
+    const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
+      return std::array<int, 2>{interfaces[k].a, interfaces[k].b};
+    };
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 8);
+      set_field(L, "factor", factor.factor);
+      set_string(L, "status", factor.status.c_str());
+      set_boolean(L, "stable", factor.stable);
+      set_field(L, "iterations", factor.iterations);
+      set_field(L, "seconds", factor.seconds);
+      push_limit(L, factor.limit, ends_of);
+      lua_setfield(L, -2, "limit");
+      if (!factor.mechanism.empty()) {
+        push_mechanism(L, factor.mechanism);
+        lua_setfield(L, -2, "mechanism");
+      }
+      return 1;
+    });
   });
 }
 
@@ -87,25 +96,27 @@ int w_friction_demand(lua_State* L) {
     const FrictionDemand demand =
         kinematic ? kinematic_friction_demand(s, analysis, tolerance) : friction_demand(s, problem, tolerance);
     const std::vector<Interface>& interfaces = s.interfaces(problem.contact);
-    lua_createtable(L, 0, 8);
-    set_string(L, "method", kAnalysisMethodNames.name(analysis.method));
-    set_field(L, "friction", demand.friction);
-    set_field(L, "lower", demand.lower);
-    set_string(L, "status", demand.status.c_str());
-    set_field(L, "programs", demand.programs);
-    set_field(L, "iterations", demand.iterations);
-    set_field(L, "seconds", demand.seconds);
-    lua_createtable(L, static_cast<int>(demand.critical.size()), 0);
-    for (size_t k = 0; k < demand.critical.size(); ++k) {
-      const Interface& contact = interfaces[demand.critical[k]];
-      lua_createtable(L, 0, 3);
-      set_field(L, "interface", demand.critical[k] + 1);
-      set_index_field(L, "a", contact.a);
-      set_index_field(L, "b", contact.b);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "critical");
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 8);
+      set_string(L, "method", kAnalysisMethodNames.name(analysis.method));
+      set_field(L, "friction", demand.friction);
+      set_field(L, "lower", demand.lower);
+      set_string(L, "status", demand.status.c_str());
+      set_field(L, "programs", demand.programs);
+      set_field(L, "iterations", demand.iterations);
+      set_field(L, "seconds", demand.seconds);
+      lua_createtable(L, static_cast<int>(demand.critical.size()), 0);
+      for (size_t k = 0; k < demand.critical.size(); ++k) {
+        const Interface& contact = interfaces[demand.critical[k]];
+        lua_createtable(L, 0, 3);
+        set_field(L, "interface", demand.critical[k] + 1);
+        set_index_field(L, "a", contact.a);
+        set_index_field(L, "b", contact.b);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "critical");
+      return 1;
+    });
   });
 }
 

@@ -153,15 +153,8 @@ DesignConstraints design_constraints(lua_State* L, const Structure& s, const Opt
   }
   lua_pop(L, 1);
   if (const std::optional<std::string> pattern = options.string("fixed_names")) {
-    for (int i = 0; i < s.size(); ++i) {
-      lua_getglobal(L, "string");
-      lua_getfield(L, -1, "find");
-      lua_pushstring(L, s.name(i).c_str());
-      lua_pushstring(L, pattern->c_str());
-      protected_call(L, 2, 1);
-      if (!lua_isnil(L, -1)) c.fixed_blocks.push_back(i);
-      lua_pop(L, 2);
-    }
+    for (int i = 0; i < s.size(); ++i)
+      if (matches_pattern(L, s.name(i).c_str(), pattern->c_str())) c.fixed_blocks.push_back(i);
   }
   if (options.push("fixed_vertices") != LUA_TNIL) {
     if (lua_type(L, -1) != LUA_TFUNCTION) {
@@ -282,12 +275,15 @@ int optimize_structure(lua_State* L) {
   const StructureOptimization optimized = optimize_structure(
       s, constraints, analysis, settings,
       [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
-  lua_createtable(L, 0, 7);
-  luax_pushStructure(L, optimized.structure);
-  lua_setfield(L, -2, "structure");
   const OptimizeResult& result = optimized.result;
-  push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
-  return 1;
+  luax_pushStructure(L, optimized.structure);
+  return call_protected(L, 1, [&](lua_State* L) {
+    lua_createtable(L, 0, 7);
+    lua_pushvalue(L, 1);
+    lua_setfield(L, -2, "structure");
+    push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+    return 1;
+  });
 }
 
 // Calls the generator at stack index `generator` with a table of `names` =
@@ -295,11 +291,14 @@ int optimize_structure(lua_State* L) {
 std::shared_ptr<Structure> generate(lua_State* L, int generator, const std::vector<std::string>& names,
                                     const Eigen::VectorXd& values) {
   lua_pushvalue(L, generator);
-  lua_createtable(L, 0, static_cast<int>(names.size()));
-  for (size_t j = 0; j < names.size(); ++j) {
-    lua_pushnumber(L, values(j));
-    lua_setfield(L, -2, names[j].c_str());
-  }
+  call_protected(L, 0, [&](lua_State* L) {  // the parameters
+    lua_createtable(L, 0, static_cast<int>(names.size()));
+    for (size_t j = 0; j < names.size(); ++j) {
+      lua_pushnumber(L, values(j));
+      lua_setfield(L, -2, names[j].c_str());
+    }
+    return 1;
+  });
   protected_call(L, 1, 1);
   std::shared_ptr<Structure> s = luax_checkStructure(L, -1);
   lua_pop(L, 1);
@@ -343,7 +342,7 @@ int optimize_parameters_of(lua_State* L) {
                                      : std::numeric_limits<double>::infinity());
     if (options.push(side) == LUA_TTABLE) {
       for (int j = 0; j < n; ++j) {
-        if (lua_getfield(L, -1, sorted_names[j].c_str()) != LUA_TNIL) {
+        if (get_field(L, -1, sorted_names[j].c_str()) != LUA_TNIL) {
           bound(j) = check_number(L, -1, (std::string(side) + "." + sorted_names[j]).c_str());
         }
         lua_pop(L, 1);
@@ -365,17 +364,20 @@ int optimize_parameters_of(lua_State* L) {
       generator_of, sorted_names, lower, upper, start, analysis, settings,
       [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
   const ParameterResult& result = optimized.result;
-  lua_createtable(L, 0, 8);
-  lua_createtable(L, 0, n);
-  for (int j = 0; j < n; ++j) {
-    lua_pushnumber(L, result.parameters(j));
-    lua_setfield(L, -2, sorted_names[j].c_str());
-  }
-  lua_setfield(L, -2, "params");
   luax_pushStructure(L, optimized.structure);
-  lua_setfield(L, -2, "structure");
-  push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
-  return 1;
+  return call_protected(L, 1, [&](lua_State* L) {
+    lua_createtable(L, 0, 8);
+    lua_createtable(L, 0, n);
+    for (int j = 0; j < n; ++j) {
+      lua_pushnumber(L, result.parameters(j));
+      lua_setfield(L, -2, sorted_names[j].c_str());
+    }
+    lua_setfield(L, -2, "params");
+    lua_pushvalue(L, 1);
+    lua_setfield(L, -2, "structure");
+    push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+    return 1;
+  });
 }
 
 int w_optimize(lua_State* L) {

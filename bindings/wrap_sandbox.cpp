@@ -20,6 +20,7 @@ struct SandboxRequest {
   std::string script;  // a file, or
   std::string source;  // the chunk itself
   std::vector<std::string> args;
+  std::vector<std::string> argv;  // the script's `arg`: "ashlar.sandbox", the script, args
   sandbox::Settings settings;
 };
 
@@ -36,7 +37,8 @@ std::vector<std::string> string_list(const OptionTable& options, const char* key
       if (lua_type(L, -1) != LUA_TSTRING && lua_type(L, -1) != LUA_TNUMBER)
         throw ArgError(options.arg(), std::string(key) + "[" + std::to_string(k) + "]: expected a string, got " +
                                           type_name(L, -1));
-      list.emplace_back(lua_tostring(L, -1));
+      // lua_tostring would convert a number in place, which allocates.
+      list.push_back(lua_type(L, -1) == LUA_TNUMBER ? lua_number_text(L, -1) : lua_tostring(L, -1));
       lua_pop(L, 1);
     }
   } else if (type != LUA_TNIL) {
@@ -57,6 +59,8 @@ SandboxRequest read_request(lua_State* L) {
   request.source = options.string("source").value_or("");
   if (options.has("script") && request.script.empty()) throw ArgError(1, "script: expected a file name, got ''");
   request.args = string_list(options, "args");
+  request.argv = {"ashlar.sandbox", request.script.empty() ? "=(source)" : request.script};
+  request.argv.insert(request.argv.end(), request.args.begin(), request.args.end());
   request.settings.read_folders = string_list(options, "read");
   request.settings.write_folders = string_list(options, "write");
   if (!request.script.empty() && !options.has("read")) {
@@ -73,16 +77,13 @@ SandboxRequest read_request(lua_State* L) {
   return request;
 }
 
-// Under lua_pcall in the sandboxed state: sets it up like the host's and
-// leaves the loaded chunk and its arguments on the stack.
+// Under lua_pcall in the sandboxed state, which may run out of memory at any
+// call: sets it up like the host's and leaves the loaded chunk and its
+// arguments on the stack. It reads the request and holds no C++ object.
 int load_request(lua_State* S) {
   const auto& request = *static_cast<const SandboxRequest*>(lua_touserdata(S, 1));
   lua_settop(S, 0);
-  {
-    std::vector<std::string> argv{"ashlar.sandbox", request.script.empty() ? "=(source)" : request.script};
-    argv.insert(argv.end(), request.args.begin(), request.args.end());
-    host::create_arg_table(S, argv, 1);
-  }
+  host::create_arg_table(S, request.argv, 1);
   int status;
   if (request.script.empty()) {
     status = luaL_loadbufferx(S, request.source.data(), request.source.size(), "=(sandbox source)", "t");
@@ -90,7 +91,7 @@ int load_request(lua_State* S) {
     host::prepend_script_folder_to_path(S, request.script.c_str());
     {
       const std::string problem = sandbox::access_problem(S, request.script, sandbox::Access::read);
-      if (!problem.empty()) lua_pushstring(S, problem.c_str());
+      if (!problem.empty()) push_message(S, problem.c_str());  // or, without memory, that error
     }
     if (lua_gettop(S) > 0) return lua_error(S);
     status = luaL_loadfilex(S, request.script.c_str(), "t");
@@ -159,30 +160,38 @@ int w_sandbox(lua_State* L) {
     if (status == LUA_OK) {
       const std::string late = sandbox::deadline_problem(S);
       if (!late.empty()) {
-        lua_pushstring(S, late.c_str());
+        push_message(S, late.c_str());  // S is outside any pcall here: a plain push could not raise safely
         status = LUA_ERRRUN;
       }
     }
     const sandbox::Usage usage = sandbox::usage_of(S);
     const double seconds = seconds_since(started);
-
-    lua_createtable(L, 0, 8);
-    set_string(L, "status", status_name(status, usage));
-    if (status == LUA_OK) {
-      push_results(L, S, 1, lua_gettop(S));
-    } else {
-      const char* message = lua_tostring(S, -1);
-      set_string(L, "message",
-                 sandbox::explain_error(S, message ? message : "(error object is not a string)").c_str());
-      lua_newtable(L);
+    std::string message;
+    if (status != LUA_OK) {
+      // Not lua_tostring on a number: it would convert it in S, unprotected.
+      const int type = lua_type(S, -1);
+      message = sandbox::explain_error(S, type == LUA_TSTRING   ? std::string(lua_tostring(S, -1))
+                                          : type == LUA_TNUMBER ? lua_number_text(S, -1)
+                                                                : "(error object is not a string)");
     }
-    lua_setfield(L, -2, "results");
-    lua_pushinteger(L, static_cast<lua_Integer>(usage.memory_peak_bytes));
-    lua_setfield(L, -2, "memory_peak");
-    lua_pushinteger(L, static_cast<lua_Integer>(usage.instructions));
-    lua_setfield(L, -2, "instructions");
-    set_field(L, "seconds", seconds);
-    return 1;
+
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 8);
+      set_string(L, "status", status_name(status, usage));
+      if (status == LUA_OK) {
+        push_results(L, S, 1, lua_gettop(S));
+      } else {
+        set_string(L, "message", message.c_str());
+        lua_newtable(L);
+      }
+      lua_setfield(L, -2, "results");
+      lua_pushinteger(L, static_cast<lua_Integer>(usage.memory_peak_bytes));
+      lua_setfield(L, -2, "memory_peak");
+      lua_pushinteger(L, static_cast<lua_Integer>(usage.instructions));
+      lua_setfield(L, -2, "instructions");
+      set_field(L, "seconds", seconds);
+      return 1;
+    });
   });
 }
 

@@ -203,22 +203,24 @@ int w_geometric_factor(lua_State* L) {
     };
     const Threshold found = find_threshold(value, search, stands);
 
-    lua_createtable(L, 0, 8);
-    const bool has_minimum = !std::isnan(found.stable);
-    if (has_minimum) set_field(L, "minimum", found.stable);
-    set_field(L, "factor", has_minimum ? value / found.stable : 0.0);
-    set_string(L, "status", threshold_status_name(found.status));
-    if (!std::isnan(found.unstable)) set_field(L, "lower", found.unstable);
-    if (!std::isnan(found.stable)) set_field(L, "upper", found.stable);
-    set_integer(L, "analyses", found.evaluations);
-    lua_createtable(L, static_cast<int>(found.history.size()), 0);
-    for (size_t k = 0; k < found.history.size(); ++k) {
-      push_probe(L, found.history[k]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "history");
-    set_field(L, "seconds", seconds_since(start));
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 8);
+      const bool has_minimum = !std::isnan(found.stable);
+      if (has_minimum) set_field(L, "minimum", found.stable);
+      set_field(L, "factor", has_minimum ? value / found.stable : 0.0);
+      set_string(L, "status", threshold_status_name(found.status));
+      if (!std::isnan(found.unstable)) set_field(L, "lower", found.unstable);
+      if (!std::isnan(found.stable)) set_field(L, "upper", found.stable);
+      set_integer(L, "analyses", found.evaluations);
+      lua_createtable(L, static_cast<int>(found.history.size()), 0);
+      for (size_t k = 0; k < found.history.size(); ++k) {
+        push_probe(L, found.history[k]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "history");
+      set_field(L, "seconds", seconds_since(start));
+      return 1;
+    });
   });
 }
 
@@ -250,7 +252,10 @@ int w_refine(lua_State* L) {
         options.whole("confirm", 1, INT_MAX, "a whole number >= 1").value_or(settings.confirm));
 
     // Each count's model, in history order, kept for the result.
-    lua_newtable(L);
+    call_protected(L, 0, [](lua_State* L) {
+      lua_newtable(L);
+      return 1;
+    });
     const int models = lua_gettop(L);
     const auto metric = [&](int n) {
       const std::string count = std::to_string(n);
@@ -259,8 +264,12 @@ int w_refine(lua_State* L) {
       lua_pushinteger(L, n);
       call_lua(L, 1, call);
       returned_structure(L, call);
-      lua_pushvalue(L, -1);
-      lua_rawseti(L, models, static_cast<lua_Integer>(lua_rawlen(L, models) + 1));
+      lua_pushvalue(L, models);
+      lua_pushvalue(L, -2);
+      call_protected(L, 2, [](lua_State* L) {  // appended to the models
+        lua_rawseti(L, 1, static_cast<lua_Integer>(lua_rawlen(L, 1) + 1));
+        return 0;
+      });
       const std::string measured = "refine: metric_fn(s, " + count + ")";
       lua_pushvalue(L, 2);
       lua_insert(L, -2);
@@ -279,26 +288,30 @@ int w_refine(lua_State* L) {
     const Refinement refinement = refine_count(settings, metric);
 
     const RefineStep& adequate = refinement.history[refinement.adequate];
-    lua_createtable(L, 0, 7);
-    set_integer(L, "count", adequate.count);
-    lua_rawgeti(L, models, static_cast<lua_Integer>(refinement.adequate + 1));
-    lua_setfield(L, -2, "structure");
-    set_field(L, "value", adequate.value);
-    set_boolean(L, "converged", refinement.converged);
-    set_field(L, "reference", refinement.history.back().value);
-    lua_createtable(L, static_cast<int>(refinement.history.size()), 0);
-    for (size_t k = 0; k < refinement.history.size(); ++k) {
-      const RefineStep& step = refinement.history[k];
-      lua_createtable(L, 0, 4);
-      set_integer(L, "count", step.count);
-      set_field(L, "value", step.value);
-      if (!std::isnan(step.change)) set_field(L, "change", step.change);
-      set_field(L, "seconds", step.seconds);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "history");
-    set_field(L, "seconds", seconds_since(start));
-    return 1;
+    const double seconds = seconds_since(start);
+    lua_pushvalue(L, models);
+    return call_protected(L, 1, [&](lua_State* L) {
+      lua_createtable(L, 0, 7);
+      set_integer(L, "count", adequate.count);
+      lua_rawgeti(L, 1, static_cast<lua_Integer>(refinement.adequate + 1));  // its model
+      lua_setfield(L, -2, "structure");
+      set_field(L, "value", adequate.value);
+      set_boolean(L, "converged", refinement.converged);
+      set_field(L, "reference", refinement.history.back().value);
+      lua_createtable(L, static_cast<int>(refinement.history.size()), 0);
+      for (size_t k = 0; k < refinement.history.size(); ++k) {
+        const RefineStep& step = refinement.history[k];
+        lua_createtable(L, 0, 4);
+        set_integer(L, "count", step.count);
+        set_field(L, "value", step.value);
+        if (!std::isnan(step.change)) set_field(L, "change", step.change);
+        set_field(L, "seconds", step.seconds);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "history");
+      set_field(L, "seconds", seconds);
+      return 1;
+    });
   });
 }
 

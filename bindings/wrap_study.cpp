@@ -1,38 +1,26 @@
-// ashlar.study and its helpers. A study with several workers runs the
-// host's script again in one Lua state per worker thread: when such a state
-// reaches the ashlar.study call its thread works for, the call keeps the
-// `run` function and unwinds the rest of the script with a sentinel error;
-// the state then stays alive only to run rows.
+// ashlar.study and its helpers: arguments read here, the study run by the
+// engine (study/study_job), its rows by Lua functions (study_workers).
 #include "wrap_study.hpp"
 
 #include <algorithm>
-#include <thread>
+#include <cmath>
 
-#include "core/error.hpp"
-#include "core/interrupt.hpp"
-#include "core/process_stats.hpp"
 #include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "host_state.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"
-#include "host_state.hpp"
 #include "study/cluster.hpp"
-#include "study/mpi_workers.hpp"
-#include "study/study_runner.hpp"
+#include "study/study_job.hpp"
+#include "study_workers.hpp"
 
 namespace ashlar::lua {
 
 namespace {
 
-using host::ScriptInvocation;
-using host::remembered_script;
-
 using study::Value;
 
 const char* const kStudyMetatable = "ashlar.Study";
-const char* const kWorkerSlotKey = "ashlar.study_worker";
-
-// Raised (by address) to unwind a worker's script once its run is kept.
-const char kRunKept = 0;
 
 struct StudyObject {
   std::string name;
@@ -41,37 +29,6 @@ struct StudyObject {
   study::StudyRunInfo info;
 };
 
-// In a worker state, the study it works for and, once reached, its run.
-struct WorkerSlot {
-  std::string study;
-  int run_ref = LUA_NOREF;
-};
-
-WorkerSlot* worker_slot(lua_State* L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, kWorkerSlotKey);
-  auto* slot = static_cast<WorkerSlot*>(lua_touserdata(L, -1));
-  lua_pop(L, 1);
-  return slot;
-}
-
-// A scalar at idx, or an empty string in `problem` saying why it is not one.
-Value to_value(lua_State* L, int idx, std::string& problem) {
-  switch (lua_type(L, idx)) {
-    case LUA_TBOOLEAN: return lua_toboolean(L, idx) != 0;
-    case LUA_TNUMBER:
-      if (lua_isinteger(L, idx)) return static_cast<std::int64_t>(lua_tointeger(L, idx));
-      return static_cast<double>(lua_tonumber(L, idx));
-    case LUA_TSTRING: {
-      std::size_t size = 0;
-      const char* text = lua_tolstring(L, idx, &size);
-      return std::string(text, size);
-    }
-    default:
-      problem = "is a " + type_name(L, idx) + ": numbers, booleans or strings are allowed";
-      return std::monostate{};
-  }
-}
-
 Value checked_value(lua_State* L, int idx, const std::string& what) {
   std::string problem;
   Value value = to_value(L, idx, problem);
@@ -79,14 +36,6 @@ Value checked_value(lua_State* L, int idx, const std::string& what) {
   // ±inf are values (friction = math.huge: no sliding); NaN is none.
   if (const auto* d = std::get_if<double>(&value); d && std::isnan(*d)) throw ArgError(1, what + " is NaN");
   return value;
-}
-
-void push_value(lua_State* L, const Value& value) {
-  if (const auto* b = std::get_if<bool>(&value)) lua_pushboolean(L, *b);
-  else if (const auto* i = std::get_if<std::int64_t>(&value)) lua_pushinteger(L, static_cast<lua_Integer>(*i));
-  else if (const auto* d = std::get_if<double>(&value)) lua_pushnumber(L, *d);
-  else if (const auto* s = std::get_if<std::string>(&value)) lua_pushlstring(L, s->data(), s->size());
-  else lua_pushnil(L);
 }
 
 std::string key_name(lua_State* L, int idx) {
@@ -156,160 +105,6 @@ study::ParameterRows read_params(lua_State* L, int idx) {
   return study::grid(std::move(axes));
 }
 
-void push_parameters(lua_State* L, const std::vector<std::string>& names, const std::vector<Value>& values) {
-  lua_createtable(L, 0, static_cast<int>(names.size()));
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    push_value(L, values[i]);
-    lua_setfield(L, -2, names[i].c_str());
-  }
-}
-
-// Runs rows with a Lua function kept in the registry of L.
-class LuaRowWorker : public study::RowWorker {
-public:
-  // owns_state: close L when done (a worker thread's own state); otherwise
-  // L is the script's state and a Ctrl-C in a run stops the study.
-  LuaRowWorker(lua_State* L, int run_ref, std::vector<std::string> names, bool owns_state)
-      : L_(L), run_ref_(run_ref), names_(std::move(names)), owns_state_(owns_state) {}
-  ~LuaRowWorker() override {
-    if (owns_state_) sandbox::close_state(L_);
-    else luaL_unref(L_, LUA_REGISTRYINDEX, run_ref_);
-  }
-  LuaRowWorker(const LuaRowWorker&) = delete;
-  LuaRowWorker& operator=(const LuaRowWorker&) = delete;
-
-  study::Outcome run(const study::Task& task) override {
-    study::Outcome outcome;
-    outcome.id = task.id;
-    const int top = lua_gettop(L_);
-    lua_rawgeti(L_, LUA_REGISTRYINDEX, run_ref_);
-    push_parameters(L_, names_, task.parameters);
-    const double start = monotonic_seconds();
-    const int status = lua_pcall(L_, 1, 1, 0);
-    outcome.seconds = monotonic_seconds() - start;
-    if (status != LUA_OK) {
-      // A stopped script stops the study instead of filling it with error rows.
-      if (sandbox::budget_exhausted(L_)) {
-        const std::string message = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "sandbox limit";
-        lua_settop(L_, top);
-        throw Error(message);
-      }
-      if (!owns_state_ && interrupt_requested()) {
-        lua_settop(L_, top);
-        throw Error("interrupted!");
-      }
-      fail(outcome, lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1)
-                                                   : "(error object is a " + type_name(L_, -1) + " value)");
-    } else if (!lua_istable(L_, -1)) {
-      fail(outcome, "run returned a " + type_name(L_, -1) + ", expected a table of fields");
-    } else {
-      read_fields(outcome);
-    }
-    lua_settop(L_, top);
-    return outcome;
-  }
-
-private:
-  static void fail(study::Outcome& outcome, std::string message) {
-    outcome.status = study::RunStatus::error;
-    outcome.error = std::move(message);
-    outcome.fields.clear();
-  }
-
-  // Fields of the table on top, sorted by name so columns come in one order.
-  void read_fields(study::Outcome& outcome) {
-    lua_pushnil(L_);
-    while (lua_next(L_, -2)) {
-      if (lua_type(L_, -2) != LUA_TSTRING) {
-        const std::string key_type = type_name(L_, -2);
-        lua_pop(L_, 2);
-        return fail(outcome, "run returned a field with a " + key_type + " key");
-      }
-      const std::string name = lua_tostring(L_, -2);
-      std::string problem;
-      Value value = to_value(L_, -1, problem);
-      lua_pop(L_, 1);
-      if (!problem.empty()) {
-        lua_pop(L_, 1);
-        return fail(outcome, "field '" + name + "' " + problem);
-      }
-      outcome.fields.emplace_back(name, std::move(value));
-    }
-    std::sort(outcome.fields.begin(), outcome.fields.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-  }
-
-  lua_State* L_;
-  int run_ref_;
-  std::vector<std::string> names_;
-  bool owns_state_;
-};
-
-int do_nothing(lua_State*) { return 0; }
-
-// Body of a worker state's script run, under lua_pcall: sets the state up
-// like the host's and runs the script with its arguments.
-int run_worker_script(lua_State* L) {
-  const auto& invocation = *static_cast<const ScriptInvocation*>(lua_touserdata(L, 1));
-  auto* slot = static_cast<WorkerSlot*>(lua_touserdata(L, 2));
-  const bool sandboxed = sandbox::settings_of(L) != nullptr;
-  if (!sandboxed) host::open_host_libraries(L);  // else they are open, restricted
-  host::prepend_script_folder_to_path(L, invocation.path().c_str());
-  host::create_arg_table(L, invocation.argv, invocation.script);
-  lua_pushcfunction(L, do_nothing);  // runs print in step; their output would garble the progress line
-  lua_setglobal(L, "print");
-  lua_pushlightuserdata(L, slot);
-  lua_setfield(L, LUA_REGISTRYINDEX, kWorkerSlotKey);
-  if (luaL_loadfilex(L, invocation.path().c_str(), sandboxed ? "t" : nullptr) != LUA_OK) return lua_error(L);
-  const int first = invocation.script + 1;
-  for (std::size_t i = static_cast<std::size_t>(first); i < invocation.argv.size(); ++i)
-    lua_pushstring(L, invocation.argv[i].c_str());
-  lua_call(L, static_cast<int>(invocation.argv.size()) - first, 0);
-  return 0;
-}
-
-// The script's state, sandboxed or not, decides its workers' states.
-struct WorkerSandbox {
-  std::optional<sandbox::Settings> settings;
-  Clock::time_point deadline = Clock::time_point::max();
-};
-
-WorkerSandbox worker_sandbox(lua_State* L) {
-  WorkerSandbox worker;
-  if (const sandbox::Settings* settings = sandbox::settings_of(L)) {
-    worker.settings = *settings;
-    worker.deadline = sandbox::deadline_of(L);
-  }
-  return worker;
-}
-
-std::unique_ptr<study::RowWorker> start_script_worker(const ScriptInvocation& invocation, const std::string& study_name,
-                                                     const std::vector<std::string>& names,
-                                                     const WorkerSandbox& worker_sandbox) {
-  lua_State* W = worker_sandbox.settings ? sandbox::new_state(*worker_sandbox.settings, worker_sandbox.deadline)
-                                         : luaL_newstate();
-  if (W == nullptr) throw Error("not enough memory for a Lua state");
-  WorkerSlot slot{study_name};
-  lua_pushcfunction(W, run_worker_script);
-  lua_pushlightuserdata(W, const_cast<ScriptInvocation*>(&invocation));
-  lua_pushlightuserdata(W, &slot);
-  const int status = lua_pcall(W, 2, 0, 0);
-  const bool kept = status != LUA_OK && lua_touserdata(W, -1) == &kRunKept;
-  std::string problem;
-  if (!kept)
-    problem = status == LUA_OK ? "the script " + invocation.path() + " ended without reaching ashlar.study{name = '" + study_name + "'}"
-              : lua_type(W, -1) == LUA_TSTRING ? lua_tostring(W, -1)
-                                               : "(error object is a " + type_name(W, -1) + " value)";
-  lua_settop(W, 0);
-  lua_pushnil(W);
-  lua_setfield(W, LUA_REGISTRYINDEX, kWorkerSlotKey);  // the slot goes out of scope
-  if (!kept) {
-    sandbox::close_state(W);
-    throw Error(problem);
-  }
-  return std::make_unique<LuaRowWorker>(W, slot.run_ref, names, true);
-}
-
 void set_integer(lua_State* L, const char* key, std::size_t value) {
   lua_pushinteger(L, static_cast<lua_Integer>(value));
   lua_setfield(L, -2, key);
@@ -323,89 +118,56 @@ void push_study(lua_State* L, StudyObject study) {
   push_boxed(L, std::make_shared<StudyObject>(std::move(study)), kStudyMetatable);
 }
 
-// The threads to run `pending` rows with, from the workers option; `script`
-// is the host's script, which worker states run again (nullptr: none).
-int thread_count(const ScriptInvocation* script, lua_Integer workers, std::size_t pending) {
-  if (workers > 1 && script == nullptr)
-    throw ArgError(1, "workers: more than 1 needs the ashlar host running a script file (worker threads run "
-                      "the script again; the C module, stdin and -e chunks cannot be)");
-  lua_Integer threads = workers;
-  if (workers == 0) threads = script ? std::max(1u, std::thread::hardware_concurrency()) : 1;
-  threads = std::min<lua_Integer>(threads, static_cast<lua_Integer>(pending));
-  return threads <= 1 ? 0 : static_cast<int>(threads);  // one worker: the script's own state
-}
-
 int w_study(lua_State* L) {
+  int run_index = 0;  // of a worker state's study, whose run it keeps
   const int result = guard(L, [&]() -> int {
     const OptionTable options(L, 1, {"name", "params", "run", "db", "workers", "progress", "rerun_errors", "log_interval"});
     const std::optional<std::string> name = options.string("name");
     if (!name) throw ArgError(1, "name: a study needs a name (its table in the database)");
-    if (const std::string problem = study::study_name_problem(*name); !problem.empty()) throw ArgError(1, "name: " + problem);
+    study::StudyJob job;
+    job.name = *name;
+    if (const std::string problem = study::study_name_problem(job.name); !problem.empty()) throw ArgError(1, "name: " + problem);
     if (options.push("params") == LUA_TNIL) throw ArgError(1, "params: missing");
-    const study::ParameterRows rows = read_params(L, lua_gettop(L));
+    job.rows = read_params(L, lua_gettop(L));
     lua_pop(L, 1);
     if (options.push("run") != LUA_TFUNCTION) throw ArgError(1, "run: expected a function, got " + type_name(L, -1));
-    const int run_index = lua_gettop(L);
-    StudyObject study;
-    study.name = *name;
-    study.db = options.string("db").value_or("");
-    if (!study.db.empty()) sandbox::require_access(L, 1, "db", study.db, sandbox::Access::write);
-    const lua_Integer workers = options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(0);
-    study::StudySettings settings;
-    settings.progress = options.boolean("progress").value_or(true);
-    settings.log_interval = options.positive("log_interval", 10.0);
-    const bool rerun_errors = options.boolean("rerun_errors").value_or(false);
+    run_index = lua_gettop(L);
+    job.db = options.string("db").value_or("");
+    if (!job.db.empty()) sandbox::require_access(L, 1, "db", job.db, sandbox::Access::write);
+    job.workers = static_cast<int>(options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(0));
+    job.progress = options.boolean("progress").value_or(true);
+    job.log_interval = options.positive("log_interval", 10.0);
+    job.rerun_errors = options.boolean("rerun_errors").value_or(false);
 
-    if (WorkerSlot* slot = worker_slot(L)) {
-      if (slot->study == study.name) {
-        lua_pushvalue(L, run_index);
-        slot->run_ref = luaL_ref(L, LUA_REGISTRYINDEX);
-        return -1;  // raise kRunKept, outside this guard
-      }
+    StudyObject study;
+    study.name = job.name;
+    study.db = job.db;
+    if (is_worker_state(L)) {
+      if (works_for(L, job.name)) return -1;  // keep the run, outside this guard
       // Another study of the script: its results, as the coordinator stored them.
       if (!study.db.empty()) study.table = study::StudyStore(study.db, true).read_study(study.name);
       push_study(L, std::move(study));
       return 1;
     }
 
-    lua_pushvalue(L, run_index);
-    LuaRowWorker script_worker(L, luaL_ref(L, LUA_REGISTRYINDEX), rows.names, false);
-    if (cluster::size() > 1 && cluster::rank() > 0) {
-      study.table = study::work_for_rank_zero(study.name, script_worker);
-      push_study(L, std::move(study));
-      return 1;
-    }
-    study::StudyStore store(study.db);
-    study.table = store.open_study(study.name, rows, rerun_errors);
-    const std::size_t pending = study.table.rows.size() - study.table.finished_count();
-    const ScriptInvocation* script = remembered_script(L);
-    std::optional<study::RankWorkers> ranks;
-    if (cluster::size() > 1) {
-      ranks.emplace(study.name);
-      settings.threads = 1;  // one row at a time on every rank, rank 0's beside its coordinating thread
-      if (script == nullptr) throw ArgError(1, "under MPI, a study needs the ashlar host running a script file");
-    } else {
-      settings.threads = thread_count(script, workers, pending);
-    }
-    // Copied: the threads must not read the registry of the script's state.
-    const ScriptInvocation invocation = script ? *script : ScriptInvocation{};
-    const WorkerSandbox sandbox = worker_sandbox(L);
-    const study::WorkerFactory start_worker = [&invocation, &study, &rows, &sandbox](int) {
-      return start_script_worker(invocation, study.name, rows.names, sandbox);
-    };
-    study.info = study::run_study(store, study.name, study.table, settings, &script_worker, start_worker,
-                                  ranks ? &*ranks : nullptr);
-    study.table = store.open_study(study.name, rows);
-    if (ranks) ranks->finish(study.table);
-    if (study.info.interrupted)
-      throw Error("interrupted! study '" + study.name + "' keeps its " + std::to_string(study.table.finished_count()) +
-                  " finished rows of " + std::to_string(study.table.rows.size()) + "; run the script again to go on");
+    // Worker threads run the host's script again: none without one.
+    const host::ScriptInvocation* script = host::remembered_script(L);
+    if (script == nullptr && cluster::size() > 1)
+      throw ArgError(1, "under MPI, a study needs the ashlar host running a script file");
+    if (script == nullptr && job.workers > 1)
+      throw ArgError(1, "workers: more than 1 needs the ashlar host running a script file (worker threads run "
+                        "the script again; the C module, stdin and -e chunks cannot be)");
+    const study::WorkerFactory thread_workers =
+        script ? worker_state_factory(L, *script, job.name, job.rows.names) : study::WorkerFactory();
+    const std::unique_ptr<study::RowWorker> script_worker = script_state_worker(L, run_index, job.rows.names);
+    study::StudyResult result = study::run_study_job(job, *script_worker, thread_workers);
+    study.table = std::move(result.table);
+    study.info = std::move(result.info);
     push_study(L, std::move(study));
     return 1;
   });
   if (result >= 0) return result;
-  lua_pushlightuserdata(L, const_cast<char*>(&kRunKept));
-  return lua_error(L);
+  return keep_run(L, run_index);
 }
 
 // ashlar.load_study{db = path, name = name}: a stored study's rows, read only.
@@ -438,12 +200,14 @@ int w_range(lua_State* L) {
     const lua_Integer count = check_integer(L, 3, "count");
     if (count < 1 || count > 10'000'000) throw ArgError(3, "count must be in [1, 10^7], got " + std::to_string(count));
     const std::vector<double> values = study::linear_range(first, last, static_cast<int>(count));
-    lua_createtable(L, static_cast<int>(values.size()), 0);
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      lua_pushnumber(L, values[i]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-    }
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(values.size()), 0);
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        lua_pushnumber(L, values[i]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+      }
+      return 1;
+    });
   });
 }
 
@@ -482,12 +246,14 @@ int w_latin_hypercube(lua_State* L) {
     }
     const study::ParameterRows rows = study::latin_hypercube(std::move(axes), static_cast<int>(samples),
                                                               static_cast<std::uint64_t>(seed));
-    lua_createtable(L, static_cast<int>(rows.rows.size()), 0);
-    for (std::size_t r = 0; r < rows.rows.size(); ++r) {
-      push_parameters(L, rows.names, rows.rows[r]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(r + 1));
-    }
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(rows.rows.size()), 0);
+      for (std::size_t r = 0; r < rows.rows.size(); ++r) {
+        push_parameters(L, rows.names, rows.rows[r]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(r + 1));
+      }
+      return 1;
+    });
   });
 }
 
@@ -512,12 +278,14 @@ int w_study_rows(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<StudyObject> kept = check_study(L, 1);
     const StudyObject& study = *kept;
-    lua_createtable(L, static_cast<int>(study.table.rows.size()), 0);
-    for (std::size_t r = 0; r < study.table.rows.size(); ++r) {
-      push_row(L, study.table, study.table.rows[r]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(r + 1));
-    }
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, static_cast<int>(study.table.rows.size()), 0);
+      for (std::size_t r = 0; r < study.table.rows.size(); ++r) {
+        push_row(L, study.table, study.table.rows[r]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(r + 1));
+      }
+      return 1;
+    });
   });
 }
 
@@ -526,7 +294,7 @@ int w_study_chart(lua_State* L) {
   guard(L, [&] {
     check_study(L, 1);
     if (!lua_istable(L, 2)) throw ArgError(2, "expected a table of chart options, got " + type_name(L, 2));
-    if (lua_getfield(L, 2, "data") != LUA_TNIL) throw ArgError(2, "data: not an option here, the study gives the rows");
+    if (get_field(L, 2, "data") != LUA_TNIL) throw ArgError(2, "data: not an option here, the study gives the rows");
     lua_pop(L, 1);
     return 0;
   });
@@ -560,8 +328,7 @@ int w_study_csv(lua_State* L) {
     const StudyObject& study = *kept;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     if (cluster::rank() == 0) write_file_atomically(path, study::csv_text(study.table));  // one writer per MPI job
-    lua_pushstring(L, path.c_str());
-    return 1;
+    return push_string(L, path);
   });
 }
 
@@ -570,31 +337,32 @@ int w_study_info(lua_State* L) {
     const std::shared_ptr<StudyObject> kept = check_study(L, 1);
     const StudyObject& study = *kept;
     const std::size_t finished = study.table.finished_count(), errors = study.table.error_count();
-    lua_createtable(L, 0, 12);
-    set_string(L, "name", study.name.c_str());
-    if (!study.db.empty()) set_string(L, "db", study.db.c_str());
-    set_integer(L, "rows", study.table.rows.size());
-    set_integer(L, "ok", finished - errors);
-    set_integer(L, "errors", errors);
-    set_integer(L, "pending", study.table.rows.size() - finished);
-    set_integer(L, "ran", study.info.ran);
-    set_field(L, "seconds", study.info.seconds);
-    set_field(L, "runs_per_second", study.info.seconds > 0 ? static_cast<double>(study.info.ran) / study.info.seconds : 0.0);
-    set_integer(L, "workers", static_cast<std::size_t>(study.info.workers));
-    lua_createtable(L, static_cast<int>(study.info.worker_failures.size()), 0);
-    for (std::size_t i = 0; i < study.info.worker_failures.size(); ++i) {
-      lua_pushstring(L, study.info.worker_failures[i].c_str());
-      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-    }
-    lua_setfield(L, -2, "worker_failures");
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 12);
+      set_string(L, "name", study.name.c_str());
+      if (!study.db.empty()) set_string(L, "db", study.db.c_str());
+      set_integer(L, "rows", study.table.rows.size());
+      set_integer(L, "ok", finished - errors);
+      set_integer(L, "errors", errors);
+      set_integer(L, "pending", study.table.rows.size() - finished);
+      set_integer(L, "ran", study.info.ran);
+      set_field(L, "seconds", study.info.seconds);
+      set_field(L, "runs_per_second", study.info.seconds > 0 ? static_cast<double>(study.info.ran) / study.info.seconds : 0.0);
+      set_integer(L, "workers", static_cast<std::size_t>(study.info.workers));
+      lua_createtable(L, static_cast<int>(study.info.worker_failures.size()), 0);
+      for (std::size_t i = 0; i < study.info.worker_failures.size(); ++i) {
+        lua_pushstring(L, study.info.worker_failures[i].c_str());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+      }
+      lua_setfield(L, -2, "worker_failures");
+      return 1;
+    });
   });
 }
 
 int w_study_name(lua_State* L) {
   return guard(L, [&] {
-    lua_pushstring(L, check_study(L, 1)->name.c_str());
-    return 1;
+    return push_string(L, check_study(L, 1)->name);
   });
 }
 
@@ -610,10 +378,12 @@ int w_study_tostring(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<StudyObject> kept = check_study(L, 1);
     const StudyObject& study = *kept;
-    lua_pushfstring(L, "Study '%s' (%d rows, %d finished, %d errors)", study.name.c_str(),
-                    static_cast<int>(study.table.rows.size()), static_cast<int>(study.table.finished_count()),
-                    static_cast<int>(study.table.error_count()));
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_pushfstring(L, "Study '%s' (%d rows, %d finished, %d errors)", study.name.c_str(),
+                      static_cast<int>(study.table.rows.size()), static_cast<int>(study.table.finished_count()),
+                      static_cast<int>(study.table.error_count()));
+      return 1;
+    });
   });
 }
 

@@ -71,25 +71,27 @@ int w_weight_sensitivity(lua_State* L) {
     const int block = check_block_index(L, s, 2, 2, "block");
     const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
     const WeightSensitivity sensitivity = weight_sensitivity(s, block, settings);
-    lua_createtable(L, s.size(), 6);
-    set_list(L, sensitivity.block_change);
     const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
-    lua_createtable(L, static_cast<int>(sensitivity.interface_change.size()), 0);
-    for (size_t k = 0; k < sensitivity.interface_change.size(); ++k) {
-      lua_createtable(L, 0, 4);
-      set_index_field(L, "a", interfaces[k].a);
-      set_index_field(L, "b", interfaces[k].b);
-      set_field(L, "change", sensitivity.interface_change[k]);
-      set_field(L, "resultant", sensitivity.interface_resultant_change[k]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "interfaces");
-    set_boolean(L, "valid", sensitivity.valid);
-    set_boolean(L, "stable", sensitivity.analysis.stable);
-    set_string(L, "status", status_name(sensitivity.analysis.status));
-    set_field(L, "seconds", sensitivity.seconds);
-    set_field(L, "analysis_seconds", sensitivity.analysis.seconds);
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, s.size(), 6);
+      set_list(L, sensitivity.block_change);
+      lua_createtable(L, static_cast<int>(sensitivity.interface_change.size()), 0);
+      for (size_t k = 0; k < sensitivity.interface_change.size(); ++k) {
+        lua_createtable(L, 0, 4);
+        set_index_field(L, "a", interfaces[k].a);
+        set_index_field(L, "b", interfaces[k].b);
+        set_field(L, "change", sensitivity.interface_change[k]);
+        set_field(L, "resultant", sensitivity.interface_resultant_change[k]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "interfaces");
+      set_boolean(L, "valid", sensitivity.valid);
+      set_boolean(L, "stable", sensitivity.analysis.stable);
+      set_string(L, "status", status_name(sensitivity.analysis.status));
+      set_field(L, "seconds", sensitivity.seconds);
+      set_field(L, "analysis_seconds", sensitivity.analysis.seconds);
+      return 1;
+    });
   });
 }
 
@@ -103,23 +105,25 @@ int w_load_capacity(lua_State* L) {
     BlockProgressLine line(options, "load_capacity", s.size());
     const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback());
     line.finish(capacity.status);
-    lua_createtable(L, s.size(), 5);
-    for (int i = 0; i < s.size(); ++i) {
-      if (std::isnan(capacity.max[i])) {
-        lua_pushboolean(L, false);
-      } else {
-        lua_createtable(L, 0, 2);
-        set_field(L, "min", capacity.min[i]);
-        set_field(L, "max", capacity.max[i]);  // inf is math.huge
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, s.size(), 5);
+      for (int i = 0; i < s.size(); ++i) {
+        if (std::isnan(capacity.max[i])) {
+          lua_pushboolean(L, false);
+        } else {
+          lua_createtable(L, 0, 2);
+          set_field(L, "min", capacity.min[i]);
+          set_field(L, "max", capacity.max[i]);  // inf is math.huge
+        }
+        lua_rawseti(L, -2, i + 1);
       }
-      lua_rawseti(L, -2, i + 1);
-    }
-    set_boolean(L, "stable", capacity.stable);
-    set_string(L, "status", capacity.status.c_str());
-    set_field(L, "programs", capacity.programs);
-    set_field(L, "iterations", capacity.simplex_iterations);
-    set_field(L, "seconds", capacity.seconds);
-    return 1;
+      set_boolean(L, "stable", capacity.stable);
+      set_string(L, "status", capacity.status.c_str());
+      set_field(L, "programs", capacity.programs);
+      set_field(L, "iterations", capacity.simplex_iterations);
+      set_field(L, "seconds", capacity.seconds);
+      return 1;
+    });
   });
 }
 
@@ -130,14 +134,16 @@ int w_necessary_weights(lua_State* L) {
     const int block = check_block_index(L, s, 2, 2, "block");
     const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
     const NecessaryWeights needed = necessary_weights(s, block, settings);
-    lua_createtable(L, s.size(), 5);
-    set_list(L, needed.weights);
-    set_boolean(L, "stable", needed.stable);
-    set_field(L, "infeasibility", needed.infeasibility);
-    set_string(L, "status", status_name(needed.status));
-    set_field(L, "iterations", needed.iterations);
-    set_field(L, "seconds", needed.seconds);
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, s.size(), 5);
+      set_list(L, needed.weights);
+      set_boolean(L, "stable", needed.stable);
+      set_field(L, "infeasibility", needed.infeasibility);
+      set_string(L, "status", status_name(needed.status));
+      set_field(L, "iterations", needed.iterations);
+      set_field(L, "seconds", needed.seconds);
+      return 1;
+    });
   });
 }
 
@@ -152,18 +158,20 @@ int w_important_weights(lua_State* L) {
     const ImportantWeights important = important_weights(s, settings, threads, line.callback());
     const char* status = important.interrupted ? "interrupted" : "done";
     line.finish(status);
-    lua_createtable(L, s.size(), 3);
-    set_list(L, important.per_volume);
-    lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);
-    for (size_t k = 0; k < important.unstable_blocks.size(); ++k) {
-      lua_pushinteger(L, important.unstable_blocks[k] + 1);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "unstable");
-    set_string(L, "status", status);
-    set_field(L, "solves", important.solves);
-    set_field(L, "seconds", important.seconds);
-    return 1;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, s.size(), 3);
+      set_list(L, important.per_volume);
+      lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);
+      for (size_t k = 0; k < important.unstable_blocks.size(); ++k) {
+        lua_pushinteger(L, important.unstable_blocks[k] + 1);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "unstable");
+      set_string(L, "status", status);
+      set_field(L, "solves", important.solves);
+      set_field(L, "seconds", important.seconds);
+      return 1;
+    });
   });
 }
 

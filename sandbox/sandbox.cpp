@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <new>
 #include <system_error>
+#include <unordered_map>
 
 #include "ashlar_lua.hpp"
 #include "core/error.hpp"
@@ -35,12 +36,26 @@ struct Box {
   std::size_t refused_allocations = 0;
   std::uint64_t instructions = 0;
   Limit exceeded = Limit::none;
+  // Userdata to release if Lua frees them unfinalized, by the end of their
+  // memory, which is the end of the block Lua frees (see watch_userdata).
+  struct Watched {
+    void* memory;
+    void (*release)(void* memory);
+  };
+  std::unordered_map<const char*, Watched> watched;
 };
 
 void* limited_allocate(void* user_data, void* block, std::size_t old_size, std::size_t new_size) {
   Box& box = *static_cast<Box*>(user_data);
   const std::size_t old_bytes = block != nullptr ? old_size : 0;  // else old_size is a type tag
   if (new_size == 0) {
+    if (block != nullptr && !box.watched.empty()) {
+      const auto watched = box.watched.find(static_cast<const char*>(block) + old_bytes);
+      if (watched != box.watched.end()) {
+        watched->second.release(watched->second.memory);
+        box.watched.erase(watched);
+      }
+    }
     std::free(block);
     box.used -= old_bytes;
     return nullptr;
@@ -102,9 +117,15 @@ void budget_hook(lua_State* L, lua_Debug*) {
       return;
   }
   lua_sethook(L, budget_hook, LUA_MASKCOUNT, 1);
-  luaL_where(L, 0);  // the running function's line: a hook has no frame of its own
-  lua_pushstring(L, limit_message(box.exceeded, box.settings).c_str());
-  lua_concat(L, 2);
+  const bool pushed = [&] {
+    const std::string message = limit_message(box.exceeded, box.settings);
+    return lua::push_message(L, message.c_str());
+  }();
+  if (pushed) {
+    luaL_where(L, 0);  // the running function's line: a hook has no frame of its own
+    lua_insert(L, -2);
+    lua_concat(L, 2);
+  }
   lua_error(L);
 }
 
@@ -152,10 +173,14 @@ std::string problem_in_box(const Box& box, const std::string& path, Access acces
 // Pushes the message of a refused access, with the caller's file:line;
 // false (nothing pushed) when the access is allowed.
 bool push_access_problem(lua_State* L, const char* path, Access access) {
-  const std::string problem = access_problem(L, path, access);
-  if (problem.empty()) return false;
+  {
+    const std::string problem = access_problem(L, path, access);
+    if (problem.empty()) return false;
+    if (!lua::push_message(L, problem.c_str())) return true;  // no memory: that error instead
+  }
+  // The problem is a Lua string now, and no C++ object is alive.
   luaL_where(L, 1);
-  lua_pushstring(L, problem.c_str());
+  lua_insert(L, -2);
   lua_concat(L, 2);
   return true;
 }
@@ -222,45 +247,48 @@ int text_dofile(lua_State* L) {
   return lua_gettop(L) - 1;
 }
 
-// package.searchers' Lua searcher, reading only allowed files as text.
+bool may_read(lua_State* L, const char* path) { return access_problem(L, path, Access::read).empty(); }
+
+// package.searchers' Lua searcher, reading only allowed files as text. Its
+// strings are Lua strings on the stack, as in Lua's own searcher.
 int text_searcher(lua_State* L) {
   const char* name = luaL_checkstring(L, 1);
   lua_getfield(L, lua_upvalueindex(1), "path");
   const char* templates = lua_tostring(L, -1);
   if (templates == nullptr) return luaL_error(L, "'package.path' must be a string");
-  const std::string file_name = [&] {
-    std::string converted = name;
-    std::replace(converted.begin(), converted.end(), '.', '/');
-    return converted;
-  }();
-  luaL_Buffer tried;
-  luaL_buffinit(L, &tried);
+  const char* file_name = luaL_gsub(L, name, ".", "/");
+  lua_pushliteral(L, "");  // the files tried, for the message when none is found
+  const int tried = lua_gettop(L);
   for (const char* start = templates; *start != '\0';) {
     const char* end = std::strchr(start, ';');
     if (end == nullptr) end = start + std::strlen(start);
-    std::string candidate(start, end);
+    lua_pushlstring(L, start, static_cast<std::size_t>(end - start));
     start = *end == ';' ? end + 1 : end;
-    if (candidate.empty()) continue;
-    for (std::size_t mark; (mark = candidate.find('?')) != std::string::npos;)
-      candidate.replace(mark, 1, file_name);
-    const bool allowed = access_problem(L, candidate, Access::read).empty();
+    if (lua_rawlen(L, -1) == 0) {
+      lua_pop(L, 1);
+      continue;
+    }
+    const char* candidate = luaL_gsub(L, lua_tostring(L, -1), "?", file_name);
+    lua_remove(L, -2);  // the template
+    const bool allowed = may_read(L, candidate);
     if (allowed) {
-      if (FILE* file = std::fopen(candidate.c_str(), "r")) {
+      if (FILE* file = std::fopen(candidate, "r")) {
         std::fclose(file);
-        lua_pushstring(L, candidate.c_str());  // the loader's second argument
-        const int status = luaL_loadfilex(L, candidate.c_str(), "t");
-        if (status != LUA_OK)
-          return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, lua_tostring(L, -2),
-                            lua_tostring(L, -1));
-        lua_insert(L, -2);
+        if (luaL_loadfilex(L, candidate, "t") != LUA_OK)
+          return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, candidate, lua_tostring(L, -1));
+        lua_insert(L, -2);  // the chunk, then its file (the loader's second argument)
         return 2;
       }
     }
-    luaL_addstring(&tried, "\n\tno file '");
-    luaL_addstring(&tried, candidate.c_str());
-    luaL_addstring(&tried, allowed ? "'" : "' (outside the sandbox)");
+    lua_pushvalue(L, tried);
+    lua_pushliteral(L, "\n\tno file '");
+    lua_pushvalue(L, -3);
+    lua_pushstring(L, allowed ? "'" : "' (outside the sandbox)");
+    lua_concat(L, 4);
+    lua_replace(L, tried);
+    lua_pop(L, 1);  // the candidate
   }
-  luaL_pushresult(&tried);
+  lua_pushvalue(L, tried);
   return 1;
 }
 
@@ -307,10 +335,11 @@ void restrict_io_and_os(lua_State* L) {
   lua_getglobal(L, "os");
   wrap_field(L, "remove", checked_remove);
   wrap_field(L, "rename", checked_rename);
-  for (const char* name : {"execute", "exit", "getenv", "setlocale", "tmpname"}) {
-    const std::string qualified = std::string("os.") + name;
-    refuse_field(L, name, qualified.c_str());
-  }
+  refuse_field(L, "execute", "os.execute");
+  refuse_field(L, "exit", "os.exit");
+  refuse_field(L, "getenv", "os.getenv");
+  refuse_field(L, "setlocale", "os.setlocale");
+  refuse_field(L, "tmpname", "os.tmpname");
   lua_pop(L, 1);
 
   lua_getglobal(L, "string");
@@ -430,8 +459,20 @@ void restore_hook(lua_State* L) {
 
 void close_state(lua_State* L) {
   Box* box = box_of(L);
+  // Closing calls the finalizers, which takes memory (a stack for each
+  // call): at the cap a finalizer would be skipped, and what its userdata
+  // holds (an engine object) would leak.
+  if (box != nullptr) box->settings.memory_bytes = 0;
   lua_close(L);
   delete box;
+}
+
+void watch_userdata(lua_State* L, void* memory, std::size_t size, void (*release)(void* memory)) {
+  if (Box* box = box_of(L)) box->watched[static_cast<const char*>(memory) + size] = {memory, release};
+}
+
+void forget_userdata(lua_State* L, const void* memory, std::size_t size) {
+  if (Box* box = box_of(L)) box->watched.erase(static_cast<const char*>(memory) + size);
 }
 
 const Settings* settings_of(lua_State* L) {

@@ -78,6 +78,16 @@ void restore_hook(lua_State* L);
 // lua_close for any state; also frees a sandboxed state's bookkeeping.
 void close_state(lua_State* L);
 
+// A userdata of a sandboxed state (`size` bytes at `memory`) whose
+// finalizer releases what it holds (an engine object): at the memory cap
+// Lua may have no memory to call a finalizer, skips it (a warning, as for
+// any error in a finalizer) and frees the userdata, and its object would
+// leak. The state's allocator calls `release` on such a userdata before
+// freeing it. forget_userdata once the finalizer ran. Both do nothing for
+// a state that is not sandboxed.
+void watch_userdata(lua_State* L, void* memory, std::size_t size, void (*release)(void* memory));
+void forget_userdata(lua_State* L, const void* memory, std::size_t size);
+
 // The sandbox of L (or of the state L is a thread of), or nullptr when L is
 // not sandboxed.
 const Settings* settings_of(lua_State* L);

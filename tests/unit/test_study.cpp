@@ -9,7 +9,10 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
+#include "core/parallel_loop.hpp"
 #include "study/parameter_rows.hpp"
+#include "study/study_job.hpp"
 #include "study/study_progress.hpp"
 #include "study/study_runner.hpp"
 #include "study/study_store.hpp"
@@ -270,6 +273,121 @@ TEST(StudyRunner, BrokenFieldsBecomeErrorRows) {
   EXPECT_EQ(checked_outcome(outcome, {"t"}).status, RunStatus::error);
   outcome.fields = {{"x", 1.0}};
   EXPECT_EQ(checked_outcome(outcome, {"t"}).status, RunStatus::ok);
+}
+
+// The worker threads a study asks for: one worker means the calling
+// thread; never more threads than rows; 0 is every core only when threads
+// can be made.
+TEST(StudyJob, ThreadsFollowWorkersAndRowsLeft) {
+  const int cores = worker_count(0, 1 << 20);
+  EXPECT_EQ(study_threads(1, true, 12), 0);
+  EXPECT_EQ(study_threads(3, true, 12), 3);
+  EXPECT_EQ(study_threads(3, true, 2), 2);
+  EXPECT_EQ(study_threads(3, true, 1), 0);
+  EXPECT_EQ(study_threads(3, true, 0), 0);
+  EXPECT_EQ(study_threads(0, false, 12), 0);
+  EXPECT_EQ(study_threads(0, true, 12), std::min(cores, 12) > 1 ? std::min(cores, 12) : 0);
+}
+
+// A counting worker for the calling thread, so a test sees which path ran.
+class CountingWorker : public ProductWorker {
+public:
+  Outcome run(const Task& task) override {
+    ++runs;
+    return ProductWorker::run(task);
+  }
+  int runs = 0;
+};
+
+TEST(StudyJob, OneWorkerRunsOnTheCallingThreadAndResumesFromTheStore) {
+  StudyJob job;
+  job.name = "single";
+  job.db = temp_db("single");
+  job.rows = small_grid();
+  job.workers = 1;
+  job.progress = false;
+  CountingWorker local;
+  const StudyResult first = run_study_job(job, local, [](int) -> std::unique_ptr<RowWorker> {
+    throw Error("no thread should start");
+  });
+  EXPECT_EQ(local.runs, 12);
+  EXPECT_EQ(first.info.ran, 12u);
+  EXPECT_EQ(first.info.errors, 2u);
+  EXPECT_EQ(first.info.workers, 1);
+  ASSERT_EQ(first.table.rows.size(), 12u);
+  EXPECT_EQ(first.table.finished_count(), 12u);
+  for (const Row& row : first.table.rows) EXPECT_EQ(row.outcome.worker, 1);
+  // n = 8, t = 0.3 (grid order: the last axis, t, varies fastest).
+  EXPECT_DOUBLE_EQ(field(first.table.rows[8], "product"), 8 * 0.3);
+
+  // Everything is stored: running the job again runs nothing, and with
+  // rerun_errors only the two rows that ended in error.
+  EXPECT_EQ(run_study_job(job, local, {}).info.ran, 0u);
+  job.rerun_errors = true;
+  const StudyResult again = run_study_job(job, local, {});
+  EXPECT_EQ(again.info.ran, 2u);
+  EXPECT_EQ(local.runs, 14);
+  EXPECT_EQ(again.table.error_count(), 2u);
+}
+
+TEST(StudyJob, SeveralWorkersRunOnThreadsOfTheirOwn) {
+  StudyJob job;
+  job.name = "threads";
+  job.rows = small_grid();
+  job.workers = 3;
+  job.progress = false;
+  CountingWorker local;
+  std::atomic<int> started{0};
+  const StudyResult result = run_study_job(job, local, [&](int) {
+    ++started;
+    return std::make_unique<ProductWorker>();
+  });
+  EXPECT_EQ(local.runs, 0);
+  EXPECT_EQ(started.load(), 3);
+  EXPECT_EQ(result.info.ran, 12u);
+  EXPECT_EQ(result.table.finished_count(), 12u);
+  EXPECT_EQ(result.table.error_count(), 2u);
+  std::set<int> workers;
+  for (const Row& row : result.table.rows) workers.insert(row.outcome.worker);
+  EXPECT_TRUE(*workers.begin() >= 1 && *workers.rbegin() <= 3);
+  EXPECT_DOUBLE_EQ(field(result.table.rows[1], "product"), 4 * 0.2);
+
+  // Without a way to make worker threads, more than one worker is refused.
+  EXPECT_THROW(run_study_job(job, local, {}), InvalidArgument);
+}
+
+// Stops the study (as Ctrl-C does) after `stop_after` rows.
+class InterruptingWorker : public ProductWorker {
+public:
+  explicit InterruptingWorker(int stop_after) : stop_after_(stop_after) {}
+  Outcome run(const Task& task) override {
+    if (++runs_ == stop_after_) interrupt_requested() = true;
+    return ProductWorker::run(task);
+  }
+
+private:
+  int stop_after_;
+  int runs_ = 0;
+};
+
+TEST(StudyJob, AnInterruptedStudyKeepsItsFinishedRows) {
+  StudyJob job;
+  job.name = "stopped";
+  job.db = temp_db("stopped");
+  job.rows = small_grid();
+  job.workers = 1;
+  job.progress = false;
+  InterruptingWorker local(5);
+  try {
+    run_study_job(job, local, {});
+    FAIL() << "an interrupted study throws";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "interrupted! study 'stopped' keeps its 5 finished rows of 12; run the script again to go on");
+  }
+  interrupt_requested() = false;
+  CountingWorker rest;
+  EXPECT_EQ(run_study_job(job, rest, {}).table.finished_count(), 12u);
+  EXPECT_EQ(rest.runs, 7);
 }
 
 TEST(StudyTable, CsvQuotesAndLeavesPendingRowsEmpty) {
