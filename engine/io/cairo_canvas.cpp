@@ -14,18 +14,6 @@
 namespace ashlar {
 namespace {
 
-const char* extension_of(ImageFormat format) {
-  switch (format) {
-    case ImageFormat::png:
-      return "png";
-    case ImageFormat::svg:
-      return "svg";
-    case ImageFormat::pdf:
-      return "pdf";
-  }
-  return "";
-}
-
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
   // No exception may unwind through cairo's C frames.
   try {
@@ -53,19 +41,6 @@ cairo_surface_t* create_surface(ImageFormat format, int width, int height, std::
 }
 
 }  // namespace
-
-ImageFormat image_format(const std::string& path, const std::vector<ImageFormat>& allowed,
-                         const std::string& what) {
-  const std::string extension = file_extension(path);
-  std::string listed;
-  for (size_t k = 0; k < allowed.size(); ++k) {
-    if (extension == extension_of(allowed[k])) return allowed[k];
-    listed += (k == 0 ? "." : k + 1 == allowed.size() ? " or ." : ", .");
-    listed += extension_of(allowed[k]);
-  }
-  throw InvalidArgument(what + ": cannot tell the format of '" + path +
-                        "' from its extension; use " + listed);
-}
 
 void render_file(const std::string& path, ImageFormat format, int width, int height,
                  const std::string& what, const std::function<void(cairo_t*)>& paint) {

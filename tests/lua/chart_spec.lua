@@ -33,6 +33,33 @@ local function study()
   return rows
 end
 
+-- The text of each <text> element of an SVG that PLplot's svg driver wrote
+-- (every character as &#xHH;; a superscript in a <tspan> raised by dy < 0,
+-- here written "^": "10^-6").
+local function svg_texts(svg)
+  local texts = {}
+  for body in svg:gmatch("<text.->(.-)</text>") do
+    body = body:gsub('<tspan dy="%-[^>]*>', "^")
+    local text = {}
+    for piece in body:gmatch("[%^]?&#x%x+;") do
+      local raised, code = piece:match("^(%^?)&#x(%x+);$")
+      text[#text + 1] = raised .. utf8.char(tonumber(code, 16))
+    end
+    texts[#texts + 1] = table.concat(text)
+  end
+  return texts
+end
+
+local function contains(list, value)
+  for _, item in ipairs(list) do
+    if item == value then return true end
+  end
+  return false
+end
+
+-- The Okabe-Ito colours of the first three series, as the SVG writes them.
+local SERIES_COLORS = { "#0072B2", "#D55E00", "#009E73" }
+
 local function names(result)
   local list = {}
   for k, series in ipairs(result.series) do list[k] = series.name end
@@ -114,15 +141,37 @@ describe("ashlar.chart", function()
                     x_label = "t / R", y_label = "tension / weight" }
       local svg = support.read_file(dir .. "/" .. kind .. ".svg")
       assert.equal("<?xml", svg:sub(1, 5))
-      assert.is_truthy(svg:find('<svg[^>]*width="640pt" height="480pt"'))
+      assert.is_truthy(svg:find('<svg[^>]*width="640pt"%s+height="480pt"'))
+      -- The title, the axis labels and both lines' legend entries are text.
+      local texts = svg_texts(svg)
+      for _, text in ipairs{ kind, "t / R", "tension / weight", "n = 8", "n = 16" } do
+        assert.is_true(contains(texts, text), text)
+      end
+      -- Two lines: the first two series colours, not the third.
+      assert.is_truthy(svg:find(SERIES_COLORS[1], 1, true))
+      assert.is_truthy(svg:find(SERIES_COLORS[2], 1, true))
+      assert.is_falsy(svg:find(SERIES_COLORS[3], 1, true))
     end
-    ashlar.chart{ path = dir .. "/c.pdf", data = study(), x = "t", y = "infeasibility", log_x = true }
-    assert.equal("%PDF", support.read_file(dir .. "/c.pdf"):sub(1, 4))
+    ashlar.chart{ path = dir .. "/c.pdf", data = study(), x = "t", y = "infeasibility", log_x = true,
+                  width = 500, height = 300 }
+    local pdf = support.read_file(dir .. "/c.pdf")
+    assert.equal("%PDF", pdf:sub(1, 4))
+    assert.is_truthy(pdf:find("/MediaBox [ 0 0 500 300 ]", 1, true))
     ashlar.chart{ path = dir .. "/small.png", data = study(), x = "t", y = "infeasibility",
                   width = 200, height = 16384 }
     local width, height = png_size(support.read_file(dir .. "/small.png"))
     assert.equal(200, width)
     assert.equal(16384, height)
+  end)
+
+  it("labels log axes at their decades", function()
+    local rows = {}
+    for k = 0, 3 do rows[#rows + 1] = { blocks = 10 ^ (k + 1), seconds = 10 ^ (2 * k - 4) } end
+    ashlar.chart{ path = dir .. "/log.svg", data = rows, x = "blocks", y = "seconds", log_x = true, log_y = true }
+    local texts = svg_texts(support.read_file(dir .. "/log.svg"))
+    for exponent = 1, 4 do assert.is_true(contains(texts, "10^" .. exponent), "x: 10^" .. exponent) end
+    for exponent = -4, 2 do assert.is_true(contains(texts, "10^" .. exponent), "y: 10^" .. exponent) end
+    assert.is_false(contains(texts, "10^5"))
   end)
 
   it("reports bad options and data clearly, and writes nothing", function()
