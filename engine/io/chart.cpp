@@ -48,9 +48,10 @@ constexpr double kSingleValueHalfDecades = 0.25;
 // A legend takes at most this fraction of the image's width; longer names
 // shrink its text.
 constexpr double kLegendWidthShare = 0.35;
-// The advance of an average character of DejaVu Sans, in font sizes: to
-// leave room for text before PLplot has drawn it.
-constexpr double kCharacterWidth = 0.6;
+// About the advance of an average character of DejaVu Sans (lowercase,
+// digits, spaces), in font sizes: to leave room for text before PLplot has
+// drawn it.
+constexpr double kCharacterWidth = 0.5;
 // PLplot's character height over the drivers' font size.
 constexpr double kCharacterHeight = 0.75;
 constexpr double kMillimetresPerPoint = 25.4 / 72.0;
@@ -158,6 +159,23 @@ ChartAxis padded_axis(double lo, double hi, bool log) {
   return axis;
 }
 
+// The spec's range for an axis, checked, or the data's padded range.
+ChartAxis chosen_axis(const std::optional<std::pair<double, double>>& range, double lo, double hi,
+                      bool log, const char* name) {
+  if (!range) return padded_axis(lo, hi, log);
+  const auto [from, to] = *range;
+  if (!std::isfinite(from) || !std::isfinite(to) || !(from < to) || (log && !(from > 0.0))) {
+    throw InvalidArgument(std::string("chart: ") + name + "_range must be finite with lo < hi" +
+                          (log ? " and lo > 0 (log axis)" : "") + ", got {" +
+                          number_text(from) + ", " + number_text(to) + "}");
+  }
+  ChartAxis axis;
+  axis.lo = from;
+  axis.hi = to;
+  axis.log = log;
+  return axis;
+}
+
 // ---------------------------------------------------------------------------
 // What PLplot is given
 
@@ -204,6 +222,7 @@ struct PreparedChart {
   // heights of their font.
   PLFLT x_label_offset = 0, y_label_offset = 0;
   std::string title, x_label, y_label;
+  double title_font = 0.0;  // px: 1.2 times the font, smaller for a long title to fit
   std::vector<PreparedSeries> series;
   // The legend (none when legend_names is empty): names, per-entry arrays
   // as pllegend takes them, its text size relative to the tick font.
@@ -233,7 +252,12 @@ bool has_markers(ChartKind kind) {
   return kind == ChartKind::points || kind == ChartKind::linespoints;
 }
 
-PreparedSeries prepared_series(const ChartSpec& spec, int k) {
+bool inside(const ChartAxis& axis, double value) { return value >= axis.lo && value <= axis.hi; }
+
+// The series' line and markers; PLplot cuts lines off at the plot's edges,
+// markers outside it (only with a range given) are left out here.
+PreparedSeries prepared_series(const ChartSpec& spec, const ChartAxis& x_axis,
+                               const ChartAxis& y_axis, int k) {
   PreparedSeries prepared;
   prepared.color = kFirstSeries + k % kPaletteSize;
   prepared.style = kLineStyles[(k / kPaletteSize) % 3];
@@ -250,7 +274,8 @@ PreparedSeries prepared_series(const ChartSpec& spec, int k) {
       prepared.line_y.push_back(y);
     }
     // A lone point has no line to show it.
-    if (has_markers(spec.kind) || points.size() == 1) {
+    const bool shown = inside(x_axis, points[i].x()) && inside(y_axis, points[i].y());
+    if (shown && (has_markers(spec.kind) || points.size() == 1)) {
       prepared.marker_x.push_back(x);
       prepared.marker_y.push_back(y);
     }
@@ -298,6 +323,8 @@ PreparedChart prepare(const ChartSpec& spec, ImageFormat format) {
   const ChartMetrics& m = chart.metrics;
   std::tie(chart.x, chart.y) = chart_axes(spec);
   chart.title = plplot_text(spec.title);
+  chart.title_font =
+      std::min(1.2 * m.font, (spec.width - 2 * m.margin) / (kCharacterWidth * spec.title.size()));
   chart.x_label = plplot_text(spec.x_label);
   chart.y_label = plplot_text(spec.y_label);
 
@@ -317,7 +344,7 @@ PreparedChart prepare(const ChartSpec& spec, ImageFormat format) {
   chart.bottom = bottom / spec.height;
   chart.left = left / spec.width;
   for (size_t k = 0; k < spec.series.size(); ++k) {
-    chart.series.push_back(prepared_series(spec, static_cast<int>(k)));
+    chart.series.push_back(prepared_series(spec, chart.x, chart.y, static_cast<int>(k)));
   }
   prepare_legend(spec, chart);
   // Half a tick label may reach past the last x tick.
@@ -415,6 +442,12 @@ PLFLT paint_chart(const PreparedChart& chart, FILE* file) {
   pladv(0);
   plvpor(0.0, 1.0, 0.0, 1.0);
   plwind(0.0, 1.0, 0.0, 1.0);
+  // The title, centred on the page (measured down from its top edge).
+  if (!chart.title.empty()) {
+    set_font(chart.title_font);
+    plmtex("t", -(m.margin + 0.7 * m.font) / (kCharacterHeight * chart.title_font), 0.5, 0.5,
+           chart.title.c_str());
+  }
   const PLFLT right = std::min(chart.right, paint_legend(chart));
   plvpor(chart.left, right, chart.bottom, chart.top);
   plwind(world(chart.x.lo, chart.x.log), world(chart.x.hi, chart.x.log),
@@ -453,10 +486,6 @@ PLFLT paint_chart(const PreparedChart& chart, FILE* file) {
   set_font(m.font);
   if (!chart.x_label.empty()) plmtex("b", chart.x_label_offset, 0.5, 0.5, chart.x_label.c_str());
   if (!chart.y_label.empty()) plmtex("l", chart.y_label_offset, 0.5, 0.5, chart.y_label.c_str());
-  if (!chart.title.empty()) {
-    set_font(1.2 * m.font);
-    plmtex("t", 1.0, 0.5, 0.5, chart.title.c_str());
-  }
   plend1();
   return right;
 }
@@ -547,7 +576,8 @@ std::pair<ChartAxis, ChartAxis> chart_axes(const ChartSpec& spec) {
       hi = hi.cwiseMax(p);
     }
   }
-  return {padded_axis(lo.x(), hi.x(), spec.log_x), padded_axis(lo.y(), hi.y(), spec.log_y)};
+  return {chosen_axis(spec.x_range, lo.x(), hi.x(), spec.log_x, "x"),
+          chosen_axis(spec.y_range, lo.y(), hi.y(), spec.log_y, "y")};
 }
 
 ChartFrame draw_chart(const std::string& path, const ChartSpec& spec) {

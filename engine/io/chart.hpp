@@ -4,7 +4,9 @@
 // .pdf (sizes in pt).
 #pragma once
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
@@ -37,6 +39,9 @@ struct ChartSpec {
   std::string title;                  // above the plot; none when empty
   std::string x_label, y_label;       // under the x axis, along the y axis; none when empty
   bool log_x = false, log_y = false;  // log axes take values > 0 only
+  // An axis's ends (lo < hi, finite; > 0 on a log axis) instead of the
+  // data's padded range; what lies outside is cut off.
+  std::optional<std::pair<double, double>> x_range, y_range;
   int width = 900, height = 600;      // px for .png, pt for .svg and .pdf; each in [200, 16384]
 };
 
@@ -49,7 +54,8 @@ Rgb chart_series_color(int k);
 struct ChartAxis {
   // The data's range widened by 4 % of it on each side (of its log10 on a
   // log axis), so that no point sits on the frame. A single value v gets
-  // v ± 5 % of |v| (± 0.5 for 0), or a factor 10^0.25 on a log axis.
+  // v ± 5 % of |v| (± 0.5 for 0), or a factor 10^0.25 on a log axis. Or
+  // the spec's range, when it gives one.
   double lo = 0.0, hi = 1.0;
   bool log = false;
 
@@ -69,7 +75,7 @@ struct ChartFrame {
 
 // The axes draw_chart uses for spec. Throws InvalidArgument for a size
 // outside [200, 16384], no point, a non-finite coordinate or a value <= 0 on
-// a log axis, naming the series and the point.
+// a log axis (naming the series and the point), or a bad range.
 std::pair<ChartAxis, ChartAxis> chart_axes(const ChartSpec& spec);
 
 // Draws the chart with PLplot and writes it atomically to path: grid lines

@@ -164,6 +164,24 @@ describe("ashlar.chart", function()
     assert.equal(16384, height)
   end)
 
+  it("takes the axes' ends from x_range and y_range, cutting off what lies outside", function()
+    local r = ashlar.chart{ path = dir .. "/range.svg", data = study(), x = "t", y = "infeasibility", series = "n",
+                            x_range = { 0.1, 0.2 }, y_range = { -1, 1 }, kind = "points" }
+    assert.equal(4, r.series[1].points)
+    local svg = support.read_file(dir .. "/range.svg")
+    local texts = svg_texts(svg)
+    assert.is_true(contains(texts, "0.10"))
+    assert.is_true(contains(texts, "0.20"))
+    assert.is_true(contains(texts, "-1.0"))
+    assert.is_false(contains(texts, "0.08"))
+    -- Of each line's markers only those at t = 0.1 .. 0.12 are drawn (3 + 3
+    -- of 8), plus one per legend entry.
+    local markers = 0
+    for _ in svg:gmatch("&#x25cf;") do markers = markers + 1 end
+    for _ in svg:gmatch("&#x25a0;") do markers = markers + 1 end
+    assert.equal(3 + 3 + 2, markers)
+  end)
+
   it("labels log axes at their decades", function()
     local rows = {}
     for k = 0, 3 do rows[#rows + 1] = { blocks = 10 ^ (k + 1), seconds = 10 ^ (2 * k - 4) } end
@@ -184,7 +202,12 @@ describe("ashlar.chart", function()
     end
     expect_error({ "bad argument #1", "expected an option table" }, ashlar.chart, path)
     expect_error({ "bad argument #1", "unknown option 'colour'", "(allowed: data, height, kind, log_x, "
-                   .. "log_y, path, series, title, width, x, x_label, y, y_label)" }, chart, { colour = "red" })
+                   .. "log_y, path, series, title, width, x, x_label, x_range, y, y_label, y_range)" }, chart,
+                 { colour = "red" })
+    expect_error({ "x_range: expected {lo, hi}, got number" }, chart, { x_range = 1 })
+    expect_error({ "chart: y_range must be finite with lo < hi, got {2, 1}" }, chart, { y_range = { 2, 1 } })
+    expect_error({ "chart: y_range must be finite with lo < hi and lo > 0 (log axis), got {0, 1}" }, chart,
+      { y_range = { 0, 1 }, log_y = true, data = { { t = 1, infeasibility = 1 } } })
     expect_error({ "bad argument #1", "path: required, the file to write (.png, .svg or .pdf)" },
       ashlar.chart, { data = rows, x = "t", y = "infeasibility" })
     expect_error({ "data: required, a list of row tables" }, ashlar.chart, { path = path, x = "t", y = "n" })

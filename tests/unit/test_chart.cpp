@@ -148,6 +148,25 @@ TEST(ChartAxes, PadTheData) {
   EXPECT_DOUBLE_EQ(single_y.hi, 0.5);
 }
 
+TEST(ChartAxes, TakeTheGivenRanges) {
+  ChartSpec spec = crossing_series();
+  spec.x_range = std::make_pair(0.5, 1.5);
+  spec.y_range = std::make_pair(-8.0, 2.0);
+  const auto [x, y] = chart_axes(spec);
+  EXPECT_EQ(x.lo, 0.5);
+  EXPECT_EQ(x.hi, 1.5);
+  EXPECT_EQ(y.lo, -8.0);
+  EXPECT_EQ(y.hi, 2.0);
+  spec.log_y = true;
+  spec.series = {{"positive", {{1, 1}}}};
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
+                       "chart: y_range must be finite with lo < hi and lo > 0 (log axis), got {-8, 2}"));
+  spec.log_y = false;
+  spec.x_range = std::make_pair(1.0, 1.0);
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
+                       "chart: x_range must be finite with lo < hi, got {1, 1}"));
+}
+
 TEST(ChartAxes, RejectBadSpecs) {
   ChartSpec spec = crossing_series();
   spec.width = 199;
