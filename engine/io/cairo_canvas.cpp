@@ -1,9 +1,8 @@
-// Rendering into memory (the SVG and PDF surfaces write to a stream, the
+// Rendering into memory (the SVG surface writes to a stream, the
 // image surface is encoded as PNG into a string), so that the file is
 // written whole by write_file_atomically or not at all.
 #include "io/cairo_canvas.hpp"
 
-#include <cairo-pdf.h>
 #include <cairo-svg.h>
 
 #include <new>
@@ -28,14 +27,10 @@ struct SurfaceDeleter {
   void operator()(cairo_surface_t* surface) const { cairo_surface_destroy(surface); }
 };
 
+// Drawings are SVG or PNG (drawing_format).
 cairo_surface_t* create_surface(ImageFormat format, int width, int height, std::string& bytes) {
-  switch (format) {
-    case ImageFormat::svg:
-      return cairo_svg_surface_create_for_stream(append_to_string, &bytes, width, height);
-    case ImageFormat::pdf:
-      return cairo_pdf_surface_create_for_stream(append_to_string, &bytes, width, height);
-    case ImageFormat::png:
-      break;
+  if (format == ImageFormat::svg) {
+    return cairo_svg_surface_create_for_stream(append_to_string, &bytes, width, height);
   }
   return cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
 }

@@ -16,8 +16,8 @@
 
 namespace ashlar {
 
-// Paints a white image of width x height (px for PNG, pt for SVG and PDF)
-// with `paint` and writes it to path atomically. `paint` must not throw.
+// Paints a white image of width x height (px for PNG, pt for SVG) with
+// `paint` and writes it to path atomically. `paint` must not throw.
 // Throws IoError naming `what` and the path when cairo fails or the file
 // cannot be written.
 void render_file(const std::string& path, ImageFormat format, int width, int height,

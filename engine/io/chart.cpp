@@ -1,44 +1,26 @@
-// Charts through PLplot. Everything PLplot is given (coordinates, text,
-// legend arrays, the layout) is prepared first, in plain C++; then one
-// function makes the PLplot calls on a stream of its own, under a mutex,
-// since PLplot keeps global state (the current stream, its error handlers,
-// the LC_NUMERIC switches around each driver call). PLplot writes into
-// memory (open_memstream); the file is then written whole or not at all.
-//
-// Devices: the cairo drivers for .png and .pdf (pango text, antialiased),
-// PLplot's own svg driver for .svg, which writes text as <text> elements
-// (cairo's SVG surface turns every glyph into a path, so the labels could
-// not be searched, selected or checked).
+// Charts through PLplot (io/plplot_picture). Everything PLplot is given
+// (coordinates, text, legend arrays, the layout) is prepared first, in
+// plain C++; then one painter makes the PLplot calls.
 //
 // Sizes that depend on the image (margins, fonts, line widths) follow its
-// smaller side, so that a larger image looks the same, only sharper. The
-// cairo and svg drivers take the page in px (pt) at 72 dpi, and write text
-// at 4/3 of PLplot's character height (pango's 96 dpi, the svg driver's
-// ratio 1.34): a font of s px is a character height of s * 25.4 / 96 mm.
+// smaller side, so that a larger image looks the same, only sharper.
 #include "io/chart.hpp"
-
-#include <plplot.h>
 
 #include <algorithm>
 #include <cmath>
-#include <csetjmp>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
-#include <mutex>
 #include <tuple>
 #include <sstream>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/image_format.hpp"
+#include "io/plplot_picture.hpp"
 
 namespace ashlar {
 namespace {
 
 constexpr int kMinImageSize = 200;
-constexpr int kMaxImageSize = 16384;
 // Room around the data on each axis, as a fraction of its range.
 constexpr double kAxisPadding = 0.04;
 // A single value v is shown over v ± this fraction of |v| (± 0.5 for 0), or
@@ -52,9 +34,6 @@ constexpr double kLegendWidthShare = 0.35;
 // digits, spaces), in font sizes: to leave room for text before PLplot has
 // drawn it.
 constexpr double kCharacterWidth = 0.5;
-// PLplot's character height over the drivers' font size.
-constexpr double kCharacterHeight = 0.75;
-constexpr double kMillimetresPerPoint = 25.4 / 72.0;
 
 // Okabe & Ito (2008), "Color universal design", in an order whose first
 // colours differ most, yellow last (it is faint on white).
@@ -109,14 +88,7 @@ std::string number_text(double value) {
 }
 
 void check_spec(const ChartSpec& spec) {
-  for (const int size : {spec.width, spec.height}) {
-    if (size < kMinImageSize || size > kMaxImageSize) {
-      throw InvalidArgument("chart: width and height must lie in [" +
-                            std::to_string(kMinImageSize) + ", " + std::to_string(kMaxImageSize) +
-                            "], got " + std::to_string(spec.width) + " x " +
-                            std::to_string(spec.height));
-    }
-  }
+  check_image_size(spec.width, spec.height, kMinImageSize, "chart");
   bool any_point = false;
   for (const ChartSeries& series : spec.series) {
     for (size_t k = 0; k < series.points.size(); ++k) {
@@ -179,13 +151,6 @@ ChartAxis chosen_axis(const std::optional<std::pair<double, double>>& range, dou
 // ---------------------------------------------------------------------------
 // What PLplot is given
 
-// PLplot reads '#' as the start of an escape sequence (#u: superscript, ...).
-std::string plplot_text(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) escaped += c == '#' ? "##" : std::string(1, c);
-  return escaped;
-}
-
 // A value along an axis in PLplot's world coordinates: log10 on log axes.
 double world(double value, bool log) { return log ? std::log10(value) : value; }
 
@@ -212,7 +177,6 @@ struct PreparedSeries {
 // Everything the PLplot calls need, in their types; the strings and arrays
 // outlive the calls.
 struct PreparedChart {
-  const char* device = nullptr;
   PLINT width = 0, height = 0;
   ChartMetrics metrics{kMinImageSize, kMinImageSize};
   ChartAxis x, y;
@@ -234,18 +198,6 @@ struct PreparedChart {
   PLFLT legend_scale = 1.0;
   PLFLT legend_sample = 0.0;  // length of a line sample, normalised to the width
 };
-
-const char* device_of(ImageFormat format) {
-  switch (format) {
-    case ImageFormat::png:
-      return "pngcairo";
-    case ImageFormat::pdf:
-      return "pdfcairo";
-    case ImageFormat::svg:
-      break;
-  }
-  return "svg";
-}
 
 bool has_lines(ChartKind kind) { return kind != ChartKind::points; }
 bool has_markers(ChartKind kind) {
@@ -314,9 +266,8 @@ void prepare_legend(const ChartSpec& spec, PreparedChart& chart) {
   }
 }
 
-PreparedChart prepare(const ChartSpec& spec, ImageFormat format) {
+PreparedChart prepare(const ChartSpec& spec) {
   PreparedChart chart;
-  chart.device = device_of(format);
   chart.width = spec.width;
   chart.height = spec.height;
   chart.metrics = ChartMetrics(spec.width, spec.height);
@@ -333,13 +284,13 @@ PreparedChart prepare(const ChartSpec& spec, ImageFormat format) {
   const double top = m.margin + (spec.title.empty() ? 0.6 * m.tick_font : 2.2 * m.font);
   const double x_labels = 2.6 * m.tick_font;
   const double bottom = m.margin + x_labels + (spec.x_label.empty() ? 0.0 : 1.6 * m.font);
-  chart.x_label_offset = (x_labels + 0.8 * m.font) / (kCharacterHeight * m.font);
+  chart.x_label_offset = (x_labels + 0.8 * m.font) / (kPlplotCharacterHeight * m.font);
   // Left to right: y label, y tick labels, plot, legend.
   const int label_characters =
       spec.log_y ? 5 : linear_label_characters(chart.y.lo, chart.y.hi);
   const double y_labels = (kCharacterWidth * label_characters + 1.0) * m.tick_font;
   const double left = m.margin + y_labels + (spec.y_label.empty() ? 0.0 : 1.5 * m.font);
-  chart.y_label_offset = (y_labels + 0.6 * m.font) / (kCharacterHeight * m.font);
+  chart.y_label_offset = (y_labels + 0.6 * m.font) / (kPlplotCharacterHeight * m.font);
   chart.top = 1.0 - top / spec.height;
   chart.bottom = bottom / spec.height;
   chart.left = left / spec.width;
@@ -360,35 +311,12 @@ PreparedChart prepare(const ChartSpec& spec, ImageFormat format) {
 // ---------------------------------------------------------------------------
 // The PLplot calls
 
-// PLplot calls its exit handler on errors it cannot go on from (no driver,
-// no memory) and exit()s the process when the handler returns. The handler
-// jumps back to draw_with_plplot instead; between the two there are only
-// PLplot's C frames and paint_chart's, which holds nothing with a
-// destructor. Guarded by the mutex, like everything else of PLplot's.
-std::mutex plplot_mutex;
-std::jmp_buf* plplot_exit_jump = nullptr;
-char plplot_exit_message[512];
-
-int on_plplot_exit(const char* message) {
-  std::snprintf(plplot_exit_message, sizeof plplot_exit_message, "%s", message);
-  if (plplot_exit_jump) std::longjmp(*plplot_exit_jump, 1);
-  return 1;  // unreachable: PLplot is called only by draw_with_plplot
-}
-
-PLINT rgb_byte(double channel) { return static_cast<PLINT>(std::lround(channel * 255)); }
-
-void set_color(PLINT index, const Rgb& color) {
-  plscol0(index, rgb_byte(color.r), rgb_byte(color.g), rgb_byte(color.b));
-}
-
-void set_font(double size_px) { plschr(kCharacterHeight * size_px * kMillimetresPerPoint, 1.0); }
-
 // The legend goes first, right of the plot area's top, placed on the page;
 // PLplot says how wide it came out, and the plot area ends left of it.
 PLFLT paint_legend(const PreparedChart& chart) {
   const ChartMetrics& m = chart.metrics;
   if (chart.legend_names.empty()) return chart.right;
-  set_font(m.tick_font);
+  plplot_font(m.tick_font);
   PLFLT width = 0.0, height = 0.0;
   pllegend(&width, &height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
            PL_POSITION_RIGHT | PL_POSITION_TOP | PL_POSITION_INSIDE | PL_POSITION_SUBPAGE,
@@ -408,44 +336,30 @@ const char* axis_options(const char* options, const char* log_options, bool log)
   return log ? log_options : options;
 }
 
-// Whether PLplot found `device` among its drivers: asked for one it does not
-// have, it would ask for another on stdin.
-bool has_device(const char* device) {
-  const char* menus[128];
-  const char* names[128];
-  const char** menu_list = menus;
-  const char** name_list = names;
-  int count = 128;
-  plgDevs(&menu_list, &name_list, &count);
-  for (int k = 0; k < count; ++k) {
-    if (std::strcmp(names[k], device) == 0) return true;
-  }
-  return false;
-}
+// What paint_chart is given, and where the plot area ended.
+struct ChartPainting {
+  const PreparedChart* chart;
+  PLFLT right;  // normalised page coordinates
+};
 
-// Draws the chart on the current stream, from plinit to plend1. Locals are
-// plain values only (see on_plplot_exit). Returns the plot area's right end.
-PLFLT paint_chart(const PreparedChart& chart, FILE* file) {
+// The chart's PLplot calls (a PlplotPainter: plain values only).
+void paint_chart(void* context) {
+  ChartPainting& painting = *static_cast<ChartPainting*>(context);
+  const PreparedChart& chart = *painting.chart;
   const ChartMetrics& m = chart.metrics;
-  plsdev(chart.device);
-  plsfile(file);
-  plspage(0.0, 0.0, chart.width, chart.height, 0, 0);
-  plspause(0);
   plscmap0n(kFirstSeries + kPaletteSize);
-  set_color(kBackground, {1.0, 1.0, 1.0});
-  set_color(kText, kTextColor);
-  set_color(kGrid, kGridColor);
-  set_color(kMinorGrid, kMinorGridColor);
-  set_color(kLegendBorder, kLegendBorderColor);
-  for (int k = 0; k < kPaletteSize; ++k) set_color(kFirstSeries + k, kPalette[k]);
-  plinit();
-  pladv(0);
+  plplot_color(kBackground, {1.0, 1.0, 1.0});
+  plplot_color(kText, kTextColor);
+  plplot_color(kGrid, kGridColor);
+  plplot_color(kMinorGrid, kMinorGridColor);
+  plplot_color(kLegendBorder, kLegendBorderColor);
+  for (int k = 0; k < kPaletteSize; ++k) plplot_color(kFirstSeries + k, kPalette[k]);
   plvpor(0.0, 1.0, 0.0, 1.0);
   plwind(0.0, 1.0, 0.0, 1.0);
   // The title, centred on the page (measured down from its top edge).
   if (!chart.title.empty()) {
-    set_font(chart.title_font);
-    plmtex("t", -(m.margin + 0.7 * m.font) / (kCharacterHeight * chart.title_font), 0.5, 0.5,
+    plplot_font(chart.title_font);
+    plmtex("t", -(m.margin + 0.7 * m.font) / (kPlplotCharacterHeight * chart.title_font), 0.5, 0.5,
            chart.title.c_str());
   }
   const PLFLT right = std::min(chart.right, paint_legend(chart));
@@ -462,7 +376,7 @@ PLFLT paint_chart(const PreparedChart& chart, FILE* file) {
   plbox(axis_options("g", "gl", chart.x.log), 0.0, 0, axis_options("g", "gl", chart.y.log), 0.0,
         0);
 
-  set_font(m.tick_font);
+  plplot_font(m.tick_font);
   for (const PreparedSeries& series : chart.series) {
     plcol0(series.color);
     if (!series.line_x.empty()) {
@@ -483,59 +397,10 @@ PLFLT paint_chart(const PreparedChart& chart, FILE* file) {
   plwidth(m.line);
   plbox(axis_options("bcnst", "bcnstl", chart.x.log), 0.0, 0,
         axis_options("bcnstv", "bcnstvl", chart.y.log), 0.0, 0);
-  set_font(m.font);
+  plplot_font(m.font);
   if (!chart.x_label.empty()) plmtex("b", chart.x_label_offset, 0.5, 0.5, chart.x_label.c_str());
   if (!chart.y_label.empty()) plmtex("l", chart.y_label_offset, 0.5, 0.5, chart.y_label.c_str());
-  plend1();
-  return right;
-}
-
-struct PlplotOutcome {
-  bool drawn = false;
-  PLFLT right = 1.0;   // where the plot area ended, normalised
-  std::string error;   // what PLplot said when not drawn
-};
-
-// Runs paint_chart on a new PLplot stream with output into `file`, which
-// PLplot closes when it ends the stream. Call with plplot_mutex held.
-PlplotOutcome draw_with_plplot(const PreparedChart& chart, FILE* file) {
-  static char abort_message[2048];  // plsError: PLplot writes what failed here
-  PLINT abort_code = 0;
-  PlplotOutcome outcome;
-  std::jmp_buf jump;
-  volatile int stage = 0;  // 1: the stream exists, 2: ending it after an exit
-  plsexit(on_plplot_exit);
-  plplot_exit_jump = &jump;
-  if (setjmp(jump) == 0) {
-    if (!has_device(chart.device)) {
-      outcome.error = std::string("its '") + chart.device +
-                      "' device is missing (Debian: plplot-driver-cairo, libplplot17)";
-      std::fclose(file);
-      plplot_exit_jump = nullptr;
-      return outcome;
-    }
-    PLINT stream = 0;
-    plmkstrm(&stream);
-    stage = 1;
-    // Errors PLplot can go on from are written here instead of stderr.
-    abort_message[0] = '\0';
-    plsError(&abort_code, abort_message);
-    outcome.right = paint_chart(chart, file);
-    outcome.drawn = abort_code == 0;
-    if (!outcome.drawn) outcome.error = abort_message;
-  } else {
-    outcome.error = plplot_exit_message;
-    if (stage == 1) {
-      stage = 2;
-      PLINT level = 0;
-      plglevel(&level);
-      plend1();
-      // Before plinit took it, the file is still ours.
-      if (level == 0) std::fclose(file);
-    }
-  }
-  plplot_exit_jump = nullptr;
-  return outcome;
+  painting.right = right;
 }
 
 }  // namespace
@@ -583,27 +448,15 @@ std::pair<ChartAxis, ChartAxis> chart_axes(const ChartSpec& spec) {
 ChartFrame draw_chart(const std::string& path, const ChartSpec& spec) {
   const ImageFormat format =
       image_format(path, {ImageFormat::png, ImageFormat::svg, ImageFormat::pdf}, "chart");
-  const PreparedChart chart = prepare(spec, format);
-  char* buffer = nullptr;
-  size_t size = 0;
-  PlplotOutcome outcome;
-  {
-    const std::lock_guard<std::mutex> lock(plplot_mutex);
-    FILE* file = open_memstream(&buffer, &size);
-    if (!file) throw IoError("chart: cannot draw '" + path + "': out of memory");
-    outcome = draw_with_plplot(chart, file);
-  }
-  const std::string bytes = buffer ? std::string(buffer, size) : std::string();
-  std::free(buffer);
-  if (!outcome.drawn) {
-    throw IoError("chart: PLplot could not draw '" + path + "': " + outcome.error);
-  }
-  write_file_atomically(path, bytes);
+  const PreparedChart chart = prepare(spec);
+  ChartPainting painting{&chart, chart.right};
+  write_file_atomically(path, plplot_picture(format, spec.width, spec.height, paint_chart,
+                                             &painting, "chart", path));
   ChartFrame frame;
   frame.x = chart.x;
   frame.y = chart.y;
   frame.plot.left = chart.left * spec.width;
-  frame.plot.width = (outcome.right - chart.left) * spec.width;
+  frame.plot.width = (painting.right - chart.left) * spec.width;
   frame.plot.top = (1.0 - chart.top) * spec.height;
   frame.plot.height = (chart.top - chart.bottom) * spec.height;
   return frame;

@@ -33,4 +33,14 @@ ImageFormat image_format(const std::string& path, const std::vector<ImageFormat>
                         "' from its extension; use " + listed);
 }
 
+void check_image_size(int width, int height, int least, const std::string& what) {
+  for (const int size : {width, height}) {
+    if (size < least || size > kMaxImageSize) {
+      throw InvalidArgument(what + ": width and height must lie in [" + std::to_string(least) +
+                            ", " + std::to_string(kMaxImageSize) + "], got " +
+                            std::to_string(width) + " x " + std::to_string(height));
+    }
+  }
+}
+
 }  // namespace ashlar

@@ -4,6 +4,7 @@ local ashlar = require "ashlar"
 
 local support = require "spec_support"
 local expect_error = support.expect_error
+local svg_texts, contains = support.svg_texts, support.contains
 
 local PNG_SIGNATURE = "\137PNG\r\n\26\n"
 
@@ -31,30 +32,6 @@ local function study()
     end
   end
   return rows
-end
-
--- The text of each <text> element of an SVG that PLplot's svg driver wrote
--- (every character as &#xHH;; a superscript in a <tspan> raised by dy < 0,
--- here written "^": "10^-6").
-local function svg_texts(svg)
-  local texts = {}
-  for body in svg:gmatch("<text.->(.-)</text>") do
-    body = body:gsub('<tspan dy="%-[^>]*>', "^")
-    local text = {}
-    for piece in body:gmatch("[%^]?&#x%x+;") do
-      local raised, code = piece:match("^(%^?)&#x(%x+);$")
-      text[#text + 1] = raised .. utf8.char(tonumber(code, 16))
-    end
-    texts[#texts + 1] = table.concat(text)
-  end
-  return texts
-end
-
-local function contains(list, value)
-  for _, item in ipairs(list) do
-    if item == value then return true end
-  end
-  return false
 end
 
 -- The Okabe-Ito colours of the first three series, as the SVG writes them.
