@@ -15,9 +15,9 @@ cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")"
 readonly DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libopenblas0-pthread libcgal-dev libgmp-dev libmpfr-dev
-  libassimp-dev liblbfgspp-dev libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev coinor-libclp-dev libcairo2-dev
+  libassimp-dev liblbfgspp-dev libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev coinor-libclp-dev libcairo2-dev libplplot-dev plplot-driver-cairo
   googletest libgtest-dev lua-busted valgrind libreadline-dev
-  nodejs npm gnuplot-nox python3 python3-cvxopt python3-numpy chromium
+  nodejs npm python3 python3-cvxopt python3-numpy chromium
 )
 # Node.js may come from outside Debian (NodeSource's nodejs bundles npm and
 # conflicts with Debian's npm): for these a working command is enough.

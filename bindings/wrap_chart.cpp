@@ -9,6 +9,7 @@
 #include "io/chart_rows.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"
+#include "wrap_colors.hpp"
 
 namespace ashlar::lua {
 namespace {
@@ -126,7 +127,8 @@ int w_chart(lua_State* L) {
     }
     const OptionTable options(L, 1,
                               {"path", "data", "x", "y", "series", "kind", "title", "x_label",
-                               "y_label", "log_x", "log_y", "width", "height"});
+                               "y_label", "log_x", "log_y", "x_range", "y_range", "width",
+                               "height"});
     const std::string path =
         required_string(options, "path", "the file to write (.png, .svg or .pdf)");
     sandbox::require_access(L, 1, "path", path, sandbox::Access::write);
@@ -143,6 +145,10 @@ int w_chart(lua_State* L) {
     spec.y_label = options.string("y_label").value_or(joined(columns.y));
     spec.log_x = options.boolean("log_x").value_or(false);
     spec.log_y = options.boolean("log_y").value_or(false);
+    if (options.push("x_range") != LUA_TNIL) spec.x_range = to_range(L, -1, 1, "x_range");
+    lua_pop(L, 1);
+    if (options.push("y_range") != LUA_TNIL) spec.y_range = to_range(L, -1, 1, "y_range");
+    lua_pop(L, 1);
     spec.width = image_size(options, "width", spec.width);
     spec.height = image_size(options, "height", spec.height);
     RowSeries lines = series_from_rows(rows, columns);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/color_map.hpp"
+#include "io/color_legend.hpp"
 #include "io/drawing.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"

@@ -1,10 +1,11 @@
 -- Benchmark of the equilibrium analysis against block count, on running-bond
 -- walls and semicircular barrel vaults, with cvxopt on the same QP as a
 -- reference for speed and for the optimum.
---   ashlar scripts/bench_analysis.lua [output folder]
+--   ashlar scripts/bench_analysis.lua [output folder] [--charts]
 -- Writes analysis_scaling.csv and log-log charts against blocks of time
 -- (analysis_scaling.png/.svg) and peak memory (analysis_memory.png/.svg) to
--- the folder (default "."). Each size runs in its own process so that its
+-- the folder (default "."); with --charts, only draws the charts again from
+-- the CSV already there. Each size runs in its own process so that its
 -- peak memory is its own. cvxopt (Debian's python3-cvxopt, through
 -- tests/tools/solve_qps.py) solves the exported QP for the smaller sizes;
 -- only its solve is timed, not reading the file.
@@ -112,7 +113,8 @@ if arg[1] == "--measure" then
   return
 end
 
-local write_atomically = require("script_support").write_atomically
+local support = require "script_support"
+local write_atomically = support.write_atomically
 
 local function split_csv(line)
   local fields = {}
@@ -120,19 +122,16 @@ local function split_csv(line)
   return fields
 end
 
-local WALL_STYLE, VAULT_STYLE = "lc rgb '#1f77b4' pt 7", "lc rgb '#d62728' pt 5"
 local CHARTS = {
   {
     name = "analysis_scaling",
     title = "Equilibrium analysis time against block count (friction 0.7, 4-sided pyramid)",
     ylabel = "wall-clock time (s)",
     series = {
-      { kind = "wall", column = "analysis_s", title = "ashlar, running-bond wall", style = WALL_STYLE },
-      { kind = "vault", column = "analysis_s", title = "ashlar, barrel vault", style = VAULT_STYLE },
-      { kind = "wall", column = "cvxopt_s", title = "cvxopt (solve only), running-bond wall",
-        style = "lc rgb '#1f77b4' pt 6 dt 2" },
-      { kind = "vault", column = "cvxopt_s", title = "cvxopt (solve only), barrel vault",
-        style = "lc rgb '#d62728' pt 4 dt 2" },
+      { kind = "wall", column = "analysis_s", title = "ashlar, running-bond wall" },
+      { kind = "vault", column = "analysis_s", title = "ashlar, barrel vault" },
+      { kind = "wall", column = "cvxopt_s", title = "cvxopt (solve only), running-bond wall" },
+      { kind = "vault", column = "cvxopt_s", title = "cvxopt (solve only), barrel vault" },
     },
   },
   {
@@ -140,14 +139,32 @@ local CHARTS = {
     title = "Peak memory of building and analysing a structure against block count",
     ylabel = "peak resident memory (MiB)",
     series = {
-      { kind = "wall", column = "peak_mb", title = "ashlar, running-bond wall", style = WALL_STYLE },
-      { kind = "vault", column = "peak_mb", title = "ashlar, barrel vault", style = VAULT_STYLE },
+      { kind = "wall", column = "peak_mb", title = "ashlar, running-bond wall" },
+      { kind = "vault", column = "peak_mb", title = "ashlar, barrel vault" },
     },
   },
 }
 local log_chart = dofile((arg[0]:match("^(.*)/") or ".") .. "/log_chart.lua")
 
+local charts_only = support.charts_only()
 local folder = arg[1] or "."
+local csv_path = folder .. "/analysis_scaling.csv"
+
+-- The charts from the rows (one per CSV line); returns the files written.
+local function draw_charts(rows)
+  local written = {}
+  for _, chart in ipairs(CHARTS) do
+    log_chart.draw_all(chart, rows, folder .. "/" .. chart.name)
+    written[#written + 1] = ("%s/%s.png, .svg"):format(folder, chart.name)
+  end
+  return written
+end
+
+if charts_only then
+  print("wrote " .. table.concat(draw_charts(support.read_csv(csv_path)), ", ") .. " from " .. csv_path)
+  return
+end
+
 local interpreter = arg[-1] or "ashlar"
 local header_names = split_csv(CSV_HEADER)
 local csv_lines = { CSV_HEADER }
@@ -203,13 +220,7 @@ end
 print(("cvxopt: not run above %d blocks. \"total s\" is ashlar's analysis without contact detection;"):format(
   CVXOPT_MAX_BLOCKS) .. " speedup = cvxopt's solve time / ashlar's total")
 
-local csv_path = folder .. "/analysis_scaling.csv"
 write_atomically(csv_path, table.concat(csv_lines, "\n") .. "\n")
 local written = { csv_path }
-for _, chart in ipairs(CHARTS) do
-  log_chart.draw_all(chart, rows, folder .. "/" .. chart.name)
-  for _, terminal in ipairs(log_chart.terminals) do
-    written[#written + 1] = ("%s/%s.%s"):format(folder, chart.name, terminal.extension)
-  end
-end
+for _, path in ipairs(draw_charts(rows)) do written[#written + 1] = path end
 print(("wrote %s in %.0f s"):format(table.concat(written, ", "), ashlar.clock() - started))

@@ -52,29 +52,18 @@ local function minimum_thickness_ratio(voussoirs)
   return run
 end
 
--- The chart: error against bisection time, labelled by count.
+-- The chart: error against bisection time, one marker per count of
+-- voussoirs (named in the legend).
 local function chart(runs)
-  local points = {}
+  local rows = {}
   for _, run in ipairs(runs) do
-    if run.ratio then
-      points[#points + 1] = ("%.9g %.9g %d"):format(run.seconds, math.abs(run.error), run.voussoirs)
-    end
+    if run.ratio then rows[#rows + 1] = { seconds = run.seconds, error = math.abs(run.error), N = run.voussoirs } end
   end
-  -- Inline data: gnuplot reads it twice (points and labels).
-  local data = "$points << EOD\n" .. table.concat(points, "\n") .. "\nEOD\n"
-  script_support.chart(base, data .. [[
-set logscale xy
-set format x "10^{%L}"
-set format y "10^{%L}"
-set title "Semicircular arch: minimum thickness t/R by bisection (no sliding)\nerror against Milankovitch's limit 0.1075, labels: number of voussoirs N"
-set xlabel "wall time of the bisection (s)"
-set ylabel "|t/R - 0.1075| (t: thickness, R: centreline radius; dimensionless)"
-set grid xtics ytics mxtics mytics lc rgb "#dddddd"
-set key off
-set offsets graph 0.08, graph 0.12, graph 0.1, graph 0.1
-plot $points using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4", \
-     $points using 1:2:("N = ".strcol(3)) with labels offset char 1.2, char 0.6 left font ",10"
-]])
+  script_support.chart(base, { data = rows, x = "seconds", y = "error", series = "N", kind = "points",
+    log_x = true, log_y = true,
+    title = "Semicircular arch: minimum t/R by bisection (no sliding), error against Milankovitch's 0.1075",
+    x_label = "wall time of the bisection (s)",
+    y_label = "|t/R - 0.1075| (t: thickness, R: centreline radius)" })
 end
 
 script_support.make_folders(output)

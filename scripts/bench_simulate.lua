@@ -70,6 +70,6 @@ print("wrote " .. csv_path)
 local log_chart = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/log_chart.lua")
 log_chart.draw_all({ title = "ashlar.simulate: running-bond walls, 10 courses, step 1 ms",
                      ylabel = "wall-clock seconds per simulated second",
-                     series = { { kind = "at rest", column = "per_second", title = "at rest", style = "pt 7" },
-                                { kind = "shaken", column = "per_second", title = "ground 0.3 g, 2 Hz", style = "pt 5" } } },
+                     series = { { kind = "at rest", column = "per_second", title = "at rest" },
+                                { kind = "shaken", column = "per_second", title = "ground 0.3 g, 2 Hz" } } },
   rows, folder .. "/bench_simulate")

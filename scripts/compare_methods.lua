@@ -4,13 +4,37 @@
 -- case; both verdicts for every model of the library at its defaults; the
 -- load factor of a running-bond wall by each method; and the time of each
 -- method against block count.
---   ashlar scripts/compare_methods.lua [folder for kinematic_scaling.csv and charts (default .)]
+--   ashlar scripts/compare_methods.lua [folder for kinematic_scaling.csv and charts (default .)] [--charts]
+-- With --charts it only draws the chart again from the folder's CSV.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
+local support = require "script_support"
 
+local charts_only = support.charts_only()
 local folder = arg[1] or "."
 local here = arg[0]:match("^(.*)/") or "."
 local log_chart = dofile(here .. "/log_chart.lua")
+
+-- Time against block count (rows of kinematic_scaling.csv), as
+-- kinematic_scaling.png and .svg.
+local function draw_scaling(rows)
+  log_chart.draw_all({
+    title = "Analysis time against block count: equilibrium and kinematic methods",
+    ylabel = "seconds (whole analysis)",
+    series = {
+      { kind = "wall", column = "equilibrium_s", title = "running-bond wall, equilibrium" },
+      { kind = "wall", column = "kinematic_s", title = "running-bond wall, kinematic" },
+      { kind = "vault", column = "equilibrium_s", title = "barrel vault, equilibrium" },
+      { kind = "vault", column = "kinematic_s", title = "barrel vault, kinematic" },
+    },
+  }, rows, folder .. "/kinematic_scaling")
+end
+
+if charts_only then
+  draw_scaling(support.read_csv(folder .. "/kinematic_scaling.csv"))
+  print("wrote " .. folder .. "/kinematic_scaling.png / .svg")
+  return
+end
 local cases_of = dofile(here .. "/kinematic_cases.lua")
 local clamped, wedge, flat_arch, incline, stack = cases_of.clamped, cases_of.wedge, cases_of.flat_arch,
   cases_of.incline, cases_of.stack
@@ -132,14 +156,5 @@ file:write(table.concat(rows, "\n"), "\n")
 file:close()
 assert(os.rename(csv .. ".tmp", csv))
 
-log_chart.draw_all({
-  title = "Analysis time against block count: equilibrium and kinematic methods",
-  ylabel = "seconds (whole analysis)",
-  series = {
-    { kind = "wall", column = "equilibrium_s", title = "running-bond wall, equilibrium", style = "lc rgb '#1f77b4' pt 7" },
-    { kind = "wall", column = "kinematic_s", title = "running-bond wall, kinematic", style = "lc rgb '#1f77b4' pt 5 dt 2" },
-    { kind = "vault", column = "equilibrium_s", title = "barrel vault, equilibrium", style = "lc rgb '#d62728' pt 7" },
-    { kind = "vault", column = "kinematic_s", title = "barrel vault, kinematic", style = "lc rgb '#d62728' pt 5 dt 2" },
-  },
-}, chart_rows, folder .. "/kinematic_scaling")
+draw_scaling(chart_rows)
 print("wrote " .. csv .. " and kinematic_scaling.png / .svg")

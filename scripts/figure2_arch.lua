@@ -49,14 +49,12 @@ end
 export(arch, "figure2_arch_before.glb")
 export(results.lbfgs.structure, "figure2_arch_after.glb")
 
-script_support.chart(folder .. "/figure2_arch", ([[
-set datafile separator ","
-set title "Unstable arch made stable (R = 5 m, t = 0.4 m, 24 voussoirs, no sliding)"
-set xlabel "iteration"
-set ylabel "infeasibility (tension / weight)"
-set key top right
-set grid
-set xtics 1
-plot "< grep '^gradient' %s" using 2:3 with linespoints lw 2 pt 7 title "gradient descent", \
-     "< grep '^lbfgs' %s" using 2:3 with linespoints lw 2 pt 5 title "L-BFGS"
-]]):format(folder .. "/figure2_arch.csv", folder .. "/figure2_arch.csv"))
+-- The chart from the CSV: one line per method, named in the legend.
+local NAMES = { gradient = "gradient descent", lbfgs = "L-BFGS" }
+local points = {}
+for _, row in ipairs(script_support.read_csv(folder .. "/figure2_arch.csv")) do
+  points[#points + 1] = { iteration = row.iteration, [NAMES[row.method]] = row.infeasibility }
+end
+script_support.chart(folder .. "/figure2_arch", { data = points, x = "iteration", y = { NAMES.gradient, NAMES.lbfgs },
+  title = "Unstable arch made stable (R = 5 m, t = 0.4 m, 24 voussoirs, no sliding)",
+  y_label = "infeasibility (tension / weight)" })

@@ -107,16 +107,14 @@ for _, case in ipairs(cases) do
 end
 
 local function csv(name) return ("%s/figure3_bridge_%s.csv"):format(folder, name) end
-script_support.chart(folder .. "/figure3_bridge", ([[
-set datafile separator ","
-set title "Cable-stayed bridge made stable by L-BFGS (Shin 2014, figure 3; friction 0.7)"
-set xlabel "iteration"
-set ylabel "penalty (infeasibility measure)"
-set logscale y
-set format y "%%g"
-set key top right
-set grid
-set xtics 1
-plot "%s" skip 1 using 1:2 with linespoints lw 2 pt 7 title "(b) vertical arch free", \
-     "%s" skip 1 using 1:2 with linespoints lw 2 pt 5 title "(c) walkway tops horizontal, all free"
-]]):format(csv("b"), csv("c")))
+-- The chart from the CSVs: one line per case, named in the legend.
+local CASES = { b = "(b) vertical arch free", c = "(c) walkway tops horizontal, all free" }
+local points = {}
+for _, name in ipairs{ "b", "c" } do
+  for _, row in ipairs(script_support.read_csv(csv(name))) do
+    points[#points + 1] = { iteration = row.iteration, [CASES[name]] = row.penalty }
+  end
+end
+script_support.chart(folder .. "/figure3_bridge", { data = points, x = "iteration", y = { CASES.b, CASES.c },
+  log_y = true, title = "Cable-stayed bridge made stable by L-BFGS (Shin 2014, figure 3; friction 0.7)",
+  y_label = "penalty (infeasibility measure)" })

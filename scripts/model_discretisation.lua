@@ -7,11 +7,12 @@
 --             within 1% (the answers are not monotone in the count: they
 --             depend on how near a joint falls to where the hinge forms).
 -- The generators' defaults are the settled counts.
---   ashlar scripts/model_discretisation.lua [output folder, default "."] [study ...]
+--   ashlar scripts/model_discretisation.lua [output folder, default "."] [study ...] [--charts]
 -- Studies: semicircular, pointed, segmental, elliptical, bridge_ring,
 -- barrel_vault, groin_vault, flying_buttress, dome (default: all). Writes
 -- model_discretisation.csv (one row per count) and a chart of the errors,
--- model_discretisation.png and .svg, in the folder.
+-- model_discretisation.png and .svg, in the folder; with --charts, only
+-- draws the chart again from the folder's CSV.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local script_support = require "script_support"
@@ -103,21 +104,60 @@ local STUDIES = {
 }
 local ORDER = { "semicircular", "pointed", "segmental", "elliptical", "bridge_ring", "barrel_vault", "groin_vault", "flying_buttress", "dome" }
 
+-- The first count from which every later one's |error| is within 1%.
+local function settled_count(counts, errors)
+  local settled
+  for i = #counts, 1, -1 do
+    if math.abs(errors[i]) > WITHIN then break end
+    settled = counts[i]
+  end
+  return settled
+end
+
+-- The chart from the CSV's rows: one line per study, its error in %
+-- against the count, named with its settled count.
+local function draw_chart(base, csv_rows)
+  local counts, errors, points, names = {}, {}, {}, {}
+  for _, row in ipairs(csv_rows) do
+    if not counts[row.study] then counts[row.study], errors[row.study] = {}, {} end
+    table.insert(counts[row.study], row.count)
+    table.insert(errors[row.study], row.relative_error or math.huge)
+  end
+  for _, key in ipairs(ORDER) do
+    if counts[key] then
+      local name = ("%s (settled from %s)"):format(STUDIES[key].name, tostring(settled_count(counts[key], errors[key])))
+      names[#names + 1] = name
+      for i, n in ipairs(counts[key]) do
+        if errors[key][i] ~= math.huge then points[#points + 1] = { count = n, [name] = 100 * errors[key][i] } end
+      end
+    end
+  end
+  -- The errors that decide (within a few %), the coarsest counts' cut off.
+  script_support.chart(base, { data = points, x = "count", y = names, y_range = { -8, 2 },
+    title = "Error of the main question's answer against the count, relative to a fine model",
+    x_label = "count (voussoirs; dome: parallels)", y_label = "relative error (%)" })
+end
+
+local charts_only = script_support.charts_only()
 local output = arg[1] or "."
 local base = output .. "/model_discretisation"
+if charts_only then
+  draw_chart(base, script_support.read_csv(base .. ".csv"))
+  print(("wrote %s.png, %s.svg from %s.csv"):format(base, base, base))
+  return
+end
 local chosen = {}
 for i = 2, #arg do chosen[#chosen + 1] = arg[i] end
 if #chosen == 0 then chosen = ORDER end
 script_support.make_folders(output)
 
 local rows = { "study,count,answer,relative_error" }
-local series, plots = {}, {}
-for index, key in ipairs(chosen) do
+for _, key in ipairs(chosen) do
   local study = assert(STUDIES[key], "unknown study: " .. key)
   local start = ashlar.clock()
   local reference = assert(study.answer(study.reference), study.name .. ": reference bracket failed")
   print(("%s: %s = %.6g at %d (reference)"):format(study.name, study.what, reference, study.reference))
-  local errors, points = {}, {}
+  local errors = {}
   for _, n in ipairs(study.counts) do
     local value = study.answer(n)
     local err = value and (value - reference) / reference or math.huge
@@ -125,42 +165,16 @@ for index, key in ipairs(chosen) do
     print(("  %4d  %-12s %+8.3f%%"):format(n, value and ("%.6g"):format(value) or "bracket", 100 * err))
     rows[#rows + 1] = ("%s,%d,%s,%s"):format(key, n, value and ("%.9g"):format(value) or "",
                                              value and ("%.6g"):format(err) or "")
-    if value then points[#points + 1] = ("%d %.6g"):format(n, 100 * err) end
   end
-  local coarsest, settled
+  local coarsest
   for i, n in ipairs(study.counts) do
     if not coarsest and math.abs(errors[i]) <= WITHIN then coarsest = n end
   end
-  for i = #study.counts, 1, -1 do
-    if math.abs(errors[i]) > WITHIN then break end
-    settled = study.counts[i]
-  end
+  local settled = settled_count(study.counts, errors)
   print(("  coarsest within 1%%: %s; settled within 1%% from: %s (%.0f s)"):format(
     tostring(coarsest), tostring(settled), ashlar.clock() - start))
-  series[#series + 1] = ("$s%d << EOD\n%s\nEOD"):format(index, table.concat(points, "\n"))
-  plots[#plots + 1] = ("$s%d using 1:2 with linespoints lw 1.5 pt 7 ps 0.6 title %q"):format(index,
-    ("%s (settled from %s)"):format(study.name, tostring(settled)))
 end
 
 script_support.write_atomically(base .. ".csv", table.concat(rows, "\n") .. "\n")
-script_support.chart(base, table.concat(series, "\n") .. "\n" .. [[
-set title "Error of the main question's answer against the count, relative to a fine model"
-set xlabel "count (voussoirs; dome: parallels)"
-set ylabel "relative error (%)"
-set yrange [-8:2]
-set grid xtics ytics lc rgb "#dddddd"
-set linetype 1 lc rgb "#1f77b4"
-set linetype 2 lc rgb "#ff7f0e"
-set linetype 3 lc rgb "#2ca02c"
-set linetype 4 lc rgb "#d62728"
-set linetype 5 lc rgb "#9467bd"
-set linetype 6 lc rgb "#8c564b"
-set linetype 7 lc rgb "#e377c2"
-set linetype 8 lc rgb "#7f7f7f"
-set linetype 9 lc rgb "#17becf"
-set linetype cycle 9
-set key bottom right box opaque font ",9"
-set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2 lc rgb "#444444"
-set arrow from graph 0, first -1 to graph 1, first -1 nohead dt 2 lc rgb "#444444"
-plot ]] .. table.concat(plots, ", \\\n  ") .. "\n")
+draw_chart(base, script_support.read_csv(base .. ".csv"))
 print(("wrote %s.csv, %s.png, %s.svg"):format(base, base, base))

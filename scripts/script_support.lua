@@ -1,5 +1,5 @@
 -- Helpers shared by the scripts in this folder (found on package.path
--- through the script's own folder): atomic writes and gnuplot charts.
+-- through the script's own folder): atomic writes, CSV and charts.
 local support = {}
 
 -- Quotes a string for the shell.
@@ -24,28 +24,58 @@ function support.write_atomically(path, text)
   assert(os.rename(temporary, path))
 end
 
--- Draws a chart with gnuplot into `base`.png and `base`.svg (1000 x 700),
--- each under a temporary name renamed when gnuplot has finished it.
--- `commands` is the gnuplot script after the terminal and output lines.
-function support.chart(base, commands)
-  local script = {
-    'if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {',
-    '  set terminal pngcairo size 1000,700 font "Sans,11"',
-    '} else {',
-    '  set terminal png size 1000,700',
-    '}',
-    ("set output %q"):format(base .. ".png.tmp"),
-    commands,
-    'set terminal svg size 1000,700 dynamic font "Sans,11"',
-    ("set output %q"):format(base .. ".svg.tmp"),
-    "replot",
-    "set output",
-  }
-  local gnuplot = assert(io.popen("gnuplot", "w"))
-  gnuplot:write(table.concat(script, "\n"), "\n")
-  assert(gnuplot:close(), "gnuplot failed on the chart " .. base)
-  assert(os.rename(base .. ".png.tmp", base .. ".png"))
-  assert(os.rename(base .. ".svg.tmp", base .. ".svg"))
+-- Draws a chart with ashlar.chart into `base`.png and `base`.svg, 1000 x 700
+-- (each written whole by ashlar.chart). `options` are ashlar.chart's but
+-- `path`.
+function support.chart(base, options)
+  local ashlar = require "ashlar"
+  for _, extension in ipairs{ "png", "svg" } do
+    local full = { path = base .. "." .. extension, width = 1000, height = 700 }
+    for key, value in pairs(options) do full[key] = value end
+    ashlar.chart(full)
+  end
+end
+
+-- The rows of a CSV file that this folder's scripts wrote (a header line,
+-- then comma-separated values without quotes): one table per line from
+-- column names to values, numbers where they read as numbers, "true" and
+-- "false" as booleans, empty fields nil.
+function support.read_csv(path)
+  local file = assert(io.open(path))
+  local header, rows = nil, {}
+  for line in file:lines() do
+    local fields = {}
+    for field in (line .. ","):gmatch("([^,]*),") do fields[#fields + 1] = field end
+    if not header then
+      header = fields
+    else
+      local row = {}
+      for k, name in ipairs(header) do
+        local field = fields[k]
+        if field == "true" or field == "false" then
+          row[name] = field == "true"
+        elseif field ~= nil and field ~= "" then
+          row[name] = tonumber(field) or field
+        end
+      end
+      rows[#rows + 1] = row
+    end
+  end
+  file:close()
+  return rows
+end
+
+-- Whether the script was asked only to draw its charts again from the CSV
+-- it wrote before (the argument "--charts", anywhere; it is taken out of
+-- `arg`, so the other arguments keep their places).
+function support.charts_only()
+  for k = #arg, 1, -1 do
+    if arg[k] == "--charts" then
+      table.remove(arg, k)
+      return true
+    end
+  end
+  return false
 end
 
 -- Whether PNG renderings of 3D files can be made (Debian: f3d xvfb).

@@ -102,18 +102,18 @@ for i = 0, 59 do
   local mu = 0.05 * (1e4 / 0.05) ^ (i / 59)
   local r = ashlar.analyze(chart_arch, { friction = mu })
   if r.status ~= "converged" then unconverged = unconverged + 1 end
-  chart_points[#chart_points + 1] = ("%.6g %.10g"):format(mu, r.infeasibility)
+  chart_points[#chart_points + 1] = { mu = mu, ["finite mu"] = r.infeasibility }
 end
 local no_sliding = ashlar.analyze(chart_arch, { friction = math.huge }).infeasibility
 print(("chart: 60 frictions on the arch at t = 0.3 m, %d not converged; math.huge: %.6g"):format(unconverged,
   no_sliding))
 
 support.write_atomically(folder .. "/solver_robustness.csv", table.concat(csv, "\n") .. "\n")
-support.chart(folder .. "/solver_robustness_mu", table.concat({
-  'set title "Infeasibility against friction: arch R = 5 m, t = 0.3 m, 24 voussoirs"',
-  'set xlabel "friction coefficient mu"', 'set ylabel "infeasibility (tension / weight)"',
-  'set logscale x', 'set grid', 'set key top right',
-  "$points << EOD", table.concat(chart_points, "\n"), "EOD",
-  ("plot $points using 1:2 with linespoints lw 2 pt 7 title 'finite mu', %.10g with lines dt 2 lw 2 title 'mu = math.huge'"):format(no_sliding),
-}, "\n"))
+-- No sliding as a line across the chart, at both ends of the sweep.
+local lowest, highest = chart_points[1].mu, chart_points[#chart_points].mu
+chart_points[#chart_points + 1] = { mu = lowest, ["mu = math.huge"] = no_sliding }
+chart_points[#chart_points + 1] = { mu = highest, ["mu = math.huge"] = no_sliding }
+support.chart(folder .. "/solver_robustness_mu", { data = chart_points, x = "mu", y = { "finite mu", "mu = math.huge" },
+  log_x = true, title = "Infeasibility against friction: arch R = 5 m, t = 0.3 m, 24 voussoirs",
+  x_label = "friction coefficient mu", y_label = "infeasibility (tension / weight)" })
 print("wrote " .. folder .. "/solver_robustness.csv and solver_robustness_mu.png/.svg")

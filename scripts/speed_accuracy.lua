@@ -12,12 +12,14 @@
 -- not change an arch's answers (checked below); a dome's they do.
 -- Then ashlar.refine picks the coarsest adequate model for each question at
 -- tolerances 1 % and 0.1 %, as a user would, without the fine reference.
---   ashlar scripts/speed_accuracy.lua [output folder, default docs/figures/speed_accuracy] [question ...]
--- Writes <question>.csv, .png and .svg and speed_accuracy.md in the folder.
+--   ashlar scripts/speed_accuracy.lua [output folder, default docs/figures/speed_accuracy] [question ...] [--charts]
+-- Writes <question>.csv, .png and .svg and speed_accuracy.md in the folder;
+-- with --charts, only draws the charts again from the folder's CSVs.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local script_support = require "script_support"
 
+local charts_only = script_support.charts_only()
 local output = arg[1] or "docs/figures/speed_accuracy"
 local chosen = { table.unpack(arg, 2) }
 script_support.make_folders(output)
@@ -115,37 +117,45 @@ local function settled(rows, within)
   return found
 end
 
-local function chart(question, series)
-  local data, plots = {}, {}
-  local colors = { "#1f77b4", "#d62728", "#2ca02c" }
-  for k, s in ipairs(series) do
-    local points = {}
-    for _, row in ipairs(s.rows) do
-      -- An error of 0 (the reference itself) has no place on a log scale.
-      if row.error ~= 0 then
-        points[#points + 1] = ("%.9g %.9g %s"):format(row.seconds, math.abs(row.error), row.label)
+-- The chart of a question from its CSV's rows: |error| against time, one
+-- line per pyramid (through the levels in order of time), and the 1 % and
+-- 0.1 % errors as lines across.
+local function chart(question, csv_rows)
+  local points, names, lowest, highest = {}, {}, math.huge, 0
+  for _, row in ipairs(csv_rows) do
+    -- An error of 0 (the reference itself) has no place on a log scale.
+    if row.error ~= 0 then
+      local name = row.sides .. "-sided pyramid"
+      if not names[name] then
+        names[name] = true
+        names[#names + 1] = name
       end
+      points[#points + 1] = { seconds = row.seconds, [name] = math.abs(row.error) }
+      lowest, highest = math.min(lowest, row.seconds), math.max(highest, row.seconds)
     end
-    data[#data + 1] = ("$s%d << EOD\n%s\nEOD"):format(k, table.concat(points, "\n"))
-    plots[#plots + 1] = ("$s%d using 1:2 with linespoints pt 7 ps 1.1 lc rgb %q title %q"):format(
-      k, colors[k], s.sides .. "-sided pyramid")
-    plots[#plots + 1] = ("$s%d using 1:2:3 with labels offset char 0.8, char 0.5 left font ',9' tc rgb %q notitle")
-      :format(k, colors[k])
   end
-  script_support.chart(output .. "/" .. question.name, table.concat(data, "\n") .. "\n" .. ([[
-set logscale xy
-set format x "10^{%%L}"
-set format y "10^{%%L}"
-set title "%s\nrelative error against %s (labels: discretisation)"
-set xlabel "wall time of the answer (s)"
-set ylabel "|relative error|"
-set grid xtics ytics mxtics mytics lc rgb "#dddddd"
-set key bottom left
-set arrow from graph 0, first 0.01 to graph 1, first 0.01 nohead dt 2 lc rgb "#888888"
-set arrow from graph 0, first 0.001 to graph 1, first 0.001 nohead dt 2 lc rgb "#888888"
-set label "1 %%" at graph 0.99, first 0.012 right tc rgb "#666666"
-set label "0.1 %%" at graph 0.99, first 0.0012 right tc rgb "#666666"
-plot ]]):format(question.title, question.reference_text) .. table.concat(plots, ", \\\n     ") .. "\n")
+  for _, line in ipairs{ { "1 % error", 0.01 }, { "0.1 % error", 0.001 } } do
+    names[#names + 1] = line[1]
+    points[#points + 1] = { seconds = lowest, [line[1]] = line[2] }
+    points[#points + 1] = { seconds = highest, [line[1]] = line[2] }
+  end
+  local first = csv_rows[1]
+  script_support.chart(output .. "/" .. question.name, { data = points, x = "seconds", y = names,
+    log_x = true, log_y = true, x_label = "wall time of the answer (s)", y_label = "|relative error|",
+    title = ("%s; reference %s, %d-sided: %.7g %s"):format(question.title, question.label(question.reference_level),
+      question.reference_sides or question.sides[1], first.reference, question.unit) })
+end
+
+if charts_only then
+  for _, question in ipairs(QUESTIONS) do
+    local wanted = #chosen == 0
+    for _, name in ipairs(chosen) do wanted = wanted or name == question.name end
+    if wanted then
+      chart(question, script_support.read_csv(output .. "/" .. question.name .. ".csv"))
+      print(("wrote %s/%s.png, .svg"):format(output, question.name))
+    end
+  end
+  return
 end
 
 local report = { "# Speed-accuracy map", "",
@@ -179,8 +189,9 @@ for _, question in ipairs(QUESTIONS) do
       end
       series[#series + 1] = { sides = sides, rows = rows }
     end
-    script_support.write_atomically(output .. "/" .. question.name .. ".csv", table.concat(csv, "\n") .. "\n")
-    chart(question, series)
+    local csv_path = output .. "/" .. question.name .. ".csv"
+    script_support.write_atomically(csv_path, table.concat(csv, "\n") .. "\n")
+    chart(question, script_support.read_csv(csv_path))
 
     report[#report + 1] = ("## %s"):format(question.title)
     report[#report + 1] = ""

@@ -1,9 +1,8 @@
-// Rendering into memory (the SVG and PDF surfaces write to a stream, the
+// Rendering into memory (the SVG surface writes to a stream, the
 // image surface is encoded as PNG into a string), so that the file is
 // written whole by write_file_atomically or not at all.
 #include "io/cairo_canvas.hpp"
 
-#include <cairo-pdf.h>
 #include <cairo-svg.h>
 
 #include <new>
@@ -13,18 +12,6 @@
 
 namespace ashlar {
 namespace {
-
-const char* extension_of(ImageFormat format) {
-  switch (format) {
-    case ImageFormat::png:
-      return "png";
-    case ImageFormat::svg:
-      return "svg";
-    case ImageFormat::pdf:
-      return "pdf";
-  }
-  return "";
-}
 
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
   // No exception may unwind through cairo's C frames.
@@ -40,32 +27,15 @@ struct SurfaceDeleter {
   void operator()(cairo_surface_t* surface) const { cairo_surface_destroy(surface); }
 };
 
+// Drawings are SVG or PNG (drawing_format).
 cairo_surface_t* create_surface(ImageFormat format, int width, int height, std::string& bytes) {
-  switch (format) {
-    case ImageFormat::svg:
-      return cairo_svg_surface_create_for_stream(append_to_string, &bytes, width, height);
-    case ImageFormat::pdf:
-      return cairo_pdf_surface_create_for_stream(append_to_string, &bytes, width, height);
-    case ImageFormat::png:
-      break;
+  if (format == ImageFormat::svg) {
+    return cairo_svg_surface_create_for_stream(append_to_string, &bytes, width, height);
   }
   return cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
 }
 
 }  // namespace
-
-ImageFormat image_format(const std::string& path, const std::vector<ImageFormat>& allowed,
-                         const std::string& what) {
-  const std::string extension = file_extension(path);
-  std::string listed;
-  for (size_t k = 0; k < allowed.size(); ++k) {
-    if (extension == extension_of(allowed[k])) return allowed[k];
-    listed += (k == 0 ? "." : k + 1 == allowed.size() ? " or ." : ", .");
-    listed += extension_of(allowed[k]);
-  }
-  throw InvalidArgument(what + ": cannot tell the format of '" + path +
-                        "' from its extension; use " + listed);
-}
 
 void render_file(const std::string& path, ImageFormat format, int width, int height,
                  const std::string& what, const std::function<void(cairo_t*)>& paint) {

@@ -1,6 +1,7 @@
-// What the cairo drawings (drawing.cpp, chart.cpp) share: painting into
-// memory and writing the file whole, and placing text. Include it only from
-// the .cpp files that draw with cairo, so that cairo's headers stay there.
+// What the cairo drawings (drawing.cpp: elevations and colour legends) need:
+// painting into memory and writing the file whole, and placing text. Include
+// it only from the .cpp files that draw with cairo, so that cairo's headers
+// stay there. Charts are PLplot's (chart.cpp).
 #pragma once
 
 #include <cairo.h>
@@ -10,20 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "io/image_format.hpp"
 #include "io/mesh_io.hpp"
 
 namespace ashlar {
 
-enum class ImageFormat { png, svg, pdf };
-
-// The format of `path` from its extension (any case), one of `allowed`.
-// Throws InvalidArgument "<what>: cannot tell the format of '<path>' from its
-// extension; use .svg or .png", listing the allowed ones in their order.
-ImageFormat image_format(const std::string& path, const std::vector<ImageFormat>& allowed,
-                         const std::string& what);
-
-// Paints a white image of width x height (px for PNG, pt for SVG and PDF)
-// with `paint` and writes it to path atomically. `paint` must not throw.
+// Paints a white image of width x height (px for PNG, pt for SVG) with
+// `paint` and writes it to path atomically. `paint` must not throw.
 // Throws IoError naming `what` and the path when cairo fails or the file
 // cannot be written.
 void render_file(const std::string& path, ImageFormat format, int width, int height,

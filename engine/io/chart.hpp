@@ -1,16 +1,17 @@
 // Charts of (x, y) series for parametric studies: lines, points or steps over
 // linear or log axes, with ticks, a grid, a legend, a title and axis labels,
-// drawn with cairo. Format from the extension: .png (sizes in px), .svg or
-// .pdf (sizes in pt). Image coordinates have x to the right and y down.
+// drawn by PLplot. Format from the extension: .png (sizes in px), .svg or
+// .pdf (sizes in pt).
 #pragma once
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
-#include "io/axis_ticks.hpp"
-#include "io/image_rect.hpp"
 #include "io/color.hpp"
+#include "io/image_rect.hpp"
 
 namespace ashlar {
 
@@ -35,55 +36,57 @@ struct ChartSpec {
   // At least one point in all, every coordinate finite.
   std::vector<ChartSeries> series;
   ChartKind kind = ChartKind::linespoints;
-  std::string title;  // above the plot; none when empty
-  // Under the x axis, along the y axis; none when empty. An axis whose tick
-  // labels show value / 10^n (AxisTicks::power) gets " (×10ⁿ)" after it.
-  std::string x_label, y_label;
+  std::string title;                  // above the plot; none when empty
+  std::string x_label, y_label;       // under the x axis, along the y axis; none when empty
   bool log_x = false, log_y = false;  // log axes take values > 0 only
+  // An axis's ends (lo < hi, finite; > 0 on a log axis) instead of the
+  // data's padded range; what lies outside is cut off.
+  std::optional<std::pair<double, double>> x_range, y_range;
   int width = 900, height = 600;      // px for .png, pt for .svg and .pdf; each in [200, 16384]
 };
-
-// One axis of a chart: the data values at its ends and its ticks.
-struct ChartAxis {
-  // Values at the plot area's edges (left/bottom, right/top): the data's
-  // range widened by 4 % of it on each side (of its log10 on a log axis),
-  // so that no point sits on the frame. A single value v gets v ± 5 % of
-  // |v| (± 0.5 for 0), or a factor 10^0.25 on a log axis.
-  double lo = 0.0, hi = 1.0;
-  bool log = false;
-  AxisTicks ticks;  // linear_ticks or log_ticks of [lo, hi], as many as fit
-
-  // Where value lies from lo (0) to hi (1): linear in value, or in log10.
-  double fraction(double value) const;
-};
-
-// Where a chart puts things (px, pt for vector formats).
-struct ChartLayout {
-  ImageRect plot;  // the plot area, framed; x.lo on its left, y.lo at its bottom
-  ChartAxis x, y;
-  // The legend's box, right of the plot; zero width and height when there
-  // is no legend (one series only: the y label names it).
-  ImageRect legend;
-
-  // Image position of a data point (x, y).
-  Vec2 to_image(const Vec2& data) const;
-};
-
-// The layout draw_chart uses for spec. Throws InvalidArgument for a size
-// outside [200, 16384], no point, a non-finite coordinate or a value <= 0 on
-// a log axis, naming the series and the point.
-ChartLayout chart_layout(const ChartSpec& spec);
 
 // The colour of series k (>= 0): the Okabe-Ito colour-blind-safe palette
 // (blue, vermillion, bluish green, reddish purple, orange, sky blue, black,
 // yellow), repeated with dashed lines after 8 series and dotted after 16.
 Rgb chart_series_color(int k);
 
-// Draws the chart and writes it atomically to path: grid lines at the ticks,
-// the series (clipped to the plot area), the framed axes with their tick
-// labels, the axis labels, the title and the legend. Throws InvalidArgument
-// for an unknown extension (not .png, .svg or .pdf) or a spec that
-// chart_layout rejects, IoError when the file cannot be written.
-void draw_chart(const std::string& path, const ChartSpec& spec);
+// One axis as drawn: the data values at the plot area's edges.
+struct ChartAxis {
+  // The data's range widened by 4 % of it on each side (of its log10 on a
+  // log axis), so that no point sits on the frame. A single value v gets
+  // v ± 5 % of |v| (± 0.5 for 0), or a factor 10^0.25 on a log axis. Or
+  // the spec's range, when it gives one.
+  double lo = 0.0, hi = 1.0;
+  bool log = false;
+
+  // Where value lies from lo (0) to hi (1): linear in value, or in log10.
+  double fraction(double value) const;
+};
+
+// Where draw_chart put the plot: the frame in the image (px, pt for vector
+// formats; y down) and the axes' ranges.
+struct ChartFrame {
+  ImageRect plot;
+  ChartAxis x, y;
+
+  // Image position of a data point (x, y).
+  Vec2 to_image(const Vec2& data) const;
+};
+
+// The axes draw_chart uses for spec. Throws InvalidArgument for a size
+// outside [200, 16384], no point, a non-finite coordinate or a value <= 0 on
+// a log axis (naming the series and the point), or a bad range.
+std::pair<ChartAxis, ChartAxis> chart_axes(const ChartSpec& spec);
+
+// Draws the chart with PLplot and writes it atomically to path: grid lines
+// at the ticks, the series, the framed axes with their tick labels (PLplot's:
+// 1, 2 or 5 times a power of ten apart; log axes at decades with minor ticks
+// at 2-9), the axis labels, the title and, with two series or more, a legend
+// right of the plot. Returns where the plot went. Throws InvalidArgument for
+// an unknown extension (not .png, .svg or .pdf) or a spec that chart_axes
+// rejects, IoError when PLplot fails or the file cannot be written.
+// Safe to call from several threads: PLplot's state is global, so charts
+// are drawn one at a time.
+ChartFrame draw_chart(const std::string& path, const ChartSpec& spec);
 
 }  // namespace ashlar

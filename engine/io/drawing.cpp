@@ -1,8 +1,6 @@
-// Elevation drawings and colour-map legends with cairo.
-//
-// Both are written whole or not at all (io/cairo_canvas). Blocks are drawn
-// face by face: every face turned towards the viewer is projected and
-// painted, farthest first (painter's algorithm on the face centroids), which
+// Elevation drawings with cairo, written whole or not at all
+// (io/cairo_canvas). Blocks are drawn face by face: every face turned
+// towards the viewer is projected and painted, farthest first (painter's algorithm on the face centroids), which
 // is exact for the extruded planar models and a fair picture of 3D ones.
 // Sizes that depend on the image (margins, fonts, line widths) grow with its
 // smaller side so that a larger image looks the same, only sharper.
@@ -12,14 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <sstream>
 
 #include "analysis/equilibrium.hpp"
 #include "core/error.hpp"
 #include "io/cairo_canvas.hpp"
-#include "io/color_map.hpp"
 #include "io/option_checks.hpp"
 
 namespace ashlar {
@@ -27,8 +23,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kMinImageSize = 100;
-constexpr int kMaxImageSize = 16384;
-constexpr int kLegendTicks = 5;
 // A face turns towards the viewer when its outward normal has at least this
 // component against the view direction; faces seen edge-on are skipped.
 constexpr double kFacingViewer = 1e-6;
@@ -53,15 +47,6 @@ ImageFormat drawing_format(const std::string& path, const std::string& what) {
   return image_format(path, {ImageFormat::svg, ImageFormat::png}, what);
 }
 
-void check_size(int width, int height, const std::string& what) {
-  for (const int size : {width, height}) {
-    if (size < kMinImageSize || size > kMaxImageSize) {
-      throw InvalidArgument(what + ": width and height must lie in [" +
-                            std::to_string(kMinImageSize) + ", " + std::to_string(kMaxImageSize) +
-                            "], got " + std::to_string(width) + " x " + std::to_string(height));
-    }
-  }
-}
 
 // ---------------------------------------------------------------------------
 // Painting helpers
@@ -116,7 +101,7 @@ void hatch_path(cairo_t* cr, const Rgb& color, double spacing, double width) {
 // Elevation
 
 void check_options(const Structure& structure, const ElevationOptions& options) {
-  check_size(options.width, options.height, "draw");
+  check_image_size(options.width, options.height, kMinImageSize, "draw");
   check_block_colors(structure, options.block_colors, "draw");
   check_color(options.thrust_color, "thrust_color", "draw");
   if (!(options.force_scale >= 0.0) || !std::isfinite(options.force_scale)) {
@@ -339,145 +324,6 @@ ImageRect covered_rect(const ElevationProjection& projection, const std::vector<
   return {lo.x(), lo.y(), hi.x() - lo.x(), hi.y() - lo.y()};
 }
 
-// ---------------------------------------------------------------------------
-// Legend
-
-std::string trimmed_fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  std::string label = text;
-  if (label.find('.') != std::string::npos) {
-    label.erase(label.find_last_not_of('0') + 1);
-    if (label.back() == '.') label.pop_back();
-  }
-  return label == "-0" ? "0" : label;
-}
-
-std::string tick_label(double value, double spacing, double largest) {
-  // Round-off of lo + k * spacing must not print as "-2.8e-17".
-  if (std::abs(value) < 1e-9 * spacing) return "0";
-  const int spacing_exponent = static_cast<int>(std::floor(std::log10(spacing)));
-  if (largest >= 1e6 || largest < 1e-3) {
-    const int largest_exponent = static_cast<int>(std::floor(std::log10(largest)));
-    const int digits = std::clamp(largest_exponent - spacing_exponent + 3, 3, 15);
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    return text;
-  }
-  return trimmed_fixed(value, std::clamp(2 - spacing_exponent, 0, 15));
-}
-
-void check_legend(const LegendOptions& options) {
-  if (!std::isfinite(options.lo) || !std::isfinite(options.hi) || !(options.lo < options.hi)) {
-    std::ostringstream message;
-    message << "legend: range must be finite with lo < hi, got [" << options.lo << ", "
-            << options.hi << "]";
-    throw InvalidArgument(message.str());
-  }
-  check_color_map(options.map);
-}
-
-// The colour bar as a gradient over the rectangle, lo at `from`, hi at `to`.
-void paint_color_bar(cairo_t* cr, const std::string& map, const ImageRect& bar, const Vec2& from,
-                     const Vec2& to, const Metrics& metrics) {
-  // The maps are piecewise linear over at most 17 control points; 65 evenly
-  // spaced stops reproduce them to well under an 8-bit step.
-  constexpr int kStops = 65;
-  std::vector<double> positions;
-  for (int k = 0; k < kStops; ++k) positions.push_back(k / double(kStops - 1));
-  const std::vector<Rgb> colors = map_colors(positions, 0.0, 1.0, map);
-  cairo_pattern_t* gradient = cairo_pattern_create_linear(from.x(), from.y(), to.x(), to.y());
-  for (int k = 0; k < kStops; ++k) {
-    cairo_pattern_add_color_stop_rgb(gradient, positions[k], colors[k].r, colors[k].g,
-                                     colors[k].b);
-  }
-  cairo_rectangle(cr, bar.left, bar.top, bar.width, bar.height);
-  cairo_set_source(cr, gradient);
-  cairo_fill_preserve(cr);
-  cairo_pattern_destroy(gradient);
-  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
-  cairo_set_line_width(cr, metrics.line);
-  cairo_stroke(cr);
-}
-
-void paint_legend(cairo_t* cr, const LegendOptions& options, int width, int height) {
-  // A legend is a long strip: its text and lines follow its length, so that
-  // both orientations of the same length look alike.
-  Metrics metrics(width, height);
-  metrics.font = std::clamp(0.025 * std::max(width, height), 9.0, 32.0);
-  metrics.line = std::max(1.0, metrics.line);
-  const std::vector<LegendTick> ticks = legend_ticks(options.lo, options.hi, kLegendTicks);
-  set_font(cr, metrics.font);
-  double widest = 0.0;
-  for (const LegendTick& tick : ticks) widest = std::max(widest, text_width(cr, tick.label));
-  const double tick_length = 0.4 * metrics.font;
-  const double gap = 0.3 * metrics.font;
-  const double label_band = options.label.empty() ? 0.0 : 1.8 * metrics.font;
-  const double thickness_cap = 2.5 * metrics.font;
-  ImageRect bar;
-  std::function<Vec2(double)> tick_anchor;  // where a tick at fraction t starts on the bar
-  Vec2 from, to;
-  if (options.vertical) {
-    // Label (turned), bar, ticks and their labels side by side, centred.
-    const double labels = tick_length + gap + widest;
-    bar.width = std::clamp(width - 2 * metrics.margin - label_band - labels, 6.0, thickness_cap);
-    const double group = label_band + bar.width + labels;
-    bar.left = std::max(metrics.margin, (width - group) / 2) + label_band;
-    bar.top = metrics.margin + metrics.font;
-    bar.height = height - 2 * bar.top;
-    from = {0.0, bar.top + bar.height};
-    to = {0.0, bar.top};
-    tick_anchor = [&](double t) {
-      return Vec2(bar.left + bar.width, bar.top + (1 - t) * bar.height);
-    };
-  } else {
-    // Label above the bar, tick labels below, centred vertically.
-    const double labels = tick_length + gap + metrics.font;
-    bar.height = std::clamp(height - 2 * metrics.margin - label_band - labels, 6.0, thickness_cap);
-    const double group = label_band + bar.height + labels;
-    bar.top = std::max(metrics.margin, (height - group) / 2) + label_band;
-    // Room for half of the end labels beyond the bar's ends.
-    bar.left = metrics.margin + std::max(text_width(cr, ticks.front().label) / 2, metrics.font);
-    bar.width = width - bar.left - metrics.margin -
-                std::max(text_width(cr, ticks.back().label) / 2, metrics.font);
-    from = {bar.left, 0.0};
-    to = {bar.left + bar.width, 0.0};
-    tick_anchor = [&](double t) { return Vec2(bar.left + t * bar.width, bar.top + bar.height); };
-  }
-  paint_color_bar(cr, options.map, bar, from, to, metrics);
-
-  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
-  cairo_set_line_width(cr, metrics.line);
-  for (size_t k = 0; k < ticks.size(); ++k) {
-    const double t = k / double(ticks.size() - 1);
-    const Vec2 start = tick_anchor(t);
-    const Vec2 direction = options.vertical ? Vec2(1.0, 0.0) : Vec2(0.0, 1.0);
-    const Vec2 end = start + tick_length * direction;
-    move_or_line(cr, start, true);
-    move_or_line(cr, end, false);
-    cairo_stroke(cr);
-    if (options.vertical) {
-      show_text(cr, ticks[k].label, end.x() + gap, end.y(), 0.0);
-    } else {
-      show_text(cr, ticks[k].label, end.x(), end.y() + gap + metrics.font / 2, 0.5);
-    }
-  }
-  if (options.label.empty()) return;
-  // The label reads along the bar, shrunk to the bar's length if need be.
-  const double room = options.vertical ? bar.height : width - 2 * metrics.margin;
-  const double needed = text_width(cr, options.label);
-  if (needed > room) set_font(cr, metrics.font * room / needed);
-  if (options.vertical) {
-    cairo_save(cr);
-    cairo_translate(cr, bar.left - label_band / 2, bar.top + bar.height / 2);
-    cairo_rotate(cr, -kPi / 2);
-    show_text(cr, options.label, 0.0, 0.0, 0.5);
-    cairo_restore(cr);
-  } else {
-    show_text(cr, options.label, width / 2.0, bar.top - label_band / 2, 0.5);
-  }
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -538,7 +384,7 @@ double scale_bar_length(double at_most) {
 
 
 ImageRect elevation_area(const ElevationOptions& options) {
-  check_size(options.width, options.height, "draw");
+  check_image_size(options.width, options.height, kMinImageSize, "draw");
   const Metrics metrics(options.width, options.height);
   // The scale bar's band: its label's height and a gap above it.
   const double scale_band = 2.0 * metrics.font;
@@ -574,33 +420,6 @@ void draw_elevation(const Structure& structure, const std::string& path,
     paint_scale_bar(cr, projection, fitted, options.height, metrics);
     if (!options.title.empty()) paint_title(cr, options.title, options.width, metrics);
   });
-}
-
-std::vector<LegendTick> legend_ticks(double lo, double hi, int count) {
-  if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || count < 2) {
-    std::ostringstream message;
-    message << "legend ticks: need a finite range with lo < hi and at least 2 ticks, got [" << lo
-            << ", " << hi << "] and " << count;
-    throw InvalidArgument(message.str());
-  }
-  const double spacing = (hi - lo) / (count - 1);
-  const double largest = std::max(std::abs(lo), std::abs(hi));
-  std::vector<LegendTick> ticks;
-  for (int k = 0; k < count; ++k) {
-    const double value = k == count - 1 ? hi : lo + k * spacing;
-    ticks.push_back({value, tick_label(value, spacing, largest)});
-  }
-  return ticks;
-}
-
-void draw_legend(const std::string& path, const LegendOptions& options) {
-  const ImageFormat format = drawing_format(path, "legend");
-  check_legend(options);
-  const int width = options.width != 0 ? options.width : (options.vertical ? 300 : 600);
-  const int height = options.height != 0 ? options.height : (options.vertical ? 600 : 150);
-  check_size(width, height, "legend");
-  render_file(path, format, width, height, "legend",
-              [&](cairo_t* cr) { paint_legend(cr, options, width, height); });
 }
 
 }  // namespace ashlar

@@ -1,6 +1,6 @@
 // 2D drawings: elevations of a structure with its line of thrust (as in
-// Shin 2014, figure 7) and legend images for the colour maps. Format from the
-// extension: .svg (vector, sizes in pt) or .png (raster, sizes in pixels).
+// Shin 2014, figure 7). Format from the extension: .svg (vector, sizes in
+// pt) or .png (raster, sizes in pixels). Colour legends: io/color_legend.
 // Image coordinates have x to the right and y down, in px (pt for SVG).
 #pragma once
 
@@ -99,33 +99,6 @@ ElevationProjection elevation_projection(const Structure& structure,
 // result of another structure), IoError when the file cannot be written.
 void draw_elevation(const Structure& structure, const std::string& path,
                     const ElevationOptions& options);
-
-struct LegendOptions {
-  std::string map = "viridis";  // one of color_map_names()
-  double lo = 0.0, hi = 1.0;    // values at the ends of the bar, lo < hi, finite
-  std::string label;            // what the colours mean, with units; none when empty
-  bool vertical = true;         // lo at the bottom; horizontal: lo at the left
-  // px for .png, pt for .svg, each in [100, 16384]; 0 takes the default of
-  // the orientation: 300 x 600 vertical, 600 x 150 horizontal.
-  int width = 0, height = 0;
-};
-
-struct LegendTick {
-  double value = 0.0;
-  std::string label;
-};
-
-// `count` (>= 2) evenly spaced ticks from lo to hi (finite, lo < hi), both
-// included. Labels carry three significant digits of the spacing, trailing
-// zeros dropped ("0", "0.25", "1000"); values of magnitude 1e6 and more, or
-// all below 1e-3, use %.3g ("1.5e+07"). Throws InvalidArgument otherwise.
-std::vector<LegendTick> legend_ticks(double lo, double hi, int count = 5);
-
-// A colour bar of the map from lo to hi with 5 labelled ticks and the
-// label, written atomically. Throws InvalidArgument for an unknown
-// extension or map, a bad range or size, IoError when the file cannot be
-// written.
-void draw_legend(const std::string& path, const LegendOptions& options);
 
 // The length of a scale bar (m): the largest 1, 2 or 5 times a power of ten
 // that is at most `at_most` (m, finite, > 0); e.g. 3.7 -> 2, 0.9 -> 0.5.

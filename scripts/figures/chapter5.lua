@@ -1,17 +1,19 @@
 -- The thesis's chapter 5 (Shin 2014, figures 12, 14, 15), remade with the
 -- FEA, and the comparison of equilibrium and FEA over arch thickness:
---   ashlar scripts/figures/chapter5.lua [folder]     (default docs/figures/chapter5)
+--   ashlar scripts/figures/chapter5.lua [folder] [--charts]    (default docs/figures/chapter5)
 -- Writes per figure the FEA's deformed shape (.glb, tension nodes red,
 -- released ones orange; a PNG when f3d and xvfb-run are installed), the
 -- mesh with every result (.vtu, for ParaView), equilibrium drawings with
 -- the thrust line, the dome's hoop-to-meridional chart and the thickness
--- sweep's chart, CSV and table (Markdown, printed).
+-- sweep's chart, CSV and table (Markdown, printed). With --charts it only
+-- draws the two charts again from the folder's CSVs.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local courses = require "ashlar.models.courses"
 package.path = (arg[0]:match("^(.*)/[^/]+/[^/]+$") or "..") .. "/?.lua;" .. package.path
 local support = require "script_support"
 
+local charts_only = support.charts_only()
 local folder = arg[1] or "docs/figures/chapter5"
 support.make_folders(folder)
 local pictures = support.can_render()
@@ -21,6 +23,45 @@ local FRONT = { azimuth = 0, elevation = 0 }
 local ABOVE = { azimuth = 0, elevation = 30 }
 
 local function path(name) return ("%s/%s"):format(folder, name) end
+
+-- The dome's hoop-to-meridional ratio per course, from figure15_hoop_ratio.csv.
+local function draw_hoop_ratio()
+  local NAMES = { equilibrium = "equilibrium", fea_relaxed = "FEA after relaxation",
+                  fea_tied = "FEA, every contact tied (negative: hoop tension)" }
+  local points = {}
+  for _, row in ipairs(support.read_csv(path("figure15_hoop_ratio.csv"))) do
+    local point = { course = row.course }
+    for column, name in pairs(NAMES) do point[name] = row[column] end
+    points[#points + 1] = point
+  end
+  support.chart(path("figure15_hoop_ratio"), { data = points, x = "course",
+    y = { NAMES.equilibrium, NAMES.fea_relaxed, NAMES.fea_tied }, x_label = "course (1 = bottom)",
+    y_label = "mean hoop-joint force / mean bed-joint force",
+    title = "Hemispherical dome (R = 5 m, t = 0.5 m, 16 x 8, oculus): hoop / meridional force per course" })
+end
+
+-- The thickness sweep's verdicts, from arch_methods.csv: 1 stable
+-- (compression-only), 0 unstable (tension remains), -1 a mechanism; the
+-- FEA's lines moved by 0.05 so that equal verdicts stay apart.
+local function draw_arch_methods()
+  local EQUILIBRIUM, ALL, LARGEST = "equilibrium", "FEA, release = all (- 0.05)", "FEA, release = largest (+ 0.05)"
+  local points = {}
+  for _, row in ipairs(support.read_csv(path("arch_methods.csv"))) do
+    points[#points + 1] = { t = row.t_over_R, [EQUILIBRIUM] = row.equilibrium_stable, [ALL] = row.all_status - 0.05,
+                            [LARGEST] = row.largest_status + 0.05 }
+  end
+  support.chart(path("arch_methods"), { data = points, x = "t", y = { EQUILIBRIUM, ALL, LARGEST }, kind = "steps",
+    title = "Semicircular arch, 24 voussoirs: equilibrium against FEA with constraint relaxation",
+    x_label = "t/R (thickness over centreline radius; Milankovitch's limit 0.1075)",
+    y_label = "1: stable / compression-only, 0: unstable / tension, -1: mechanism" })
+end
+
+if charts_only then
+  draw_hoop_ratio()
+  draw_arch_methods()
+  print("wrote " .. path("figure15_hoop_ratio.png") .. ", " .. path("arch_methods.png") .. " and their .svg")
+  return
+end
 
 local function export(fe, name, options, view)
   fe:export(path(name .. ".glb"), options)
@@ -113,18 +154,7 @@ for c = 1, #eq do
   print(("  | %d | %.3f | %.3f | %.3f |"):format(c, eq[c], elastic[c], before[c]))
 end
 support.write_atomically(path("figure15_hoop_ratio.csv"), table.concat(rows, "\n") .. "\n")
-support.chart(path("figure15_hoop_ratio"), ([[
-set datafile separator ","
-set title "Hemispherical dome (R = 5 m, t = 0.5 m, 16 x 8, oculus): hoop / meridional force per course"
-set xlabel "course (1 = bottom)"
-set ylabel "mean hoop-joint force / mean bed-joint force (dimensionless)"
-set grid
-set key top left
-set xtics 1
-plot "%s" using 1:2 skip 1 with linespoints lw 2 pt 7 title "equilibrium", \
-     "%s" using 1:3 skip 1 with linespoints lw 2 pt 5 title "FEA after relaxation", \
-     "%s" using 1:4 skip 1 with linespoints lw 1 dt 2 pt 4 title "FEA, every contact tied (negative: hoop tension)"
-]]):format(path("figure15_hoop_ratio.csv"), path("figure15_hoop_ratio.csv"), path("figure15_hoop_ratio.csv")))
+draw_hoop_ratio()
 ashlar.export(dome, path("figure15_equilibrium.glb"), { result = dome_r, forces = true })
 if pictures then support.render(path("figure15_equilibrium.glb"), ABOVE) end
 export(dome_fe, "figure15_fea", {}, ABOVE)
@@ -151,25 +181,5 @@ for step = 0, 12 do
     all_s, largest.status, largest.iterations, largest_s))
 end
 support.write_atomically(path("arch_methods.csv"), table.concat(sweep, "\n") .. "\n")
-support.chart(path("arch_methods"), ([[
-set datafile separator ","
-set title "Semicircular arch, 24 voussoirs: equilibrium against FEA with constraint relaxation\nstatus: equilibrium stable or not; FEA compression-only, tension remaining, or a mechanism after relaxation"
-set xlabel "t/R (thickness over centreline radius)"
-set ylabel "status"
-set y2label "relaxation iterations"
-set ytics ("mechanism" -1, "unstable / tension remains" 0, "stable / compression-only" 1)
-set y2tics
-set yrange [-1.5:1.5]
-set y2range [0:*]
-set grid
-set key bottom right
-set arrow from 0.1075, graph 0 to 0.1075, graph 1 nohead dt 3 lc rgb "#888888"
-set label "t/R = 0.1075 (Milankovitch)" at 0.1085, graph 0.95 tc rgb "#666666"
-f = "%s"
-plot f using 1:2 skip 1 with linespoints lw 2 pt 7 title "equilibrium", \
-     f using 1:($6 - 0.05) skip 1 with linespoints lw 2 pt 5 title "FEA, release = all", \
-     f using 1:($9 + 0.05) skip 1 with linespoints lw 2 pt 9 title "FEA, release = largest", \
-     f using 1:7 skip 1 axes x1y2 with impulses lw 3 lc rgb "#ff7f0e" title "iterations (all)", \
-     f using ($1 + 0.002):10 skip 1 axes x1y2 with impulses lw 3 lc rgb "#2ca02c" title "iterations (largest)"
-]]):format(path("arch_methods.csv")))
+draw_arch_methods()
 print("wrote " .. folder)

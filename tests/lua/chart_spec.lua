@@ -4,6 +4,7 @@ local ashlar = require "ashlar"
 
 local support = require "spec_support"
 local expect_error = support.expect_error
+local svg_texts, contains = support.svg_texts, support.contains
 
 local PNG_SIGNATURE = "\137PNG\r\n\26\n"
 
@@ -32,6 +33,9 @@ local function study()
   end
   return rows
 end
+
+-- The Okabe-Ito colours of the first three series, as the SVG writes them.
+local SERIES_COLORS = { "#0072B2", "#D55E00", "#009E73" }
 
 local function names(result)
   local list = {}
@@ -114,15 +118,55 @@ describe("ashlar.chart", function()
                     x_label = "t / R", y_label = "tension / weight" }
       local svg = support.read_file(dir .. "/" .. kind .. ".svg")
       assert.equal("<?xml", svg:sub(1, 5))
-      assert.is_truthy(svg:find('<svg[^>]*width="640pt" height="480pt"'))
+      assert.is_truthy(svg:find('<svg[^>]*width="640pt"%s+height="480pt"'))
+      -- The title, the axis labels and both lines' legend entries are text.
+      local texts = svg_texts(svg)
+      for _, text in ipairs{ kind, "t / R", "tension / weight", "n = 8", "n = 16" } do
+        assert.is_true(contains(texts, text), text)
+      end
+      -- Two lines: the first two series colours, not the third.
+      assert.is_truthy(svg:find(SERIES_COLORS[1], 1, true))
+      assert.is_truthy(svg:find(SERIES_COLORS[2], 1, true))
+      assert.is_falsy(svg:find(SERIES_COLORS[3], 1, true))
     end
-    ashlar.chart{ path = dir .. "/c.pdf", data = study(), x = "t", y = "infeasibility", log_x = true }
-    assert.equal("%PDF", support.read_file(dir .. "/c.pdf"):sub(1, 4))
+    ashlar.chart{ path = dir .. "/c.pdf", data = study(), x = "t", y = "infeasibility", log_x = true,
+                  width = 500, height = 300 }
+    local pdf = support.read_file(dir .. "/c.pdf")
+    assert.equal("%PDF", pdf:sub(1, 4))
+    assert.is_truthy(pdf:find("/MediaBox [ 0 0 500 300 ]", 1, true))
     ashlar.chart{ path = dir .. "/small.png", data = study(), x = "t", y = "infeasibility",
                   width = 200, height = 16384 }
     local width, height = png_size(support.read_file(dir .. "/small.png"))
     assert.equal(200, width)
     assert.equal(16384, height)
+  end)
+
+  it("takes the axes' ends from x_range and y_range, cutting off what lies outside", function()
+    local r = ashlar.chart{ path = dir .. "/range.svg", data = study(), x = "t", y = "infeasibility", series = "n",
+                            x_range = { 0.1, 0.2 }, y_range = { -1, 1 }, kind = "points" }
+    assert.equal(4, r.series[1].points)
+    local svg = support.read_file(dir .. "/range.svg")
+    local texts = svg_texts(svg)
+    assert.is_true(contains(texts, "0.10"))
+    assert.is_true(contains(texts, "0.20"))
+    assert.is_true(contains(texts, "-1.0"))
+    assert.is_false(contains(texts, "0.08"))
+    -- Of each line's markers only those at t = 0.1 .. 0.12 are drawn (3 + 3
+    -- of 8), plus one per legend entry.
+    local markers = 0
+    for _ in svg:gmatch("&#x25cf;") do markers = markers + 1 end
+    for _ in svg:gmatch("&#x25a0;") do markers = markers + 1 end
+    assert.equal(3 + 3 + 2, markers)
+  end)
+
+  it("labels log axes at their decades", function()
+    local rows = {}
+    for k = 0, 3 do rows[#rows + 1] = { blocks = 10 ^ (k + 1), seconds = 10 ^ (2 * k - 4) } end
+    ashlar.chart{ path = dir .. "/log.svg", data = rows, x = "blocks", y = "seconds", log_x = true, log_y = true }
+    local texts = svg_texts(support.read_file(dir .. "/log.svg"))
+    for exponent = 1, 4 do assert.is_true(contains(texts, "10^" .. exponent), "x: 10^" .. exponent) end
+    for exponent = -4, 2 do assert.is_true(contains(texts, "10^" .. exponent), "y: 10^" .. exponent) end
+    assert.is_false(contains(texts, "10^5"))
   end)
 
   it("reports bad options and data clearly, and writes nothing", function()
@@ -135,7 +179,12 @@ describe("ashlar.chart", function()
     end
     expect_error({ "bad argument #1", "expected an option table" }, ashlar.chart, path)
     expect_error({ "bad argument #1", "unknown option 'colour'", "(allowed: data, height, kind, log_x, "
-                   .. "log_y, path, series, title, width, x, x_label, y, y_label)" }, chart, { colour = "red" })
+                   .. "log_y, path, series, title, width, x, x_label, x_range, y, y_label, y_range)" }, chart,
+                 { colour = "red" })
+    expect_error({ "x_range: expected {lo, hi}, got number" }, chart, { x_range = 1 })
+    expect_error({ "chart: y_range must be finite with lo < hi, got {2, 1}" }, chart, { y_range = { 2, 1 } })
+    expect_error({ "chart: y_range must be finite with lo < hi and lo > 0 (log axis), got {0, 1}" }, chart,
+      { y_range = { 0, 1 }, log_y = true, data = { { t = 1, infeasibility = 1 } } })
     expect_error({ "bad argument #1", "path: required, the file to write (.png, .svg or .pdf)" },
       ashlar.chart, { data = rows, x = "t", y = "infeasibility" })
     expect_error({ "data: required, a list of row tables" }, ashlar.chart, { path = path, x = "t", y = "n" })

@@ -117,8 +117,14 @@ describe("ashlar.legend", function()
     width, height = png_size(support.read_file(dir .. "/h.png"))
     assert.equal(600, width)
     assert.equal(150, height)
-    ashlar.legend(dir .. "/v.svg", { range = { 0, 1 }, width = 200, height = 400 })
-    assert.is_truthy(support.read_file(dir .. "/v.svg"):find('width="200pt" height="400pt"', 1, true))
+    ashlar.legend(dir .. "/v.svg", { range = { 0.3, 1.1 }, width = 200, height = 400, label = "tension (kN)" })
+    local svg = support.read_file(dir .. "/v.svg")
+    assert.is_truthy(svg:find('width="200pt"%s+height="400pt"'))
+    -- Five ticks from lo to hi, evenly apart, and the label, as text.
+    local texts = support.svg_texts(svg)
+    for _, text in ipairs{ "0.3", "0.5", "0.7", "0.9", "1.1", "tension (kN)" } do
+      assert.is_true(support.contains(texts, text), text)
+    end
   end)
 
   it("reports bad options clearly", function()

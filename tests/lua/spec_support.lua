@@ -197,4 +197,29 @@ function support.statics(s, r, contact)
   return worst_force, worst_moment, tension
 end
 
+-- The text of each <text> element of an SVG that PLplot's svg driver wrote
+-- (every character as &#xHH;; a superscript in a <tspan> raised by dy < 0,
+-- here written "^": "10^-6").
+function support.svg_texts(svg)
+  local texts = {}
+  for body in svg:gmatch("<text.->(.-)</text>") do
+    body = body:gsub('<tspan dy="%-[^>]*>', "^")
+    local text = {}
+    for piece in body:gmatch("[%^]?&#x%x+;") do
+      local raised, code = piece:match("^(%^?)&#x(%x+);$")
+      text[#text + 1] = raised .. utf8.char(tonumber(code, 16))
+    end
+    texts[#texts + 1] = table.concat(text)
+  end
+  return texts
+end
+
+-- Whether `list` holds `value`.
+function support.contains(list, value)
+  for _, item in ipairs(list) do
+    if item == value then return true end
+  end
+  return false
+end
+
 return support

@@ -1,5 +1,6 @@
-// Charts: axis ticks, the layout, and the files (pixels read back, formats,
-// atomic writes).
+// Charts: the axes, and the files PLplot writes (pixels read back, the
+// SVG's text, formats, threads, atomic writes); the rows of a study split
+// into series.
 #include <cairo.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -9,10 +10,10 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "core/error.hpp"
 #include "core/atomic_file.hpp"
-#include "io/axis_ticks.hpp"
 #include "io/chart.hpp"
 #include "io/chart_rows.hpp"
 #include "test_support.hpp"
@@ -84,182 +85,70 @@ void expect_color(const std::array<int, 3>& actual, const std::array<int, 3>& ex
 
 }  // namespace
 
-TEST(AxisTicks, LinearStepsAreOneTwoOrFiveTimesAPowerOfTen) {
-  AxisTicks ticks = linear_ticks(0, 1, 6);
-  EXPECT_EQ(ticks.values, (std::vector<double>{0, 0.2, 0.4, 0.6, 0.8, 1}));
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"0.0", "0.2", "0.4", "0.6", "0.8", "1.0"}));
-  EXPECT_TRUE(ticks.minor.empty());
-  // One more allowed tick: the step drops to 0.1.
-  EXPECT_EQ(linear_ticks(0, 1, 11).values.size(), 11u);
-  // Ends off the step: only multiples inside, with the step's decimals.
-  ticks = linear_ticks(0.073, 0.207, 8);
-  EXPECT_EQ(ticks.values, (std::vector<double>{0.08, 0.1, 0.12, 0.14, 0.16, 0.18, 0.2}));
-  EXPECT_EQ(ticks.labels,
-            (std::vector<std::string>{"0.08", "0.10", "0.12", "0.14", "0.16", "0.18", "0.20"}));
-  // Negative values with a true minus sign; step 2 gives 8 ticks, step 1 would give 16.
-  ticks = linear_ticks(-3.7, 12.2, 8);
-  EXPECT_EQ(ticks.values, (std::vector<double>{-2, 0, 2, 4, 6, 8, 10, 12}));
-  EXPECT_EQ(ticks.labels.front(), "\u22122");
-  // At most 6: step 5 (step 2 would give 8).
-  EXPECT_EQ(linear_ticks(-3.7, 12.2, 6).values, (std::vector<double>{0, 5, 10}));
-  // Round-off: 0.3 / 0.1 is 2.9999999999999996, and 0.3 is still a tick.
-  EXPECT_EQ(linear_ticks(0.1, 0.3, 3).values, (std::vector<double>{0.1, 0.2, 0.3}));
-}
-
-TEST(AxisTicks, LinearLabelsOfLargeAndSmallValuesShareAPowerOfTen) {
-  AxisTicks ticks = linear_ticks(0, 3.2e7, 5);
-  EXPECT_EQ(ticks.values, (std::vector<double>{0, 1e7, 2e7, 3e7}));
-  EXPECT_EQ(ticks.power, 7);
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"0", "1", "2", "3"}));
-  ticks = linear_ticks(-5.2e6, 1.52e7, 5);
-  EXPECT_EQ(ticks.values, (std::vector<double>{-5e6, 0, 5e6, 1e7, 1.5e7}));
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"\u22120.5", "0.0", "0.5", "1.0", "1.5"}));
-  // One more allowed: step 2×10⁶ from 1.2×10⁷; one fewer: step 5×10⁶.
-  ticks = linear_ticks(1.2e7, 2.1e7, 5);
-  EXPECT_EQ(ticks.values, (std::vector<double>{1.2e7, 1.4e7, 1.6e7, 1.8e7, 2e7}));
-  EXPECT_EQ(ticks.labels[4], "2.0");
-  EXPECT_EQ(linear_ticks(1.2e7, 2.1e7, 4).values, (std::vector<double>{1.5e7, 2e7}));
-  ticks = linear_ticks(0, 3e-5, 4);
-  EXPECT_EQ(ticks.values, (std::vector<double>{0, 1e-5, 2e-5, 3e-5}));
-  EXPECT_EQ(ticks.power, -5);
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"0", "1", "2", "3"}));
-  // Just under a million: plain.
-  ticks = linear_ticks(0, 9e5, 10);
-  EXPECT_EQ(ticks.power, 0);
-  EXPECT_EQ(ticks.labels.back(), "900000");
-  EXPECT_EQ(linear_label_power(-2e6, 1), 6);
-  EXPECT_EQ(linear_label_power(0, 9.9e-5), -5);
-  EXPECT_EQ(linear_label_power(0, 0.5), 0);
-  EXPECT_EQ(power_of_ten_text(-12), "10\u207b\u00b9\u00b2");
-}
-
-TEST(AxisTicks, LogAxesUseDecadesThenOneTwoFive) {
-  AxisTicks ticks = log_ticks(1e-3, 10, 6);
-  EXPECT_EQ(ticks.values, (std::vector<double>{1e-3, 1e-2, 0.1, 1, 10}));
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"0.001", "0.01", "0.1", "1", "10"}));
-  // 2..9 in each of the four decades.
-  ASSERT_EQ(ticks.minor.size(), 32u);
-  EXPECT_DOUBLE_EQ(ticks.minor.front(), 2e-3);
-  EXPECT_DOUBLE_EQ(ticks.minor.back(), 9);
-
-  // Thirteen decades, at most 6 ticks: every fifth decade (every second gives 7).
-  ticks = log_ticks(1e-12, 1, 6);
-  EXPECT_EQ(ticks.values, (std::vector<double>{1e-10, 1e-5, 1}));
-  EXPECT_EQ(ticks.labels,
-            (std::vector<std::string>{"10\u207b\u00b9\u2070", "10\u207b\u2075", "10\u2070"}));
-  EXPECT_TRUE(ticks.minor.empty());
-
-  // About a decade: 1, 2 and 5 times powers of ten.
-  ticks = log_ticks(3, 40, 6);
-  EXPECT_EQ(ticks.values, (std::vector<double>{5, 10, 20}));
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"5", "10", "20"}));
-  ticks = log_ticks(0.015, 0.3, 6);
-  EXPECT_EQ(ticks.values, (std::vector<double>{0.02, 0.05, 0.1, 0.2}));
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"0.02", "0.05", "0.1", "0.2"}));
-
-  // 1, 2, 5, 10 is one too many for 3: the two decades, with minor ticks
-  // (0.9 is one: it lies inside).
-  ticks = log_ticks(0.9, 11, 3);
-  EXPECT_EQ(ticks.values, (std::vector<double>{1, 10}));
-  EXPECT_EQ(ticks.minor, (std::vector<double>{0.9, 2, 3, 4, 5, 6, 7, 8, 9}));
-
-  // Under a decade with no 1, 2 or 5 inside: linear ticks.
-  ticks = log_ticks(1.2, 1.8, 5);
-  EXPECT_EQ(ticks.values, (std::vector<double>{1.2, 1.4, 1.6, 1.8}));
-  EXPECT_EQ(ticks.labels, (std::vector<std::string>{"1.2", "1.4", "1.6", "1.8"}));
-}
-
-TEST(AxisTicks, RejectBadRanges) {
-  EXPECT_TRUE(contains(error_of([] { linear_ticks(1, 1, 5); }), "lo < hi"));
-  EXPECT_TRUE(contains(error_of([] { linear_ticks(0, NAN, 5); }), "finite"));
-  EXPECT_TRUE(contains(error_of([] { linear_ticks(0, 1, 1); }), "at least 2 ticks"));
-  EXPECT_TRUE(contains(error_of([] { log_ticks(0, 1, 5); }), "0 < lo < hi"));
-}
-
-TEST(ChartLayout, PadsTheDataAndMapsItInsideThePlot) {
+TEST(ChartAxes, PadTheData) {
   const ChartSpec spec = crossing_series();
-  const ChartLayout layout = chart_layout(spec);
+  const auto [x, y] = chart_axes(spec);
   // 4 % of the data's range on each side.
-  EXPECT_DOUBLE_EQ(layout.x.lo, -0.08);
-  EXPECT_DOUBLE_EQ(layout.x.hi, 2.08);
-  EXPECT_DOUBLE_EQ(layout.y.lo, -0.16);
-  EXPECT_DOUBLE_EQ(layout.y.hi, 4.16);
-  // The axes' ends are the plot's edges.
-  EXPECT_TRUE(
-      layout.to_image({-0.08, -0.16}).isApprox(Vec2(layout.plot.left, layout.plot.bottom())));
-  EXPECT_TRUE(layout.to_image({2.08, 4.16}).isApprox(Vec2(layout.plot.right(), layout.plot.top)));
-  // Every point strictly inside, and inside the image.
-  for (const ChartSeries& series : spec.series) {
-    for (const Vec2& p : series.points) {
-      const Vec2 q = layout.to_image(p);
-      EXPECT_GT(q.x(), layout.plot.left + 5);
-      EXPECT_LT(q.x(), layout.plot.right() - 5);
-      EXPECT_GT(q.y(), layout.plot.top + 5);
-      EXPECT_LT(q.y(), layout.plot.bottom() - 5);
-    }
-  }
-  EXPECT_GT(layout.plot.left, 0);
-  EXPECT_GT(layout.plot.top, 0);
-  // The legend sits right of the plot, inside the image.
-  EXPECT_GT(layout.legend.width, 0);
-  EXPECT_GT(layout.legend.left, layout.plot.right());
-  EXPECT_LE(layout.legend.right(), spec.width);
-  // Ticks: 1-2-5 steps inside the axis, labelled.
-  // About one per five label heights, at most 10: step 0.2 would give 11.
-  EXPECT_EQ(layout.x.ticks.values, (std::vector<double>{0, 0.5, 1, 1.5, 2}));
-  EXPECT_EQ(layout.y.ticks.values, (std::vector<double>{0, 0.5, 1, 1.5, 2, 2.5, 3, 3.5, 4}));
-  EXPECT_EQ(layout.y.ticks.labels.size(), layout.y.ticks.values.size());
+  EXPECT_DOUBLE_EQ(x.lo, -0.08);
+  EXPECT_DOUBLE_EQ(x.hi, 2.08);
+  EXPECT_DOUBLE_EQ(y.lo, -0.16);
+  EXPECT_DOUBLE_EQ(y.hi, 4.16);
+  EXPECT_DOUBLE_EQ(x.fraction(1.0), 0.5);
 
-  // One series: no legend, the plot reaches to the margin.
-  ChartSpec single = spec;
-  single.series.pop_back();
-  const ChartLayout alone = chart_layout(single);
-  EXPECT_EQ(alone.legend.width, 0);
-  EXPECT_GT(alone.plot.width, layout.plot.width + layout.legend.width);
+  // Log axes: padded by 4 % of 3 decades, 0.12 decades.
+  ChartSpec log;
+  log.series = {{"error", {{1, 1e-6}, {10, 1e-4}, {100, 1e-2}, {1000, 1}}}};
+  log.log_x = log.log_y = true;
+  const auto [log_x, log_y] = chart_axes(log);
+  EXPECT_NEAR(std::log10(log_x.lo), -0.12, 1e-12);
+  EXPECT_NEAR(std::log10(log_y.hi), 0.24, 1e-12);
+  EXPECT_NEAR(log_x.fraction(10) - log_x.fraction(1), log_x.fraction(1000) - log_x.fraction(100),
+              1e-12);
+
+  // A single value gets a range: ± 5 % of it, ± 0.5 for 0.
+  ChartSpec single;
+  single.series = {{"one", {{0.08, 0}}}};
+  const auto [single_x, single_y] = chart_axes(single);
+  EXPECT_DOUBLE_EQ(single_x.lo, 0.076);
+  EXPECT_DOUBLE_EQ(single_x.hi, 0.084);
+  EXPECT_DOUBLE_EQ(single_y.lo, -0.5);
+  EXPECT_DOUBLE_EQ(single_y.hi, 0.5);
 }
 
-TEST(ChartLayout, LogAxesSpaceDecadesEvenly) {
-  ChartSpec spec;
-  spec.series = {{"error", {{1, 1e-6}, {10, 1e-4}, {100, 1e-2}, {1000, 1}}}};
-  spec.log_x = spec.log_y = true;
-  const ChartLayout layout = chart_layout(spec);
-  // Padded by 4 % of 3 decades: 0.12 decades.
-  EXPECT_NEAR(std::log10(layout.x.lo), -0.12, 1e-12);
-  EXPECT_NEAR(std::log10(layout.y.hi), 0.24, 1e-12);
-  const double decade = layout.to_image({10, 1}).x() - layout.to_image({1, 1}).x();
-  EXPECT_NEAR(layout.to_image({1000, 1}).x() - layout.to_image({100, 1}).x(), decade, 1e-9);
-  EXPECT_NEAR(layout.to_image({1, 1e-4}).y() - layout.to_image({1, 1e-6}).y(),
-              layout.to_image({1, 1}).y() - layout.to_image({1, 1e-2}).y(), 1e-9);
-  EXPECT_EQ(layout.x.ticks.values, (std::vector<double>{1, 10, 100, 1000}));
-  EXPECT_EQ(layout.y.ticks.labels.front(), "10\u207b\u2076");
+TEST(ChartAxes, TakeTheGivenRanges) {
+  ChartSpec spec = crossing_series();
+  spec.x_range = std::make_pair(0.5, 1.5);
+  spec.y_range = std::make_pair(-8.0, 2.0);
+  const auto [x, y] = chart_axes(spec);
+  EXPECT_EQ(x.lo, 0.5);
+  EXPECT_EQ(x.hi, 1.5);
+  EXPECT_EQ(y.lo, -8.0);
+  EXPECT_EQ(y.hi, 2.0);
+  spec.log_y = true;
+  spec.series = {{"positive", {{1, 1}}}};
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
+                       "chart: y_range must be finite with lo < hi and lo > 0 (log axis), got {-8, 2}"));
+  spec.log_y = false;
+  spec.x_range = std::make_pair(1.0, 1.0);
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
+                       "chart: x_range must be finite with lo < hi, got {1, 1}"));
 }
 
-TEST(ChartLayout, SingleValuesGetARange) {
-  ChartSpec spec;
-  spec.series = {{"one", {{0.08, 0}}}};
-  const ChartLayout layout = chart_layout(spec);
-  EXPECT_DOUBLE_EQ(layout.x.lo, 0.076);
-  EXPECT_DOUBLE_EQ(layout.x.hi, 0.084);
-  EXPECT_DOUBLE_EQ(layout.y.lo, -0.5);
-  EXPECT_DOUBLE_EQ(layout.y.hi, 0.5);
-  EXPECT_GE(layout.x.ticks.values.size(), 2u);
-}
-
-TEST(ChartLayout, RejectsBadSpecs) {
+TEST(ChartAxes, RejectBadSpecs) {
   ChartSpec spec = crossing_series();
   spec.width = 199;
-  EXPECT_TRUE(contains(error_of([&] { chart_layout(spec); }),
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
                        "width and height must lie in [200, 16384], got 199 x 600"));
   spec = crossing_series();
   spec.log_y = true;
-  EXPECT_TRUE(contains(error_of([&] { chart_layout(spec); }),
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
                        "log_y takes values > 0 only, got series 'rising' point 1 (x = 0, y = 0)"));
   spec = crossing_series();
   spec.series[1].points[2].y() = INFINITY;
-  EXPECT_TRUE(contains(error_of([&] { chart_layout(spec); }),
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }),
                        "series 'falling' point 3 (x = 2, y = inf) is not finite"));
   spec.series = {{"empty", {}}};
-  EXPECT_TRUE(contains(error_of([&] { chart_layout(spec); }), "nothing to plot"));
+  EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }), "nothing to plot"));
   EXPECT_TRUE(contains(error_of([] { chart_kind("bars"); }),
                        "unknown kind 'bars' (allowed: lines, points, linespoints, steps)"));
 }
@@ -267,34 +156,43 @@ TEST(ChartLayout, RejectsBadSpecs) {
 TEST(Chart, PngShowsEachSeriesInItsColourAtItsPoints) {
   TempDir dir;
   const ChartSpec spec = crossing_series(ChartKind::linespoints);
-  const ChartLayout layout = chart_layout(spec);
-  draw_chart(dir.file("c.png"), spec);
+  const ChartFrame frame = draw_chart(dir.file("c.png"), spec);
   const Surface image = read_png(dir.file("c.png"));
   EXPECT_EQ(cairo_image_surface_get_width(image.get()), 900);
   EXPECT_EQ(cairo_image_surface_get_height(image.get()), 600);
+  // The frame lies inside the image, the legend's room on its right.
+  EXPECT_GT(frame.plot.left, 0);
+  EXPECT_GT(frame.plot.top, 0);
+  EXPECT_LT(frame.plot.right(), 0.88 * spec.width);
+  EXPECT_LT(frame.plot.bottom(), spec.height);
   const std::array<int, 3> blue = eight_bit(chart_series_color(0));
   const std::array<int, 3> vermillion = eight_bit(chart_series_color(1));
   EXPECT_EQ(blue, (std::array<int, 3>{0, 114, 178}));
   EXPECT_EQ(vermillion, (std::array<int, 3>{213, 94, 0}));
-  expect_color(pixel(image.get(), layout.to_image({2, 4})), blue, "rising at (2, 4)");
-  expect_color(pixel(image.get(), layout.to_image({1, 1})), blue, "rising at (1, 1)");
-  expect_color(pixel(image.get(), layout.to_image({2, 0})), vermillion, "falling at (2, 0)");
-  expect_color(pixel(image.get(), layout.to_image({1, 3})), vermillion, "falling at (1, 3)");
+  // The markers sit on the data points in their series' colours (PLplot
+  // rounds positions to whole pixels: 3 x 3 around each).
+  EXPECT_LE(color_distance_near(image.get(), frame.to_image({2, 4}), blue), 2);
+  EXPECT_LE(color_distance_near(image.get(), frame.to_image({1, 1}), blue), 2);
+  EXPECT_LE(color_distance_near(image.get(), frame.to_image({2, 0}), vermillion), 2);
+  EXPECT_LE(color_distance_near(image.get(), frame.to_image({1, 3}), vermillion), 2);
   // Where no series goes: white or a light grid line.
-  const std::array<int, 3> empty = pixel(image.get(), layout.to_image({0.3, 2.2}));
+  const std::array<int, 3> empty = pixel(image.get(), frame.to_image({0.3, 2.2}));
   for (const int channel : empty) EXPECT_GE(channel, 200);
   // The image corner is background.
   expect_color(pixel(image.get(), {1, 1}), {255, 255, 255}, "corner");
 
   // Steps: the value 1 holds from x = 1 to x = 2, then jumps to 4; a line
-  // would run diagonally through (1.5, 2.5) instead. Lines are 2 px wide,
-  // so one of the pixels around a point on them is fully covered.
+  // would run diagonally through (1.5, 2.5) instead.
   const ChartSpec steps = crossing_series(ChartKind::steps);
-  draw_chart(dir.file("steps.png"), steps);
+  const ChartFrame steps_frame = draw_chart(dir.file("steps.png"), steps);
   const Surface steps_image = read_png(dir.file("steps.png"));
-  const ChartLayout steps_layout = chart_layout(steps);
-  EXPECT_LE(color_distance_near(steps_image.get(), steps_layout.to_image({1.5, 1}), blue), 2);
-  EXPECT_GE(color_distance_near(steps_image.get(), steps_layout.to_image({1.5, 2.5}), blue), 100);
+  EXPECT_LE(color_distance_near(steps_image.get(), steps_frame.to_image({1.5, 1}), blue), 2);
+  EXPECT_GE(color_distance_near(steps_image.get(), steps_frame.to_image({1.5, 2.5}), blue), 100);
+
+  // One series: no legend, the plot reaches nearly to the image's edge.
+  ChartSpec single = crossing_series();
+  single.series.pop_back();
+  EXPECT_GT(draw_chart(dir.file("single.png"), single).plot.right(), 0.9 * single.width);
 
   // Another size: the image follows.
   ChartSpec small = crossing_series();
@@ -306,20 +204,59 @@ TEST(Chart, PngShowsEachSeriesInItsColourAtItsPoints) {
   EXPECT_EQ(cairo_image_surface_get_height(small_image.get()), 300);
 }
 
-TEST(Chart, WritesSvgAndPdf) {
+TEST(Chart, WritesSvgWithItsTextAndPdf) {
   TempDir dir;
-  const ChartSpec spec = crossing_series();
+  ChartSpec spec = crossing_series();
+  spec.series[1].name = "falling #2 <&>";  // PLplot's escape and XML's specials
   draw_chart(dir.file("c.svg"), spec);
   const std::string svg = read_file(dir.file("c.svg"));
   EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
-  EXPECT_TRUE(contains(svg, "<svg"));
-  EXPECT_TRUE(contains(svg, "width=\"900pt\" height=\"600pt\""));
+  EXPECT_TRUE(contains(svg, "width=\"900pt\"\n  height=\"600pt\"")) << svg.substr(0, 400);
   EXPECT_TRUE(contains(svg, "</svg>"));
+  // Title, axis labels, legend entries and tick labels are text.
+  const std::vector<std::string> texts = svg_texts(svg);
+  for (const std::string text : {"two series", "x", "y", "rising", "falling #2 <&>", "0.5", "4"}) {
+    EXPECT_TRUE(has_text(texts, text)) << text;
+  }
   draw_chart(dir.file("c.PDF"), spec);
   const std::string pdf = read_file(dir.file("c.PDF"));
   EXPECT_EQ(pdf.rfind("%PDF", 0), 0u);
   EXPECT_TRUE(contains(pdf, "%%EOF"));
+  EXPECT_TRUE(contains(pdf, "/MediaBox [ 0 0 900 600 ]"));
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"c.PDF", "c.svg"}));
+}
+
+TEST(Chart, LogAxesLabelTheirDecades) {
+  TempDir dir;
+  ChartSpec spec;
+  spec.series = {{"error", {{1, 1e-6}, {10, 1e-4}, {100, 1e-2}, {1000, 1}}}};
+  spec.log_x = spec.log_y = true;
+  draw_chart(dir.file("log.svg"), spec);
+  const std::vector<std::string> texts = svg_texts(read_file(dir.file("log.svg")));
+  // x from 10^-0.12 to 10^3.12, y from 10^-6.24 to 10^0.24: every decade.
+  for (const std::string label : {"10^0", "10^1", "10^2", "10^3"}) {
+    EXPECT_TRUE(has_text(texts, label)) << label;
+  }
+  for (int exponent = -6; exponent <= 0; ++exponent) {
+    EXPECT_TRUE(has_text(texts, "10^" + std::to_string(exponent))) << exponent;
+  }
+  EXPECT_FALSE(has_text(texts, "10^4"));
+  EXPECT_FALSE(has_text(texts, "10^-7"));
+}
+
+TEST(Chart, ManyThreadsDrawAtOnce) {
+  TempDir dir;
+  std::vector<std::thread> threads;
+  for (int k = 0; k < 4; ++k) {
+    threads.emplace_back([&, k] {
+      for (int i = 0; i < 3; ++i) draw_chart(dir.file(std::to_string(k * 3 + i) + ".png"), crossing_series());
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(dir.entries().size(), 12u);
+  for (const std::string& name : dir.entries()) {
+    EXPECT_EQ(read_file(dir.file(name)).rfind("\x89PNG", 0), 0u) << name;
+  }
 }
 
 TEST(Chart, WritesAtomically) {
@@ -336,8 +273,15 @@ TEST(Chart, WritesAtomically) {
   EXPECT_TRUE(contains(error_of([&] { draw_chart(path, bad); }), "log_y"));
   EXPECT_EQ(read_file(path), "old");
 
+  // A write that succeeds replaces it, with no temporary left.
+  draw_chart(path, spec);
+  EXPECT_EQ(read_file(path).rfind("\x89PNG", 0), 0u);
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"c.png"}));
+
   // A write that fails part-way (the file size limit is far below a PNG's
-  // size) leaves the old file and no temporary.
+  // size) leaves the old file and no temporary. (PLplot has read its list
+  // of drivers above: it writes a temporary file to do so, once.)
+  write_file_atomically(path, "old");
   struct rlimit saved;
   ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
   const auto old_handler = signal(SIGXFSZ, SIG_IGN);  // write() fails with EFBIG instead
@@ -349,11 +293,6 @@ TEST(Chart, WritesAtomically) {
   signal(SIGXFSZ, old_handler);
   EXPECT_TRUE(contains(error, "cannot write '" + path + "'")) << error;
   EXPECT_EQ(read_file(path), "old");
-  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"c.png"}));
-
-  // A write that succeeds replaces it, with no temporary left.
-  draw_chart(path, spec);
-  EXPECT_EQ(read_file(path).rfind("\x89PNG", 0), 0u);
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"c.png"}));
 }
 

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
 #include "core/atomic_file.hpp"
+#include "io/color_legend.hpp"
 #include "io/drawing.hpp"
 #include "test_support.hpp"
 
@@ -400,7 +401,14 @@ TEST(Legend, WritesImagesOfTheOrientationsSize) {
   EXPECT_EQ(png_size(read_file(dir.file("h.png"))), std::make_pair(600, 150));
   options.width = 400;
   draw_legend(dir.file("h.svg"), options);
-  EXPECT_TRUE(contains(read_file(dir.file("h.svg")), "width=\"400pt\" height=\"150pt\""));
+  const std::string svg = read_file(dir.file("h.svg"));
+  EXPECT_TRUE(contains(svg, "width=\"400pt\"\n  height=\"150pt\"")) << svg.substr(0, 400);
+  // The five ticks from lo to hi and the label are text.
+  const std::vector<std::string> texts = svg_texts(svg);
+  const std::vector<std::string> expected = {"0", "0.625", "1.25", "1.875", "2.5", options.label};
+  for (const std::string& text : expected) {
+    EXPECT_TRUE(has_text(texts, text)) << text;
+  }
 
   options.map = "jet";
   EXPECT_TRUE(contains(error_of([&] { draw_legend(dir.file("x.png"), options); }), "viridis"));

@@ -63,6 +63,39 @@ inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+// The text of each <text> element of an SVG that PLplot's svg driver wrote,
+// which writes every character as &#xHH; and a superscript as a <tspan>
+// raised by dy < 0: "10^-6" for 10 with -6 raised.
+inline std::vector<std::string> svg_texts(const std::string& svg) {
+  std::vector<std::string> texts;
+  for (size_t at = svg.find("<text"); at != std::string::npos; at = svg.find("<text", at + 1)) {
+    const size_t end = svg.find("</text>", at);
+    std::string text;
+    for (size_t k = at; k < end; ++k) {
+      if (svg.compare(k, 12, "<tspan dy=\"-") == 0) text += '^';
+      if (svg.compare(k, 3, "&#x") != 0) continue;
+      const unsigned long code = std::stoul(svg.substr(k + 3, svg.find(';', k) - k - 3), nullptr, 16);
+      // UTF-8 of the code point (the labels here are below U+10000).
+      if (code < 0x80) {
+        text += static_cast<char>(code);
+      } else if (code < 0x800) {
+        text += static_cast<char>(0xc0 | (code >> 6));
+        text += static_cast<char>(0x80 | (code & 0x3f));
+      } else {
+        text += static_cast<char>(0xe0 | (code >> 12));
+        text += static_cast<char>(0x80 | ((code >> 6) & 0x3f));
+        text += static_cast<char>(0x80 | (code & 0x3f));
+      }
+    }
+    texts.push_back(text);
+  }
+  return texts;
+}
+
+inline bool has_text(const std::vector<std::string>& texts, const std::string& text) {
+  return std::find(texts.begin(), texts.end(), text) != texts.end();
+}
+
 // A fresh folder under /tmp for one test, removed with its files afterwards.
 
 class TempDir {
