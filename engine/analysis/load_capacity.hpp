@@ -10,7 +10,7 @@
 // and objective. The least multiple starts from the as-built optimal basis
 // (the primal simplex, a few dozen pivots). The largest continues from the
 // least's basis within a small pivot budget (enough on arches); past it,
-// the barrier method solves it under a cap, and when the cap binds a ray
+// the barrier method (no crossover) solves it under a cap, and when the cap binds a ray
 // test decides whether it is unbounded: whether block j's weight alone can
 // be carried compression-only (a program that changes only in one fixed
 // column from block to block, so the dual simplex warm-starts it). Blocks
