@@ -204,7 +204,7 @@ private:
 }  // namespace
 
 LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads,
-                           const BlockProgress& progress) {
+                           const ProgressCount& progress) {
   const auto start = Clock::now();
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   std::vector<int> multiplier_column;

@@ -17,11 +17,11 @@
 // are shared among worker threads, each with its own copy of the programs.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "core/progress.hpp"
 
 namespace ashlar {
 
@@ -46,15 +46,10 @@ struct LoadCapacity {
   double seconds = 0.0;
 };
 
-// Called on the calling thread before the first block (0 done) and as
-// blocks are done: (blocks done, blocks in all). Long per-block loops (load
-// capacity, important weights) take one.
-using BlockProgress = std::function<void(int done, int total)>;
-
 // Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
 // threads: worker threads, 0 for one per hardware thread; the bounds do not
-// depend on it. progress: see BlockProgress (none when empty).
+// depend on it. progress: blocks done (core/progress.hpp; none when empty).
 LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0,
-                           const BlockProgress& progress = {});
+                           const ProgressCount& progress = {});
 
 }  // namespace ashlar
