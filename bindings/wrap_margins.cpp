@@ -3,6 +3,7 @@
 #include "analysis/kinematic.hpp"
 #include "analysis/load_factor.hpp"
 #include "luax.hpp"
+#include "progress_line.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
 
@@ -85,7 +86,7 @@ int w_friction_demand(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance", "method"});
+    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance", "method", "progress"});
     AnalysisSettings analysis = analysis_settings(options);
     analysis.solver = InteriorPointSettings{};  // "tolerance" is the demand's
     read_method(options, analysis);
@@ -93,8 +94,11 @@ int w_friction_demand(lua_State* L) {
     const bool kinematic = analysis.method == AnalysisMethod::kinematic;
     const double tolerance = options.positive("tolerance", kinematic ? 1e-3 : 1e-6);
     if (tolerance >= 1.0) throw ArgError(2, "tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
-    const FrictionDemand demand =
-        kinematic ? kinematic_friction_demand(s, analysis, tolerance) : friction_demand(s, problem, tolerance);
+    // A line once the search has taken 2 s: most answer sooner.
+    ProgressLine line(options, "friction_demand", std::to_string(s.size()) + " blocks", "digit", 2.0);
+    const FrictionDemand demand = kinematic ? kinematic_friction_demand(s, analysis, tolerance)
+                                            : friction_demand(s, problem, tolerance, line.callback());
+    line.finish(demand.status);
     const std::vector<Interface>& interfaces = s.interfaces(problem.contact);
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, 0, 8);

@@ -3,16 +3,13 @@
 // weights hold a structure up.
 #include "wrap_weights.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
-#include <optional>
 #include <string>
 
 #include "analysis/load_capacity.hpp"
 #include "analysis/weight_analysis.hpp"
 #include "luax.hpp"
-#include "study/study_progress.hpp"
+#include "progress_line.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
 
@@ -27,36 +24,6 @@ void set_list(lua_State* L, const std::vector<double>& values) {
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
 }
-
-// The `progress` option of the per-block analyses (default: when stderr is
-// a terminal): a line on stderr counting the blocks done, redrawn in place
-// on a terminal, with a closing line; begun at the first report (0 done),
-// where the count of blocks is known.
-class BlockProgressLine {
-public:
-  BlockProgressLine(const OptionTable& options, std::string kind, int blocks)
-      : enabled_(options.boolean("progress").value_or(isatty(STDERR_FILENO) != 0)),
-        kind_(std::move(kind)),
-        label_(std::to_string(blocks) + " blocks") {}
-
-  BlockProgress callback() {
-    if (!enabled_) return {};
-    return [this](int done, int total) {
-      if (!line_) line_.emplace(label_, static_cast<std::size_t>(total), true, stderr, 10.0, kind_, "block");
-      done_ = done;
-      line_->update(static_cast<std::size_t>(done), 0);
-    };
-  }
-  void finish(const std::string& status) {
-    if (line_) line_->finish(static_cast<std::size_t>(done_), 0, status);
-  }
-
-private:
-  bool enabled_;
-  std::string kind_, label_;
-  std::optional<study::StudyProgress> line_;
-  int done_ = 0;
-};
 
 // The `threads` option of the per-block analyses: 0 (default) for one per core.
 int threads_option(const OptionTable& options) {
@@ -102,7 +69,7 @@ int w_load_capacity(lua_State* L) {
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = threads_option(options);
-    BlockProgressLine line(options, "load_capacity", s.size());
+    ProgressLine line(options, "load_capacity", std::to_string(s.size()) + " blocks", "block");
     const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback());
     line.finish(capacity.status);
     return call_protected(L, 0, [&](lua_State* L) {
@@ -154,7 +121,7 @@ int w_important_weights(lua_State* L) {
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = threads_option(options);
-    BlockProgressLine line(options, "important_weights", s.size());
+    ProgressLine line(options, "important_weights", std::to_string(s.size()) + " blocks", "block");
     const ImportantWeights important = important_weights(s, settings, threads, line.callback());
     const char* status = important.interrupted ? "interrupted" : "done";
     line.finish(status);

@@ -3,8 +3,77 @@
 --   ashlar scripts/bench_weights.lua
 -- Prints one line per analysis and structure. The dome's important_weights
 -- and load_capacity take minutes.
+--
+-- With `margins`, the four margins and weight analyses at 3D scale instead
+-- (issue 27): load_factor (pushed along x), friction_demand, load_capacity
+-- and important_weights on models.dome{} (305 blocks) and on a running-bond
+-- barrel vault of 1,008 voussoirs (32 around, 31 courses of 0.5 m), with
+-- their answers and wall and CPU times (the process's, so on 2 cores CPU
+-- may be twice wall):
+--   ashlar scripts/bench_weights.lua margins
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
+
+if arg[1] == "margins" then
+  -- The CPU seconds of this process so far (user + system), from /proc.
+  local function cpu_seconds()
+    local f = io.open("/proc/self/stat")
+    if not f then return 0 / 0 end
+    local fields = {}
+    for field in f:read("a"):gsub("^.*%) ", ""):gmatch("%S+") do fields[#fields + 1] = field end
+    f:close()
+    return (tonumber(fields[12]) + tonumber(fields[13])) / 100  -- utime, stime in clock ticks (USER_HZ 100)
+  end
+  local structures = {
+    { "dome 16 x 18", models.dome{} },
+    { "barrel vault, running bond, 32 x 31", models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5,
+                                                                  bond = "running" } },
+  }
+  local quiet = { progress = false }
+  for _, case in ipairs(structures) do
+    local name, s = case[1], case[2]
+    local free = 0
+    for i = 1, #s do if not s:is_support(i) then free = free + 1 end end
+    print(("%s (%d free blocks)"):format(name, free))
+    local runs = {
+      { "load_factor", function()
+          local f = ashlar.load_factor(s)
+          return ("factor %.10g (%s, %d iterations)"):format(f.factor, f.status, f.iterations)
+        end },
+      { "friction_demand", function()
+          local d = ashlar.friction_demand(s, quiet)
+          return ("friction %.10g (%s, %d programs)"):format(d.friction, d.status, d.programs)
+        end },
+      { "load_capacity", function()
+          local cap = ashlar.load_capacity(s, quiet)
+          local finite, unbounded, least, most = 0, 0, math.huge, 0
+          for i = 1, #s do
+            if cap[i] then
+              if cap[i].max == math.huge then unbounded = unbounded + 1 else
+                finite = finite + 1
+                least, most = math.min(least, cap[i].max), math.max(most, cap[i].max)
+              end
+            end
+          end
+          return ("%d finite maxima in [%.6g, %.6g], %d unbounded (%s, %d programs)"):format(finite, least, most,
+            unbounded, cap.status, cap.programs)
+        end },
+      { "important_weights", function()
+          local v = ashlar.important_weights(s, quiet)
+          local most = 0
+          for i = 1, #s do most = math.max(most, v[i]) end
+          return ("largest %.6g N/m^3 (%s, %d solves)"):format(most, v.status, v.solves)
+        end },
+    }
+    for _, run in ipairs(runs) do
+      local wall, cpu = ashlar.clock(), cpu_seconds()
+      local answer = run[2]()
+      print(("  %-18s %8.2f s wall %8.2f s CPU  %s"):format(run[1], ashlar.clock() - wall, cpu_seconds() - cpu,
+        answer))
+    end
+  end
+  return
+end
 
 local cases = {
   { "arch, 31 voussoirs", models.arch{ radius = 5, thickness = 0.6, voussoirs = 31 }, { friction = math.huge },

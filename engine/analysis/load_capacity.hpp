@@ -10,18 +10,18 @@
 // and objective. The least multiple starts from the as-built optimal basis
 // (the primal simplex, a few dozen pivots). The largest continues from the
 // least's basis within a small pivot budget (enough on arches); past it,
-// the barrier method solves it under a cap, and when the cap binds a ray
+// the barrier method (no crossover) solves it under a cap, and when the cap binds a ray
 // test decides whether it is unbounded: whether block j's weight alone can
 // be carried compression-only (a program that changes only in one fixed
 // column from block to block, so the dual simplex warm-starts it). Blocks
 // are shared among worker threads, each with its own copy of the programs.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "core/progress.hpp"
 
 namespace ashlar {
 
@@ -46,15 +46,10 @@ struct LoadCapacity {
   double seconds = 0.0;
 };
 
-// Called on the calling thread before the first block (0 done) and as
-// blocks are done: (blocks done, blocks in all). Long per-block loops (load
-// capacity, important weights) take one.
-using BlockProgress = std::function<void(int done, int total)>;
-
 // Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
 // threads: worker threads, 0 for one per hardware thread; the bounds do not
-// depend on it. progress: see BlockProgress (none when empty).
+// depend on it. progress: blocks done (core/progress.hpp; none when empty).
 LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0,
-                           const BlockProgress& progress = {});
+                           const ProgressCount& progress = {});
 
 }  // namespace ashlar

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/enum_names.hpp"
+#include "core/progress.hpp"
 #include "analysis/equilibrium_problem.hpp"
 #include "analysis/mechanism.hpp"
 
@@ -74,7 +75,9 @@ struct FrictionDemand {
 
 // `options.friction` is ignored; the cone approximation (model, sides) is
 // the options'. tolerance: relative width of the final bracket (> 0).
+// progress: the bracket's digits, as -log10 of its relative width, of
+// those the tolerance asks for (core/progress.hpp; none when empty).
 FrictionDemand friction_demand(const Structure& structure, const EquilibriumOptions& options,
-                               double tolerance = 1e-6);
+                               double tolerance = 1e-6, const ProgressCount& progress = {});
 
 }  // namespace ashlar

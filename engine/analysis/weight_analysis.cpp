@@ -152,7 +152,7 @@ NecessaryWeights necessary_weights(const Structure& structure, int block,
 }
 
 ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings, int threads,
-                                   const BlockProgress& progress) {
+                                   const ProgressCount& progress) {
   const auto start = Clock::now();
   check_analysis_settings(settings);
   // The calling thread's problem, set up here: it tells which blocks are

@@ -74,6 +74,6 @@ struct ImportantWeights {
 // depends on the count only to the solver's tolerance. progress: as
 // load_capacity's (analysis/load_capacity.hpp).
 ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings,
-                                   int threads = 0, const BlockProgress& progress = {});
+                                   int threads = 0, const ProgressCount& progress = {});
 
 }  // namespace ashlar

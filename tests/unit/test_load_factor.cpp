@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "analysis/equilibrium.hpp"
 #include "analysis/load_factor.hpp"
@@ -163,6 +165,21 @@ TEST(FrictionDemand, ArchAgreesWithTheAnalysis) {
   EXPECT_TRUE(analyze_equilibrium(s, settings).stable);
   settings.problem.friction = demand.friction * (1 - 1e-4);
   EXPECT_FALSE(analyze_equilibrium(s, settings).stable);
+}
+
+TEST(FrictionDemand, TellsTheDigitsOfItsBracket) {
+  // 0 of the 6 digits that tolerance 1e-6 asks for first, then counts
+  // that only grow, ending at 6: the bracket [lower, friction] is then
+  // within 1e-6 relative.
+  std::vector<std::pair<int, int>> told;
+  const FrictionDemand demand = friction_demand(semicircular_arch(16, 0.65), EquilibriumOptions{}, 1e-6,
+                                                [&](int done, int total) { told.emplace_back(done, total); });
+  ASSERT_EQ(demand.status, "optimal");
+  ASSERT_GE(told.size(), 2u);
+  EXPECT_EQ(told.front(), std::make_pair(0, 6));
+  EXPECT_EQ(told.back(), std::make_pair(6, 6));
+  for (size_t k = 1; k < told.size(); ++k) EXPECT_GE(told[k].first, told[k - 1].first);
+  EXPECT_LE(demand.friction - demand.lower, 1e-6 * demand.friction);
 }
 
 TEST(FrictionDemand, NoneOnFlatGroundAndNoneEnoughWhenItFalls) {

@@ -1,0 +1,89 @@
+-- The four margins and weight analyses on a small 3D structure, against
+-- reference values: models.dome{ meridians = 8, parallels = 4 } (33 free
+-- blocks on 8 supports), friction 0.7 (the default), 4-sided pyramid.
+--
+-- Where the references come from: each analysis as it was at commit c3040cb
+-- (issue 27, before the load capacity and weight analyses were sped up),
+-- Release build, printed to 17 digits. load_factor, friction_demand and
+-- load_capacity are linear programs solved exactly by COIN-OR Clp, so a
+-- faster path must give the same numbers to 1e-6 relative (the issue's
+-- bound); the friction demand's own bracket is 1e-6 wide. important_weights
+-- is a sum of interior-point least-squares solutions, each to the solver's
+-- tolerance and warm-started from the last, so it is held to 1e-3 relative
+-- (its blocks in one course, alike by symmetry, differ by up to 2e-4).
+--
+-- The dome is symmetric about its axis, so the blocks of one course share
+-- one reference; every block is checked.
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+local support = require "spec_support"
+local near = support.near
+
+local EXACT = 1e-6  -- relative, for the linear programs' answers
+
+local function dome()
+  return models.dome{ meridians = 8, parallels = 4 }
+end
+
+-- The blocks of course c (1 at the bottom, 4 under the keystone).
+local function course(s, c)
+  local blocks = {}
+  for b = 1, 8 do blocks[b] = s:find(("course %d block %d"):format(c, b)) end
+  return blocks
+end
+
+describe("a dome of 8 x 4 blocks (3D references)", function()
+  local s = dome()
+
+  it("load_factor: pushed sideways along x, 0.441399 g", function()
+    local f = ashlar.load_factor(s)
+    assert.are.equal("optimal", f.status)
+    near(f.factor, 0.44139938961941139, EXACT * 0.44139938961941139, "factor")
+    assert.is_true(f.stable)
+  end)
+
+  it("friction_demand: 0.2059305", function()
+    local d = ashlar.friction_demand(s)
+    assert.are.equal("optimal", d.status)
+    near(d.friction, 0.20593051180368421, EXACT * 0.20593051180368421, "friction")
+    assert.is_true(d.lower <= d.friction and d.lower >= d.friction * (1 - 2 * EXACT))
+  end)
+
+  it("load_capacity: unbounded on the bottom course, 113.68, 44.30 and 33.88 above, 7.14 for the keystone", function()
+    local cap = ashlar.load_capacity(s, { progress = false })
+    assert.are.equal("optimal", cap.status)
+    assert.is_true(cap.stable)
+    local maxima = { math.huge, 113.68038980083335, 44.299029123382546, 33.880116965082934 }
+    for c, expected in ipairs(maxima) do
+      for _, i in ipairs(course(s, c)) do
+        assert.are.equal(0, cap[i].min)
+        if expected == math.huge then
+          assert.are.equal(math.huge, cap[i].max)
+        else
+          near(cap[i].max, expected, EXACT * expected, s:name(i))
+        end
+      end
+    end
+    local key = s:find("keystone")
+    assert.are.equal(0, cap[key].min)
+    near(cap[key].max, 7.1362696460316482, EXACT * 7.1362696460316482, "keystone")
+    for i = 1, #s do
+      if s:is_support(i) then assert.are.equal(false, cap[i]) end
+    end
+  end)
+
+  it("important_weights: most in courses 2 and 3, least in the keystone (N/m^3)", function()
+    local v = ashlar.important_weights(s, { progress = false })
+    assert.are.equal("done", v.status)
+    assert.are.equal(33, v.solves)
+    assert.are.equal(0, #v.unstable)
+    local per_course = { 12905.40514291659, 23375.248356702556, 21674.472052137266, 6356.9795964340619 }
+    for c, expected in ipairs(per_course) do
+      for _, i in ipairs(course(s, c)) do near(v[i], expected, 1e-3 * expected, s:name(i)) end
+    end
+    near(v[s:find("keystone")], 2410.2011054843756, 1e-3 * 2410.2011054843756, "keystone")
+    for i = 1, #s do
+      if s:is_support(i) then assert.are.equal(0, v[i]) end
+    end
+  end)
+end)
