@@ -96,6 +96,22 @@ local g = ashlar.geometric_factor(function(t)
 end, 0.2, { tolerance = 0.01, friction = math.huge })
 return #tilted, g.status, math.floor(g.minimum * 100 + 0.5) / 100
 ]], { 3, "converged", 0.1 } },
+  { "margins", [[
+local lf = ashlar.load_factor(s, { friction = 0.7, direction = { 1, 0, 0 } })
+local fd = ashlar.friction_demand(s)
+local cap = ashlar.load_capacity(s, { friction = 0.7, threads = 1, progress = false })
+local iw = ashlar.important_weights(s, { friction = 0.7, threads = 1, progress = false })
+return lf.factor, fd.friction, cap[3].max == math.huge, iw.status, math.floor(iw[3] * 1e6 + 0.5)
+]], { 0.7, 0, true, "done", 2042 } },
+  { "pictures", [[
+local rows = { { x = 1, y = 2 }, { x = 2, y = 3 }, { x = 3, y = 5 } }
+local chart = ashlar.chart{ path = folder .. "/stack.png", data = rows, x = "x", y = "y" }
+ashlar.draw(s, folder .. "/stack.svg", { result = ashlar.analyze(s) })
+ashlar.legend(folder .. "/legend.png", { map = "viridis", range = { 0, 1 } })
+ashlar.export(s, folder .. "/stack.obj")
+local back = ashlar.import(folder .. "/stack.obj")
+return chart.skipped, #back, math.floor(back:block(3):volume() * 1e6 + 0.5)
+]], { 0, 3, 500000 } },
   { "errors", [[
 -- Wrong arguments raise their own errors; running out of memory meanwhile
 -- raises that instead, which these calls pass on.
