@@ -1,22 +1,14 @@
 #include "io/image_format.hpp"
 
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "io/mesh_io.hpp"
 
 namespace ashlar {
 namespace {
 
-const char* extension_of(ImageFormat format) {
-  switch (format) {
-    case ImageFormat::png:
-      return "png";
-    case ImageFormat::svg:
-      return "svg";
-    case ImageFormat::pdf:
-      return "pdf";
-  }
-  return "";
-}
+constexpr EnumNames<ImageFormat, 3> kImageExtensions{
+    {{{ImageFormat::png, "png"}, {ImageFormat::svg, "svg"}, {ImageFormat::pdf, "pdf"}}}};
 
 }  // namespace
 
@@ -25,9 +17,9 @@ ImageFormat image_format(const std::string& path, const std::vector<ImageFormat>
   const std::string extension = file_extension(path);
   std::string listed;
   for (size_t k = 0; k < allowed.size(); ++k) {
-    if (extension == extension_of(allowed[k])) return allowed[k];
+    if (extension == kImageExtensions.name(allowed[k])) return allowed[k];
     listed += (k == 0 ? "." : k + 1 == allowed.size() ? " or ." : ", .");
-    listed += extension_of(allowed[k]);
+    listed += kImageExtensions.name(allowed[k]);
   }
   throw InvalidArgument(what + ": cannot tell the format of '" + path +
                         "' from its extension; use " + listed);

@@ -385,24 +385,6 @@ void accumulate_one(const Structure& structure, const Interface& contact,
   add_face_plane_back(a, faces.plane_face, plane, d_plane, gradient_a);
 }
 
-// The faces of a mid-plane interface: the pair of copies of its joint.
-struct JointCopies {
-  int face_a = -1, face_b = -1;
-  std::vector<int> pairing;  // as mid_plane_pairing gives it
-};
-
-std::optional<JointCopies> find_joint_copies(const Block& a, const Block& b, const Interface& contact,
-                                             double tol) {
-  if (contact.face_a < 0 || contact.face_a >= static_cast<int>(a.faces().size()) || contact.face_b < 0 ||
-      contact.face_b >= static_cast<int>(b.faces().size())) {
-    return std::nullopt;
-  }
-  std::optional<std::vector<int>> pairing =
-      mid_plane_pairing(face_loop(a, contact.face_a), face_loop(b, contact.face_b), tol);
-  if (!pairing) return std::nullopt;
-  return JointCopies{contact.face_a, contact.face_b, std::move(*pairing)};
-}
-
 // A mid-plane interface (Interface::on_mid_plane): contact vertex k is
 // proj(m_k), m_k = (p_k + q_pairing(k)) / 2 the midpoint of vertex k of face
 // A and its pair on face B, projected onto the plane through the midpoints'
@@ -411,13 +393,16 @@ void accumulate_mid_plane(const Structure& structure, const Interface& contact, 
                           double tol, std::vector<std::vector<Vec3>>& gradient) {
   const Block& a = structure.block(contact.a);
   const Block& b = structure.block(contact.b);
-  const std::optional<JointCopies> copies = find_joint_copies(a, b, contact, tol);
-  if (!copies) {
+  const bool faces_exist = contact.face_a >= 0 && contact.face_a < static_cast<int>(a.faces().size()) &&
+                           contact.face_b >= 0 && contact.face_b < static_cast<int>(b.faces().size());
+  const std::vector<Vec3> copy_a = faces_exist ? face_loop(a, contact.face_a) : std::vector<Vec3>{};
+  const std::vector<Vec3> copy_b = faces_exist ? face_loop(b, contact.face_b) : std::vector<Vec3>{};
+  const std::optional<std::vector<int>> pairing = mid_plane_pairing(copy_a, copy_b, tol);
+  if (!pairing) {
     throw InvalidArgument("interface gradient: no faces of " + describe_pair(structure, contact) +
                           " are the two copies of their mid-plane joint");
   }
-  const std::vector<Vec3> midpoints =
-      paired_midpoints(face_loop(a, copies->face_a), face_loop(b, copies->face_b), copies->pairing);
+  const std::vector<Vec3> midpoints = paired_midpoints(copy_a, copy_b, *pairing);
   ContactPlane plane{contact.normal, Vec3::Zero()};
   for (const Vec3& m : midpoints) plane.centre += m;
   plane.centre /= static_cast<double>(midpoints.size());
@@ -431,11 +416,11 @@ void accumulate_mid_plane(const Structure& structure, const Interface& contact, 
     d_midpoints[k] = projection_back(plane, midpoints[k], d_vertices[k], d_plane);
   }
   plane_back(midpoints, plane, d_plane, d_midpoints);
-  const FaceLoop& loop_a = a.faces()[copies->face_a];
-  const FaceLoop& loop_b = b.faces()[copies->face_b];
+  const FaceLoop& loop_a = a.faces()[contact.face_a];
+  const FaceLoop& loop_b = b.faces()[contact.face_b];
   for (size_t k = 0; k < midpoints.size(); ++k) {
     gradient[contact.a][loop_a[k]] += 0.5 * d_midpoints[k];
-    gradient[contact.b][loop_b[copies->pairing[k]]] += 0.5 * d_midpoints[k];
+    gradient[contact.b][loop_b[(*pairing)[k]]] += 0.5 * d_midpoints[k];
   }
 }
 
