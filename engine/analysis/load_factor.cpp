@@ -48,6 +48,27 @@ int solve_checked(ClpSimplex& simplex, int& iterations) {
   return unscaled_status(simplex, iterations);
 }
 
+// Clp's barrier with crossover to a vertex (an optimal basis, with its
+// duals), then the checks of solve_checked. From scratch it takes far fewer
+// iterations than either simplex on 3D friction programs, whose vertices
+// are highly degenerate.
+int solve_by_barrier(ClpSimplex& simplex, int& iterations) {
+  ClpSolve barrier;
+  barrier.setSolveType(ClpSolve::useBarrier);
+  barrier.setSpecialOption(2, 1);  // no interrupt handler: analyses may run side by side
+  simplex.initialSolve(barrier);
+  iterations += simplex.numberIterations();
+  if (simplex.status() != 0 && simplex.status() != 1 && simplex.status() != 2) {
+    simplex.primal();  // the barrier stopped short: the simplex from its point
+    iterations += simplex.numberIterations();
+  }
+  if (unscaled_status(simplex, iterations) != 1) return simplex.status();
+  simplex.allSlackBasis(true);
+  simplex.dual();
+  iterations += simplex.numberIterations();
+  return unscaled_status(simplex, iterations);
+}
+
 // The scaled right-hand side (6 rows, as applied_force_rhs) of the load that
 // lambda multiplies, per block.
 std::vector<Eigen::Matrix<double, 6, 1>> pattern_rhs(const Structure& structure,
@@ -141,21 +162,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   // The largest factor by Clp's barrier and crossover to a vertex (whose
   // duals are the mechanism): 32 barrier iterations and 0.5 s on that dome,
   // where the primal simplex took 14,453 pivots and 4.4 s.
-  ClpSolve barrier;
-  barrier.setSolveType(ClpSolve::useBarrier);
-  barrier.setSpecialOption(2, 1);  // no interrupt handler: analyses may run side by side
-  simplex.initialSolve(barrier);
-  result.iterations += simplex.numberIterations();
-  if (simplex.status() != 0 && simplex.status() != 1 && simplex.status() != 2) {
-    simplex.primal();  // the barrier stopped short: the simplex from its point
-    result.iterations += simplex.numberIterations();
-  }
-  if (unscaled_status(simplex, result.iterations) == 1) {  // as in solve_checked
-    simplex.allSlackBasis(true);
-    simplex.dual();
-    result.iterations += simplex.numberIterations();
-    unscaled_status(simplex, result.iterations);
-  }
+  solve_by_barrier(simplex, result.iterations);
   switch (simplex.status()) {
     case 0:
       result.factor = simplex.primalColumnSolution()[factor_column];
@@ -229,12 +236,10 @@ public:
     const bool warm = basis_.size() == static_cast<size_t>(program.columns + program.rows);
     int status;
     if (borrows && !warm) {
-      // All slacks are a dual feasible basis (every cost is >= 0): from
-      // there the dual simplex (the dome's first program: 4,737 pivots)
-      // beats the primal (17,148). From a basis the primal does better.
-      simplex.dual();
-      tally_.iterations += simplex.numberIterations();
-      status = unscaled_status(simplex, tally_.iterations);
+      // From scratch the barrier and crossover (1.7 s on the 305-block
+      // dome) beat the dual simplex from all slacks (2.9 s, 8,874 pivots)
+      // and the primal (17,148 pivots). From a basis the primal does better.
+      status = solve_by_barrier(simplex, tally_.iterations);
     } else {
       if (warm) simplex.copyinStatus(basis_.data());
       status = solve_checked(simplex, tally_.iterations);
@@ -305,36 +310,33 @@ constexpr double kLargestDemand = 1e6;
 // before the programs take over.
 constexpr double kAnalysedWidth = 1e-3;
 
-// The demand as the equilibrium analysis sees it, by bisection on its
-// verdicts to kAnalysedWidth from [0, `high`] (grown from 1 by doubling when
-// `high` is not finite): one QP each, warm from the last, about a tenth of a
-// second on a 305-block dome, where a program far from the demand takes
-// seconds. The upper end of the bracket, or infinity when no coefficient up
-// to kLargestDemand stands or an analysis gives no verdict. Only a guide:
-// the programs decide.
-double analysed_demand(const Structure& structure, const EquilibriumOptions& options, double high) {
+// The demand as the equilibrium analysis sees it: a bracket grown from 1 by
+// doubling, then halved to kAnalysedWidth, on its verdicts: one QP each,
+// warm from the last, about a twentieth of a second on a 305-block dome,
+// where a program far from the demand takes seconds. The upper end of the
+// bracket, or infinity when it does not stand without sliding, when no
+// coefficient up to kLargestDemand stands, or when an analysis gives no
+// verdict. Only a guide: the programs decide.
+double analysed_demand(const Structure& structure, const EquilibriumOptions& options) {
   AnalysisSettings settings;
   settings.problem = options;
   settings.problem.friction = 1.0;
   EquilibriumAnalysis analysis(structure, settings);
   bool warm = false;
-  int verdicts = 0;
   auto stands = [&](double friction) {
     settings.problem.friction = friction;
     analysis.update(structure, settings);
     const EquilibriumResult r = analysis.solve(warm);
     warm = r.status == SolverStatus::converged || r.status == SolverStatus::inaccurate;
-    ++verdicts;
     return has_no_answer(r.status) ? -1 : (r.stable ? 1 : 0);
   };
-  double low = 0.0;
-  if (!std::isfinite(high)) {
-    for (high = 1.0;; high *= 2.0) {
-      const int verdict = stands(high);
-      if (verdict < 0 || (verdict == 0 && high >= kLargestDemand)) return kInfinity;
-      if (verdict == 1) break;
-      low = high;
-    }
+  if (stands(kInfinity) != 1) return kInfinity;
+  double low = 0.0, high = 1.0;
+  for (;; high *= 2.0) {
+    const int verdict = stands(high);
+    if (verdict < 0 || (verdict == 0 && high >= kLargestDemand)) return kInfinity;
+    if (verdict == 1) break;
+    low = high;
   }
   while (high - low > kAnalysedWidth * high) {
     const double middle = 0.5 * (low + high);
@@ -377,23 +379,16 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   if (problem.has_floating_bodies()) return finish("floating", kInfinity);
   FrictionPrograms programs(problem, options, result);
   std::vector<Eigen::Vector4d> unknowns;
-  int status = programs.stands(kInfinity, &unknowns);
-  if (status == 1) return finish("unstable", kInfinity);
-  if (status != 0) return finish(clp_failure(status), kNaN);
-  double high = programs.needed(unknowns);
+  int status = 0;
   // Coefficients too small, with the friction they borrow: the latest two
   // give a secant estimate of the demand.
   std::vector<std::pair<double, double>> short_of;
-  status = programs.stands(0.0);
-  if (status == 0) return finish("optimal", 0.0);
-  if (status != 1) return finish(clp_failure(status), kNaN);
-  double low = 0.0;
+  double low = 0.0, high = kInfinity;
   bool high_stands = false;  // `unknowns` hold an equilibrium that stands with `high`
-  // Confirm the analyses' bracket by programs, just outside each end, where
-  // it improves on what the no-sliding equilibrium needs.
-  const double analysed = analysed_demand(structure, options, high);
-  const double above = analysed * (1.0 + kAnalysedWidth);
-  if (above < high) {
+  // Confirm the analyses' bracket by programs, just outside each end.
+  const double analysed = analysed_demand(structure, options);
+  if (std::isfinite(analysed)) {
+    const double above = analysed * (1.0 + kAnalysedWidth);
     double borrowed = 0.0;
     status = programs.stands(above, &unknowns, &borrowed);
     if (status == 0) {
@@ -421,6 +416,17 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
       }
     }
   }
+  if (!high_stands) {
+    // Nothing tried stands yet: whether it stands without sliding at all,
+    // and what friction that equilibrium needs.
+    status = programs.stands(kInfinity, &unknowns);
+    if (status == 1) {
+      result.lower = low;
+      return finish("unstable", kInfinity);
+    }
+    if (status != 0) return finish(clp_failure(status), kNaN);
+    high = programs.needed(unknowns);
+  }
   if (!high_stands && !std::isfinite(high)) {
     // The frictionless-in-the-limit equilibrium leaned on a vertex with no
     // compression: grow a finite coefficient until one stands.
@@ -440,6 +446,13 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   } else if (!high_stands) {
     status = programs.stands(high, &unknowns);
     if (status != 0) return finish(status == 1 ? "numerical difficulties" : clp_failure(status), kNaN);
+  }
+  if (low == 0.0) {
+    // No program has fallen short yet (one that does proves every smaller
+    // coefficient too small): whether it stands without friction.
+    status = programs.stands(0.0);
+    if (status == 0) return finish("optimal", 0.0);
+    if (status != 1) return finish(clp_failure(status), kNaN);
   }
   std::vector<Eigen::Vector4d> at_high = unknowns;
   tell(low, high);

@@ -8,7 +8,8 @@
 // the friction demand, where the coefficient multiplies the unknowns, is a
 // bracketing search (narrowed first by the equilibrium analysis's verdicts)
 // over programs of the friction an equilibrium must borrow beyond the
-// cones, each warm-started from the last basis. Both are lower-bound
+// cones (the first by the barrier and crossover, then each warm-started
+// from the last basis). Both are lower-bound
 // (static) answers of limit analysis with the options' friction cone
 // approximation; with sliding they assume associative friction, like the
 // equilibrium analysis.
