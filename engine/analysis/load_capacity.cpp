@@ -1,7 +1,6 @@
 #include "analysis/load_capacity.hpp"
 
 #include <ClpSimplex.hpp>
-#include <ClpSolve.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <algorithm>
 #include <atomic>
@@ -10,6 +9,7 @@
 #include <limits>
 #include <thread>
 
+#include "analysis/clp_barrier.hpp"
 #include "analysis/equilibrium_program.hpp"
 #include "core/clock.hpp"
 #include "core/interrupt.hpp"
@@ -165,11 +165,7 @@ private:
       // nothing from it); the two were a third of the CPU time on a
       // 161-block dome. The barrier's optimum agrees with the vertex's to
       // 6e-10 relative there.
-      ClpSolve barrier;
-      barrier.setSolveType(ClpSolve::useBarrierNoCross);
-      barrier.setPresolveType(ClpSolve::presolveOff);
-      barrier.setSpecialOption(2, 1);  // no interrupt handler: workers run side by side
-      capacity_.initialSolve(barrier);
+      barrier_.solve(capacity_);
       count(bounds, capacity_);
       if (capacity_.status() != 0) {
         bounds.failure = failure_status(capacity_.status());
@@ -202,6 +198,7 @@ private:
   }
 
   ClpSimplex capacity_, rays_;
+  BarrierSolver barrier_;  // its normal equations analysed once for all blocks
   const Basis* as_built_;
   bool planar_;
   int ray_column_ = -1;
