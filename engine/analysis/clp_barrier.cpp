@@ -8,6 +8,7 @@
 #include <ClpSolve.hpp>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -89,8 +90,8 @@ struct BarrierNormalEquations {
 
   // Fills M for the diagonal of the columns and then of the rows' slacks,
   // and factors it; a matrix that is not numerically positive definite
-  // (a degenerate iterate) gets its diagonal raised by a rounding of its
-  // largest entry first.
+  // (a degenerate iterate) gets its diagonal raised by a growing fraction
+  // of its largest entry until it factors.
   bool factorize(const double* diagonal, double delta_squared) {
     double* values = cholesky->values();
     std::fill(values, values + cholesky->nonzeros(), 0.0);
@@ -104,9 +105,11 @@ struct BarrierNormalEquations {
       values[diagonal_slot[i]] += diagonal[columns + i] + delta_squared;
       largest = std::max(largest, values[diagonal_slot[i]]);
     }
-    if (cholesky->factorize()) return true;
-    for (int i = 0; i < rows; ++i) values[diagonal_slot[i]] += 1e-12 * largest;
-    return cholesky->factorize();
+    for (double shift = 1e-12; !cholesky->factorize(); shift *= 1e3) {
+      if (shift > 1e-3 || !std::isfinite(largest)) return false;
+      for (int i = 0; i < rows; ++i) values[diagonal_slot[i]] += shift * largest;
+    }
+    return true;
   }
 
   void solve(double* region) {
@@ -133,9 +136,11 @@ public:
     return 0;
   }
   int symbolic() override { return 0; }
+  // A failed factorisation leaves the last factor (Clp aborts the process
+  // on a nonzero status); the iterate's accuracy checks then end the solve.
   int factorize(const CoinWorkDouble* diagonal, int* rowsDropped) override {
     const double delta = model_->delta();
-    status_ = normal_.factorize(diagonal, delta * delta) ? 0 : -1;
+    normal_.factorize(diagonal, delta * delta);
     std::fill(rowsDropped, rowsDropped + numberRows_, 0);
     choleskyCondition_ = 1.0;
     return 0;

@@ -23,7 +23,10 @@ public:
   BarrierSolver(BarrierSolver&&) noexcept;
   BarrierSolver& operator=(BarrierSolver&&) noexcept;
 
-  // Solves `model` by the barrier, without presolve, scaling or crossover:
+  // Solves `model`, a program with an optimum (feasible and bounded: on
+  // an infeasible one Clp's predictor-corrector may abort the process,
+  // "dual off to infinity"), by the barrier, without presolve, scaling or
+  // crossover:
   // the model's primal and dual solutions are the barrier's last iterate
   // (or, where it stops without a verdict, those of Clp's own barrier and
   // crossover). Returns Clp's status (0 optimal, 1 primal infeasible, 2

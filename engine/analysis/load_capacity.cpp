@@ -159,6 +159,7 @@ private:
       }
     }
     for (double cap = kFirstCap; cap <= kLastCap; cap *= 100) {
+      if (cap < bounds.min) continue;  // the capped program must be feasible (clp_barrier.hpp)
       capacity_.setColumnBounds(column, 0.0, cap);
       // Only the optimum's value is wanted, not a vertex: no crossover, and
       // no presolve (a program that changes in one column's bounds gains

@@ -8,13 +8,16 @@
 // equations, friction pyramids, no tension), solved by COIN-OR Clp. All
 // programs share one constraint matrix and differ in one column's bounds
 // and objective. The least multiple starts from the as-built optimal basis
-// (the primal simplex, a few dozen pivots). The largest continues from the
-// least's basis within a small pivot budget (enough on arches); past it,
-// the barrier method (no crossover) solves it under a cap, and when the cap binds a ray
-// test decides whether it is unbounded: whether block j's weight alone can
-// be carried compression-only (a program that changes only in one fixed
-// column from block to block, so the dual simplex warm-starts it). Blocks
-// are shared among worker threads, each with its own copy of the programs.
+// (the primal simplex, a few dozen pivots). On planar structures the
+// largest continues from the least's basis within a small pivot budget
+// (enough on arches); past it, and on every 3D structure, the barrier
+// method (no crossover; its normal equations on CHOLMOD, analysed once per
+// worker: clp_barrier.hpp) solves it under a cap, and when the cap binds a
+// ray test decides whether it is unbounded: whether block j's weight alone
+// can be carried compression-only (a program that changes only in one
+// fixed column from block to block, so the dual simplex warm-starts it).
+// Blocks are shared among worker threads, each with its own copy of the
+// programs.
 #pragma once
 
 #include <string>
