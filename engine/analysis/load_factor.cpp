@@ -34,12 +34,11 @@ int unscaled_status(ClpSimplex& simplex, int& iterations) {
   return simplex.status();
 }
 
-// Clp's status of a feasibility program (no objective). The dual simplex
-// called feasible programs infeasible on fine arches (128 and 200
-// voussoirs), and so may the primal: "infeasible" stands only when the
-// other one, from a slack basis, agrees.
-int solve_checked(ClpSimplex& simplex, int& iterations) {
-  simplex.primal();
+// Clp's status once `simplex` has solved, counting its iterations. The
+// dual simplex called feasible programs infeasible on fine arches (128 and
+// 200 voussoirs), and so may the primal: "infeasible" stands only when the
+// dual simplex from a slack basis agrees.
+int confirmed_status(ClpSimplex& simplex, int& iterations) {
   iterations += simplex.numberIterations();
   if (unscaled_status(simplex, iterations) != 1) return simplex.status();
   simplex.allSlackBasis(true);
@@ -48,25 +47,25 @@ int solve_checked(ClpSimplex& simplex, int& iterations) {
   return unscaled_status(simplex, iterations);
 }
 
+// A feasibility program (no objective) by the primal simplex.
+int solve_checked(ClpSimplex& simplex, int& iterations) {
+  simplex.primal();
+  return confirmed_status(simplex, iterations);
+}
+
 // Clp's barrier with crossover to a vertex (an optimal basis, with its
-// duals), then the checks of solve_checked. From scratch it takes far fewer
-// iterations than either simplex on 3D friction programs, whose vertices
-// are highly degenerate.
+// duals). From scratch it takes far fewer iterations than either simplex
+// on 3D friction programs, whose vertices are highly degenerate.
 int solve_by_barrier(ClpSimplex& simplex, int& iterations) {
   ClpSolve barrier;
   barrier.setSolveType(ClpSolve::useBarrier);
   barrier.setSpecialOption(2, 1);  // no interrupt handler: analyses may run side by side
   simplex.initialSolve(barrier);
-  iterations += simplex.numberIterations();
   if (simplex.status() != 0 && simplex.status() != 1 && simplex.status() != 2) {
-    simplex.primal();  // the barrier stopped short: the simplex from its point
     iterations += simplex.numberIterations();
+    simplex.primal();  // the barrier stopped short: the simplex from its point
   }
-  if (unscaled_status(simplex, iterations) != 1) return simplex.status();
-  simplex.allSlackBasis(true);
-  simplex.dual();
-  iterations += simplex.numberIterations();
-  return unscaled_status(simplex, iterations);
+  return confirmed_status(simplex, iterations);
 }
 
 // The scaled right-hand side (6 rows, as applied_force_rhs) of the load that
