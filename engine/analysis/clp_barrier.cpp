@@ -23,7 +23,9 @@ static_assert(sizeof(CoinWorkDouble) == sizeof(double), "Clp built with long dou
 // entries it adds to with their products a_i a_j, fixed with the matrix.
 struct BarrierNormalEquations {
   int rows = 0, columns = 0;
-  CoinBigIndex elements = 0;
+  // The matrix as Clp holds it, which the pairs' products come from.
+  std::vector<int> column_length, column_rows;
+  std::vector<double> column_values;
   std::vector<int> pair_start;         // column c adds pairs [pair_start[c], pair_start[c + 1])
   std::vector<int> pair_slot;          // where, in the pattern's values
   std::vector<double> pair_product;    // a_i a_j
@@ -32,15 +34,18 @@ struct BarrierNormalEquations {
   Eigen::VectorXd rhs, solution;
 
   explicit BarrierNormalEquations(const ClpMatrixBase& matrix)
-      : rows(matrix.getNumRows()), columns(matrix.getNumCols()), elements(matrix.getNumElements()) {
+      : rows(matrix.getNumRows()), columns(matrix.getNumCols()) {
     const CoinBigIndex* start = matrix.getVectorStarts();
     const int* length = matrix.getVectorLengths();
     const int* row = matrix.getIndices();
     const double* value = matrix.getElements();
+    column_length.assign(length, length + columns);
     // Each column's entries by row.
     std::vector<std::vector<std::pair<int, double>>> entries(columns);
     for (int c = 0; c < columns; ++c) {
       for (CoinBigIndex k = start[c]; k < start[c] + length[c]; ++k) {
+        column_rows.push_back(row[k]);
+        column_values.push_back(value[k]);
         if (value[k] != 0.0) entries[c].emplace_back(row[k], value[k]);
       }
       std::sort(entries[c].begin(), entries[c].end());
@@ -84,8 +89,20 @@ struct BarrierNormalEquations {
     rhs.resize(rows);
   }
 
+  // Whether `matrix` is the one analysed, entry for entry.
   bool fits(const ClpMatrixBase& matrix) const {
-    return matrix.getNumRows() == rows && matrix.getNumCols() == columns && matrix.getNumElements() == elements;
+    if (matrix.getNumRows() != rows || matrix.getNumCols() != columns) return false;
+    const CoinBigIndex* start = matrix.getVectorStarts();
+    const int* length = matrix.getVectorLengths();
+    const int* row = matrix.getIndices();
+    const double* value = matrix.getElements();
+    for (int c = 0, k = 0; c < columns; ++c) {
+      if (length[c] != column_length[c]) return false;
+      for (CoinBigIndex e = start[c]; e < start[c] + length[c]; ++e, ++k) {
+        if (row[e] != column_rows[k] || value[e] != column_values[k]) return false;
+      }
+    }
+    return true;
   }
 
   // Fills M for the diagonal of the columns and then of the rows' slacks,

@@ -51,6 +51,12 @@ TEST(ClpBarrier, ReachesTheClosedFormOptimaWithOneAnalysis) {
   EXPECT_NEAR(model.primalColumnSolution()[0], 1.0, 1e-6);
   EXPECT_NEAR(model.primalColumnSolution()[1], 1.5, 1e-6);
   EXPECT_NEAR(model.objectiveValue(), -2.5, 1e-6);
+  // A changed entry is another matrix, analysed afresh: with 3 x1 + x2 <= 6
+  // turned into x1 + x2 <= 6 the optimum moves to x = (4, 0).
+  model.setColumnUpper(0, COIN_DBL_MAX);
+  model.modifyCoefficient(1, 0, 1.0);
+  ASSERT_EQ(barrier.solve(model), 0);
+  EXPECT_NEAR(model.objectiveValue(), -4.0, 1e-6);
 }
 
 TEST(ClpBarrier, FindsAnUnboundedDirectionCappedByABound) {
