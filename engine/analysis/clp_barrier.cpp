@@ -108,8 +108,8 @@ struct BarrierNormalEquations {
   // Fills M for the diagonal of the columns and then of the rows' slacks,
   // and factors it; a matrix that is not numerically positive definite
   // (a degenerate iterate) gets its diagonal raised by a growing fraction
-  // of its largest entry until it factors.
-  bool factorize(const double* diagonal, double delta_squared) {
+  // of its largest entry until it factors, up to 1e-3 of it.
+  void factorize(const double* diagonal, double delta_squared) {
     double* values = cholesky->values();
     std::fill(values, values + cholesky->nonzeros(), 0.0);
     for (int c = 0; c < columns; ++c) {
@@ -122,11 +122,9 @@ struct BarrierNormalEquations {
       values[diagonal_slot[i]] += diagonal[columns + i] + delta_squared;
       largest = std::max(largest, values[diagonal_slot[i]]);
     }
-    for (double shift = 1e-12; !cholesky->factorize(); shift *= 1e3) {
-      if (shift > 1e-3 || !std::isfinite(largest)) return false;
+    for (double shift = 1e-12; !cholesky->factorize() && shift <= 1e-3 && std::isfinite(largest); shift *= 1e3) {
       for (int i = 0; i < rows; ++i) values[diagonal_slot[i]] += shift * largest;
     }
-    return true;
   }
 
   void solve(double* region) {
