@@ -128,7 +128,8 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   const int d = block_rows_;
   const int blocks = problem.row_count / d;
   // Upper-triangle block pattern: for block column J, the block rows I <= J.
-  std::vector<std::vector<int>> upper(blocks);
+  std::vector<std::vector<int>>& upper = block_pattern_;
+  upper.assign(blocks, {});
   for (int j = 0; j < blocks; ++j) upper[j].push_back(j);
   for (const ForceGroup& v : problem.groups) {
     if (v.row_a >= 0 && v.row_b >= 0) {
@@ -151,24 +152,7 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
       column_starts_[d * j + cj + 1] = static_cast<int>(row_indices.size());
     }
   }
-  auto rank = [&](int i, int j) {
-    return static_cast<int>(std::lower_bound(upper[j].begin(), upper[j].end(), i) -
-                            upper[j].begin());
-  };
-  pattern_slots_.resize(problem.groups.size());
-  for (size_t k = 0; k < problem.groups.size(); ++k) {
-    const ForceGroup& v = problem.groups[k];
-    VertexSlots& slot = pattern_slots_[k];
-    slot.row_a = v.row_a;
-    slot.row_b = v.row_b;
-    if (v.row_a >= 0) slot.aa = rank(v.row_a / d, v.row_a / d);
-    if (v.row_b >= 0) slot.bb = rank(v.row_b / d, v.row_b / d);
-    if (v.row_a >= 0 && v.row_b >= 0) {
-      const int a = v.row_a / d, b = v.row_b / d;
-      slot.ab_transposed = a > b;
-      slot.ab = rank(std::min(a, b), std::max(a, b));
-    }
-  }
+  find_slots(problem, pattern_slots_);
   if (problem.row_count > 0) {
     cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices);
   }
@@ -342,6 +326,46 @@ void EquilibriumSolver::partition_columns(int blocks) {
 }
 
 EquilibriumSolver::~EquilibriumSolver() = default;
+
+bool EquilibriumSolver::find_slots(const EquilibriumProblem& problem, std::vector<VertexSlots>& slots) const {
+  const int d = block_rows_;
+  // Block (i, j), i <= j: its rank among column j's block rows, -1 if absent.
+  auto rank = [&](int i, int j) {
+    const std::vector<int>& rows = block_pattern_[j];
+    const auto at = std::lower_bound(rows.begin(), rows.end(), i);
+    return at != rows.end() && *at == i ? static_cast<int>(at - rows.begin()) : -1;
+  };
+  slots.assign(problem.groups.size(), VertexSlots{});
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& v = problem.groups[k];
+    VertexSlots& slot = slots[k];
+    slot.row_a = v.row_a;
+    slot.row_b = v.row_b;
+    if (v.row_a >= 0) slot.aa = rank(v.row_a / d, v.row_a / d);
+    if (v.row_b >= 0) slot.bb = rank(v.row_b / d, v.row_b / d);
+    if (v.row_a >= 0 && v.row_b >= 0) {
+      const int a = v.row_a / d, b = v.row_b / d;
+      slot.ab_transposed = a > b;
+      slot.ab = rank(std::min(a, b), std::max(a, b));
+      if (slot.ab < 0) return false;
+    }
+  }
+  return true;
+}
+
+bool EquilibriumSolver::refit(const EquilibriumProblem& problem) {
+  if (fits(problem)) return true;
+  if (problem.row_count != size_ || problem.block_rows != block_rows_) return false;
+  std::vector<VertexSlots> slots;
+  if (!find_slots(problem, slots)) return false;
+  pattern_slots_ = std::move(slots);
+  // The twin classes and the assembly's parts are of the old groups.
+  twins_ = Twins{};
+  merged_slots_.clear();
+  response_ready_ = false;
+  partition_columns(size_ / block_rows_);
+  return true;
+}
 
 bool EquilibriumSolver::fits(const EquilibriumProblem& problem) const {
   if (problem.row_count != size_ || problem.block_rows != block_rows_ ||

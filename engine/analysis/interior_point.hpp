@@ -102,6 +102,11 @@ public:
   // Whether `problem` has the pattern this solver analysed: the same
   // balance rows, and every force group acting on the same bodies' rows.
   bool fits(const EquilibriumProblem& problem) const;
+  // Makes the solver fit `problem` without a new analysis when its groups
+  // add only to blocks of the analysed pattern (a group moved to another
+  // body, or to two bodies already in contact): true then, in time linear
+  // in the groups; false, and the solver unchanged, otherwise.
+  bool refit(const EquilibriumProblem& problem);
 
   // Solves `problem` (same contacts as at construction: fits(problem)). When `warm_start`
   // is set and `solution` has matching sizes it is the starting point.
@@ -183,6 +188,10 @@ private:
     int aa = -1, bb = -1, ab = -1;  // pattern slots of the 6 x 6 blocks, -1 if absent
     bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
   };
+  // The slots of `problem`'s groups in the analysed pattern; false if some
+  // group adds to a block the pattern lacks.
+  bool find_slots(const EquilibriumProblem& problem, std::vector<VertexSlots>& slots) const;
+  std::vector<std::vector<int>> block_pattern_;  // per block column J, its block rows I <= J, sorted
   std::vector<VertexSlots> pattern_slots_;  // per group of the problem analysed (fits())
   // The groups the solver works on: the problem's, or its twin classes.
   struct Twins {

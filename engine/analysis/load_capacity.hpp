@@ -5,19 +5,27 @@
 //
 // The thesis searches by trial; here each bound is one linear program in
 // the contact forces and the multiplier (feasibility of the equilibrium
-// equations, friction pyramids, no tension), solved by COIN-OR Clp. All
-// programs share one constraint matrix and differ in one column's bounds
-// and objective. The least multiple starts from the as-built optimal basis
-// (the primal simplex, a few dozen pivots). On planar structures the
-// largest continues from the least's basis within a small pivot budget
-// (enough on arches); past it, and on every 3D structure, the barrier
-// method (no crossover; its normal equations on CHOLMOD, analysed once per
-// worker: clp_barrier.hpp) solves it under a cap, and when the cap binds a
-// ray test decides whether it is unbounded: whether block j's weight alone
-// can be carried compression-only (a program that changes only in one
-// fixed column from block to block, so the dual simplex warm-starts it).
+// equations, friction pyramids, no tension). All programs share one
+// constraint matrix and differ in one column's bounds and objective.
+// - Least multiple: on 3D structures first the analysis's own verdict with
+//   the block weightless (the equilibrium solver, warm from the as-built
+//   forces, stopped at the first compression-only equilibrium: 3-4
+//   iterations); a certified verdict is the least multiple 0. Otherwise,
+//   and on planar structures, COIN-OR Clp's primal simplex from the
+//   as-built optimal basis (a few dozen pivots).
+// - Largest multiple: on planar structures the simplex continues from the
+//   least's basis within a small pivot budget (enough on arches). Past it,
+//   and on every 3D structure, it is solved under a cap: on 3D structures
+//   with 0 < mu < infinity and no cables by the equilibrium solver
+//   (interior_point.hpp) as a linear program, warm from the as-built
+//   forces; elsewhere, or where that does not converge, by Clp's barrier
+//   (no crossover; its normal equations on CHOLMOD, analysed once per
+//   worker: clp_barrier.hpp). When the cap binds, a ray test decides
+//   whether the maximum is unbounded: whether block j's weight alone can be
+//   carried compression-only (a program that changes only in one fixed
+//   column from block to block, so the dual simplex warm-starts it).
 // Blocks are shared among worker threads, each with its own copy of the
-// programs.
+// programs and solvers.
 #pragma once
 
 #include <string>
@@ -44,8 +52,8 @@ struct LoadCapacity {
   // "interrupted" (Ctrl-C or a sandbox deadline): the blocks not done are
   // NaN, and stable is false (no verdict).
   std::string status = "optimal";
-  int programs = 0;            // linear programs solved
-  int simplex_iterations = 0;  // simplex pivots and barrier iterations over all of them
+  int programs = 0;            // linear programs and equilibrium solves
+  int simplex_iterations = 0;  // simplex pivots, barrier and interior-point iterations over all of them
   double seconds = 0.0;
 };
 

@@ -270,6 +270,46 @@ TEST(Equilibrium, AnAnswerShortOfTheToleranceIsTheIterateItsFiguresDescribe) {
   }
 }
 
+TEST(Equilibrium, ARefittedSolverSolvesAsANewOne) {
+  // Three blocks stacked on the ground, each contact a pair of bodies in
+  // the pattern. An extra vertical force group (the weight group of
+  // necessary weights), moved from the top block to the middle one, adds
+  // only to a diagonal block: the refitted solver takes it without a new
+  // analysis and finds what a solver built for it finds.
+  Structure s = overhanging_stack(0.2);
+  s.add(box({1, 1, 0.5}, {0.3, 0, 1.25}));
+  EquilibriumProblem problem = build_equilibrium_problem(s, {});
+  ForceGroup lift;
+  lift.kind = GroupKind::weight;
+  lift.row_a = problem.row_of_block[3];
+  lift.on_a(problem.vertical_row(), 0) = 1.0;
+  problem.groups.push_back(lift);
+  EquilibriumSolver solver(problem);
+  InteriorPointSolution first;
+  ASSERT_EQ(solver.solve(problem, {}, first).status, SolverStatus::converged);
+
+  problem.groups.back().row_a = problem.row_of_block[2];
+  EXPECT_FALSE(solver.fits(problem));
+  ASSERT_TRUE(solver.refit(problem));
+  EXPECT_TRUE(solver.fits(problem));
+  EquilibriumSolver fresh(problem);
+  InteriorPointSolution refitted, reference;
+  const InteriorPointInfo info = solver.solve(problem, {}, refitted);
+  const InteriorPointInfo reference_info = fresh.solve(problem, {}, reference);
+  ASSERT_EQ(info.status, SolverStatus::converged);
+  EXPECT_EQ(info.iterations, reference_info.iterations);
+  EXPECT_NEAR(info.objective, reference_info.objective, 1e-12 * std::abs(reference_info.objective));
+  EXPECT_LE((refitted.x - reference.x).lpNorm<Eigen::Infinity>(), 1e-9);
+
+  // A group between the top block and the ground's neighbour it does not
+  // touch (block 1, under the middle one) needs an entry the pattern lacks.
+  EquilibriumProblem coupled = problem;
+  coupled.groups.back().row_b = problem.row_of_block[1];
+  coupled.groups.back().row_a = problem.row_of_block[3];
+  EXPECT_FALSE(solver.refit(coupled));
+  EXPECT_TRUE(solver.fits(problem)) << "a refit that fails leaves the solver as it was";
+}
+
 TEST(Equilibrium, PlanarTwinVerticesAreSolvedAsOneGroup) {
   // A planar arch's joints are rectangles across its depth: each vertex at
   // y = -0.5 has a twin at y = 0.5 with the same in-plane effect, and the

@@ -63,6 +63,40 @@ TEST(LoadCapacity, BoundsAgreeWithTheAnalysis) {
   }
 }
 
+TEST(LoadCapacity, ACounterweightedCantileverHasItsClosedFormBounds) {
+  // In 3D: a 3 x 1 x 0.5 lintel on a 1 x 1 pier (x in [-0.5, 0.5]), its
+  // centroid 0.5 beyond the pier's edge at x = 0.5, held down by a 1 x 1 x 2
+  // counterweight above the pier (centroid 0.5 behind the edge). Tipping
+  // about the edge, the lintel's weight (1.5 units, arm 0.5) against the
+  // counterweight's (2 units, arm 0.5): the counterweight needs at least
+  // 0.75 of its weight and the lintel stands up to 4/3 of its own. The
+  // least multiple 0.75 is the simplex's (the structure cannot stand with
+  // the counterweight weightless); the rest, with friction, the
+  // equilibrium solver's (0 < mu < infinity) or Clp's barrier (mu = inf).
+  Structure s;
+  s.add(box({4, 2, 1}, {0, 0, -0.5}), true);
+  const int pier = s.add(box({1, 1, 2}, {0, 0, 1}));
+  const int lintel = s.add(box({3, 1, 0.5}, {1, 0, 2.25}));
+  const int counterweight = s.add(box({1, 1, 2}, {0, 0, 3.5}));
+  for (double friction : {0.7, std::numeric_limits<double>::infinity()}) {
+    const AnalysisSettings settings = with_friction(friction);
+    const LoadCapacity capacity = load_capacity(s, settings);
+    ASSERT_EQ(capacity.status, "optimal");
+    EXPECT_TRUE(capacity.stable);
+    EXPECT_NEAR(capacity.min[counterweight], 0.75, 1e-6);
+    EXPECT_TRUE(std::isinf(capacity.max[counterweight]));
+    EXPECT_EQ(capacity.min[lintel], 0.0);
+    EXPECT_NEAR(capacity.max[lintel], 4.0 / 3.0, 1e-6);
+    EXPECT_EQ(capacity.min[pier], 0.0);
+    EXPECT_TRUE(std::isinf(capacity.max[pier]));
+    // And the analysis agrees on either side of each finite bound.
+    EXPECT_TRUE(stands_with(s, counterweight, 0.75 * (1 + 1e-4), settings));
+    EXPECT_FALSE(stands_with(s, counterweight, 0.75 * (1 - 1e-4), settings));
+    EXPECT_TRUE(stands_with(s, lintel, 4.0 / 3.0 * (1 - 1e-4), settings));
+    EXPECT_FALSE(stands_with(s, lintel, 4.0 / 3.0 * (1 + 1e-4), settings));
+  }
+}
+
 TEST(LoadCapacity, UnstableStructureHasNoMultipleForTheOthers) {
   Structure s;
   s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
