@@ -289,8 +289,8 @@ private:
   // Largest, on a planar structure first by the primal simplex from the
   // least's optimum, with a small pivot budget: on arches it ends in a few
   // pivots, at the optimum or on a ray. Past the budget, and on every 3D
-  // structure, by the barrier method under a cap, then the ray test when
-  // the cap binds: from the as-built basis the simplex takes 10^4 pivots
+  // structure, under a cap by the equilibrium solver (InteriorCapacity) or
+  // Clp's barrier, then the ray test when the cap binds: from the as-built basis the simplex takes 10^4 pivots
   // on a friction dome, whose blocks carry hundreds of times their weight,
   // and the budget ran out on 285 of the 289 blocks of a 16 x 18 dome
   // (the other 4 the ray test finds); the barrier takes 20-70 iterations.
@@ -333,19 +333,19 @@ private:
 
   // The largest multiple under `cap` by Clp's barrier.
   double barrier_largest(int column, double cap, BlockBounds& bounds) {
-      capacity_.setColumnBounds(column, 0.0, cap);
-      // Only the optimum's value is wanted, not a vertex: no crossover, and
-      // no presolve (a program that changes in one column's bounds gains
-      // nothing from it); the two were a third of the CPU time on a
-      // 161-block dome. The barrier's optimum agrees with the vertex's to
-      // 6e-10 relative there.
-      barrier_.solve(capacity_);
-      count(bounds, capacity_.numberIterations());
-      if (capacity_.status() != 0) {
-        bounds.failure = failure_status(capacity_.status());
-        return kNaN;
-      }
-      return capacity_.primalColumnSolution()[column];
+    capacity_.setColumnBounds(column, 0.0, cap);
+    // Only the optimum's value is wanted, not a vertex: no crossover, and
+    // no presolve (a program that changes in one column's bounds gains
+    // nothing from it); the two were a third of the CPU time on a
+    // 161-block dome. The barrier's optimum agrees with the vertex's to
+    // 6e-10 relative there.
+    barrier_.solve(capacity_);
+    count(bounds, capacity_.numberIterations());
+    if (capacity_.status() != 0) {
+      bounds.failure = failure_status(capacity_.status());
+      return kNaN;
+    }
+    return capacity_.primalColumnSolution()[column];
   }
 
   bool has_ray(int column, BlockBounds& bounds) {
