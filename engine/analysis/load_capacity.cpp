@@ -111,8 +111,10 @@ public:
     group.bound = cap;
     program_.rhs = program_rhs_;
     program_.rhs(row + vertical) -= weight;
-    if (!maximum_solver_) maximum_solver_ = std::make_unique<EquilibriumSolver>(program_);
-    if (!maximum_solver_->refit(program_)) maximum_solver_ = std::make_unique<EquilibriumSolver>(program_);
+    // The multiple's group moved to this block's diagonal: the pattern holds.
+    if (!maximum_solver_ || !maximum_solver_->refit(program_)) {
+      maximum_solver_ = std::make_unique<EquilibriumSolver>(program_);
+    }
     // The as-built forces, tension dropped, carrying t = 1: feasible, and
     // 27 iterations on a dome's blocks where the cold start took 34.
     maximum_.x = Eigen::VectorXd::Zero(4 * (multiple + 1));
@@ -290,10 +292,11 @@ private:
   // least's optimum, with a small pivot budget: on arches it ends in a few
   // pivots, at the optimum or on a ray. Past the budget, and on every 3D
   // structure, under a cap by the equilibrium solver (InteriorCapacity) or
-  // Clp's barrier, then the ray test when the cap binds: from the as-built basis the simplex takes 10^4 pivots
-  // on a friction dome, whose blocks carry hundreds of times their weight,
-  // and the budget ran out on 285 of the 289 blocks of a 16 x 18 dome
-  // (the other 4 the ray test finds); the barrier takes 20-70 iterations.
+  // Clp's barrier, then the ray test when the cap binds: from the as-built
+  // basis the simplex takes 10^4 pivots on a friction dome, whose blocks
+  // carry hundreds of times their weight, and the budget ran out on 285 of
+  // the 289 blocks of a 16 x 18 dome (the other 4 the ray test finds); the
+  // interior-point methods take 20-70 iterations.
   double largest(int column, BlockBounds& bounds) {
     capacity_.setObjectiveCoefficient(column, -1.0);
     if (planar_) {
