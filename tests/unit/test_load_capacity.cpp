@@ -97,6 +97,37 @@ TEST(LoadCapacity, ACounterweightedCantileverHasItsClosedFormBounds) {
   }
 }
 
+TEST(LoadCapacity, ACableHoldingACantileverBoundsItsLargestMultiple) {
+  // The lintel of the test above without its counterweight, held down at
+  // its back end (x = -0.5, 1 from the pier's edge) by a vertical cable to
+  // the ground that carries at most the lintel's own weight W: tipping
+  // about the edge, k W x 0.5 <= W x 1, so the lintel stands up to twice
+  // its weight, and weightless. With a cable the largest multiple is Clp's
+  // barrier's, the least the analysis's certified verdict.
+  Structure s;
+  s.add(box({4, 2, 1}, {0, 0, -0.5}), true);
+  const int pier = s.add(box({1, 1, 2}, {0, 0, 1}));
+  const int lintel = s.add(box({3, 1, 0.5}, {1, 0, 2.25}));
+  Cable cable;
+  cable.from = {lintel, Vec3(-0.5, 0, 2.25)};
+  cable.to = {0, Vec3(-0.5, 0, 0)};
+  cable.max_tension = s.block(lintel).mass() * kGravity;
+  s.add_cable(cable);
+  for (double friction : {0.7, std::numeric_limits<double>::infinity()}) {
+    const AnalysisSettings settings = with_friction(friction);
+    const LoadCapacity capacity = load_capacity(s, settings);
+    ASSERT_EQ(capacity.status, "optimal");
+    EXPECT_TRUE(capacity.stable);
+    EXPECT_EQ(capacity.min[lintel], 0.0);
+    EXPECT_NEAR(capacity.max[lintel], 2.0, 1e-6);
+    EXPECT_EQ(capacity.min[pier], 0.0);
+    EXPECT_TRUE(std::isinf(capacity.max[pier]));
+    EXPECT_TRUE(stands_with(s, lintel, 0.0, settings));
+    EXPECT_TRUE(stands_with(s, lintel, 2.0 * (1 - 1e-4), settings));
+    EXPECT_FALSE(stands_with(s, lintel, 2.0 * (1 + 1e-4), settings));
+  }
+}
+
 TEST(LoadCapacity, UnstableStructureHasNoMultipleForTheOthers) {
   Structure s;
   s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
