@@ -109,7 +109,7 @@ public:
     group.row_a = row;
     group.on_a(vertical, 0) = -weight;
     group.bound = cap;
-    program_.rhs = program_rhs_;
+    program_.rhs = rhs_;
     program_.rhs(row + vertical) -= weight;
     // The multiple's group moved to this block's diagonal: the pattern holds.
     if (!maximum_solver_ || !maximum_solver_->refit(program_)) {
@@ -170,18 +170,16 @@ private:
     group.kind = GroupKind::weight;
     groups.push_back(group);
     program_.contact_vertex_count = static_cast<int>(groups.size()) - 1;
-    program_rhs_ = program_.rhs;
     program_inequalities_ = program_.inequality_starts().back();
   }
 
   EquilibriumProblem problem_;  // the analysis's, the right-hand side changed per block
-  Eigen::VectorXd rhs_;
+  Eigen::VectorXd rhs_;  // the analysis's, which the capacity program shares
   const InteriorPointSolution& as_built_;
   InteriorPointSettings settings_;
   EquilibriumSolver analysis_;
   InteriorPointSolution solution_;
   EquilibriumProblem program_;  // the largest multiple's; no groups when not used
-  Eigen::VectorXd program_rhs_;
   int program_inequalities_ = 0;
   std::unique_ptr<EquilibriumSolver> maximum_solver_;
   InteriorPointSolution maximum_;
@@ -261,8 +259,6 @@ public:
   // The bounds of the multiple in `column` (fixed at 1 between calls) of
   // `weight` (scaled) on the block whose first balance row is `row`.
   BlockBounds solve(int column, int row, double weight) {
-    row_ = row;
-    weight_ = weight;
     BlockBounds bounds;
     bounds.solved = true;
     capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
@@ -271,7 +267,7 @@ public:
     if (interior_) count(bounds, iterations);
     if (weightless) {
       bounds.min = 0.0;
-      bounds.max = largest(column, bounds);
+      bounds.max = largest(column, row, weight, bounds);
     } else {
       // Least: from the as-built basis, where the multiple 1 is feasible,
       // by the primal simplex (a few dozen pivots).
@@ -281,7 +277,7 @@ public:
       count(bounds, capacity_.numberIterations());
       if (capacity_.status() == 0) {
         bounds.min = capacity_.primalColumnSolution()[column];
-        bounds.max = largest(column, bounds);
+        bounds.max = largest(column, row, weight, bounds);
       } else if (capacity_.status() != 1) {  // 1: no multiple lets the rest stand
         bounds.failure = capacity_.status();
       }
@@ -301,8 +297,9 @@ private:
   // basis the simplex takes 10^4 pivots on a friction dome, whose blocks
   // carry hundreds of times their weight, and the budget ran out on 285 of
   // the 289 blocks of a 16 x 18 dome (the other 4 the ray test finds); the
-  // interior-point methods take 20-70 iterations.
-  double largest(int column, BlockBounds& bounds) {
+  // interior-point methods take 20-70 iterations. row and weight (scaled):
+  // the block's first balance row and its weight, as solve() takes them.
+  double largest(int column, int row, double weight, BlockBounds& bounds) {
     capacity_.setObjectiveCoefficient(column, -1.0);
     if (planar_) {
       const int unlimited = capacity_.maximumIterations();
@@ -322,7 +319,7 @@ private:
       double multiple = kNaN;
       if (interior_ && interior_->maximises()) {
         int iterations = 0;
-        multiple = interior_->largest(row_, weight_, cap, iterations);
+        multiple = interior_->largest(row, weight, cap, iterations);
         count(bounds, iterations);
       }
       if (std::isnan(multiple)) {
@@ -373,8 +370,6 @@ private:
 
   ClpSimplex capacity_, rays_;
   std::unique_ptr<InteriorCapacity> interior_;
-  int row_ = -1;          // the block's first balance row
-  double weight_ = 0.0;   // its weight, scaled
   BarrierSolver barrier_;  // its normal equations analysed once for all blocks
   const Basis* as_built_;
   bool planar_;
