@@ -69,8 +69,11 @@ PhiFactor factor_phi(const Vector4& hessian, const RowsMatrix& rows,
   double lower[4][4] = {};  // L below the diagonal, lower[l][j] for l > j
   for (Eigen::Index i = 0; i < rows.rows(); ++i) {
     Vector4 v = rows.row(i).transpose();
+    // alpha: the weight of what is left of the row. It is spent (0) once a
+    // pivot with no Hessian takes it all; a NaN scaling goes on into the
+    // factor, where the solver's checks stop the solve.
     double alpha = scaling(i);
-    for (int j = 0; j < 4 && alpha > 0.0; ++j) {
+    for (int j = 0; j < 4 && alpha != 0.0; ++j) {
       const double p = v(j);
       if (p == 0.0) continue;
       const double pivot = d(j) + alpha * p * p;
