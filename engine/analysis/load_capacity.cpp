@@ -9,6 +9,7 @@
 #include <future>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include "analysis/clp_barrier.hpp"
@@ -235,6 +236,7 @@ public:
   // half the primal's pivots on domes), on its own thread; the workers'
   // copies of it must be made first.
   void start(ClpSimplex& capacity, Clock::time_point deadline) {
+    program_ = &capacity;
     solver_ = std::thread([this, &capacity, deadline] {
       const DeadlineScope scope(deadline);
       capacity.dual();
@@ -250,6 +252,15 @@ public:
     solved_future_.wait();
     return basis_.get();
   }
+  // `copy` becomes the solved program, as the simplex left it (its
+  // factorisation and scaling: from an unsolved copy with the same basis
+  // restored, a 16-course vault's least multiples took 22 % more pivots).
+  // Waits for it; one copy at a time, the model only read.
+  void copy_solved(ClpSimplex& copy) const {
+    solved_future_.wait();
+    const std::lock_guard<std::mutex> lock(copying_);
+    copy = *program_;
+  }
   void join() {
     if (solver_.joinable()) solver_.join();
   }
@@ -262,6 +273,8 @@ private:
   std::shared_future<void> solved_future_;
   int status_ = -1, pivots_ = 0;
   std::unique_ptr<Basis> basis_;
+  const ClpSimplex* program_ = nullptr;
+  mutable std::mutex copying_;
   std::thread solver_;
 };
 
@@ -319,6 +332,11 @@ public:
       // Least: from the as-built basis, where the multiple 1 is feasible,
       // by the primal simplex (a few dozen pivots).
       capacity_.setObjectiveCoefficient(column, 1.0);
+      if (!solved_copy_) {  // the first block here to need the simplex
+        as_built_.copy_solved(capacity_);
+        solved_copy_ = true;
+        capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
+      }
       if (const Basis* basis = as_built_.basis()) basis->restore(capacity_);
       capacity_.primal();
       count(bounds, capacity_.numberIterations());
@@ -419,6 +437,7 @@ private:
   std::unique_ptr<InteriorCapacity> interior_;
   BarrierSolver barrier_;  // its normal equations analysed once for all blocks
   const AsBuiltProgram& as_built_;
+  bool solved_copy_ = false;  // capacity_ copied from the solved as-built program
   bool planar_;
   int ray_column_ = -1;
 };
