@@ -25,7 +25,9 @@
 //   carried compression-only (a program that changes only in one fixed
 //   column from block to block, so the dual simplex warm-starts it).
 // Blocks are shared among worker threads, each with its own copy of the
-// programs and solvers.
+// programs and solvers; the as-built program, whose optimal basis starts
+// the simplex, is solved on a thread of its own meanwhile, and only the
+// blocks that need it wait for it.
 #pragma once
 
 #include <string>
