@@ -321,7 +321,6 @@ public:
   BlockBounds solve(int column, int row, double weight) {
     BlockBounds bounds;
     bounds.solved = true;
-    capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
     int iterations = 0;
     const bool weightless = interior_ && interior_->stands_weightless(row, weight, iterations);
     if (interior_) count(bounds, iterations);
@@ -331,12 +330,12 @@ public:
     } else {
       // Least: from the as-built basis, where the multiple 1 is feasible,
       // by the primal simplex (a few dozen pivots).
-      capacity_.setObjectiveCoefficient(column, 1.0);
       if (!solved_copy_) {  // the first block here to need the simplex
         as_built_.copy_solved(capacity_);
         solved_copy_ = true;
-        capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
       }
+      capacity_.setColumnBounds(column, 0.0, COIN_DBL_MAX);
+      capacity_.setObjectiveCoefficient(column, 1.0);
       if (const Basis* basis = as_built_.basis()) basis->restore(capacity_);
       capacity_.primal();
       count(bounds, capacity_.numberIterations());
