@@ -14,11 +14,30 @@
 
 namespace ashlar {
 
+// BLAS and LAPACK (OpenBLAS's): the dense kernels of the supernodal
+// factorisation, and the split's Schur complement: the product of a
+// triangular matrix with its transpose, dense Cholesky factorisation and
+// solve, all in place.
+extern "C" {
+void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+            const int* lda, const double* beta, double* c, const int* ldc, size_t uplo_length, size_t trans_length);
+void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
+            const int* ldc, size_t transa_length, size_t transb_length);
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb, size_t side_length,
+            size_t uplo_length, size_t transa_length, size_t diag_length);
+void dlauum_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
+void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda, double* b,
+             const int* ldb, int* info, size_t uplo_length);
+}
+
 namespace {
 
-// A function of a shared library this process has already loaded (CHOLMOD's
-// OpenMP runtime and BLAS), or null. Looked up by handle, not in the global
-// scope: in the C module for stock lua5.4 they are loaded RTLD_LOCAL.
+// A function of a shared library this process has already loaded (its
+// BLAS), or null. Looked up by handle, not in the global scope: in the C
+// module for stock lua5.4 it is loaded RTLD_LOCAL.
 template <typename Function>
 Function* loaded_function(const char* library, const char* name) {
   void* handle = dlopen(library, RTLD_LAZY | RTLD_NOLOAD);
@@ -28,26 +47,20 @@ Function* loaded_function(const char* library, const char* name) {
   return reinterpret_cast<Function*>(symbol);
 }
 
-// One thread for each factorisation and its BLAS, chosen by measurement on
-// a 2-core machine (22 factorisations of a 10,051-block wall's 60,300-row
-// normal matrix): one thread each, 3.13 s of factorisation and 0.25 s of
-// system time for the whole run; CHOLMOD's OpenMP loops on 2 threads 3.39 s
-// (Debian builds them with num_threads(4): on 2 cores, 10-17 s and as much
-// system time as user time); OpenBLAS on 2 threads 2.85 s, but its idle
-// thread yields the core in a loop between calls (6.2 s of system time).
-// On a 100,052-block vault (5.4e10 flops per factorisation) two OpenBLAS
-// threads cut the factorisations from 46.6 s to 37.3 s, but the idle one
-// yielded for 32 s of system time (40 % of user time), so one thread there
-// too. Two cores help where the work itself is split: the solver's loops
+// One BLAS thread for each factorisation, chosen by measurement on a 2-core
+// machine (22 factorisations of a 10,051-block wall's 60,300-row normal
+// matrix): one thread, 3.13 s of factorisation and 0.25 s of system time
+// for the whole run; OpenBLAS on 2 threads 2.85 s, but its idle thread
+// yields the core in a loop between calls (6.2 s of system time). On a
+// 100,052-block vault (5.4e10 flops per factorisation) two OpenBLAS threads
+// cut the factorisations from 46.6 s to 37.3 s, but the idle one yielded
+// for 32 s of system time (40 % of user time), so one thread there too. Two
+// cores help where the work itself is split: the solver's loops
 // (ParallelLoop) and a large pattern's two halves, factored side by side
-// (SparseCholesky's split, 1.7x on that wall's factorisations). Set on
-// every calling thread (max-active-levels is a per-thread OpenMP
-// setting), so that a user never needs OMP_* or OPENBLAS_* variables for
-// speed.
-void use_one_thread_in_factorisations() {
+// (SparseCholesky's split, 1.7x on that wall's factorisations). Set here so
+// that a user never needs OPENBLAS_* variables for speed.
+void use_one_blas_thread() {
   using SetInt = void(int);
-  static SetInt* const set_max_active_levels =
-      loaded_function<SetInt>("libgomp.so.1", "omp_set_max_active_levels");
   static std::once_flag blas_once;
   std::call_once(blas_once, [] {
     for (const char* library : {"libblas.so.3", "libopenblas.so.0"}) {
@@ -56,8 +69,6 @@ void use_one_thread_in_factorisations() {
       }
     }
   });
-  // Max-active-levels 0: every parallel region runs on the calling thread alone.
-  if (set_max_active_levels) set_max_active_levels(0);
 }
 
 // One CHOLMOD matrix (the upper or the lower triangle) with its analysis
@@ -72,11 +83,11 @@ public:
     common_.error_handler = nullptr;
     common_.supernodal = CHOLMOD_SUPERNODAL;
     // Supernodes merged more freely than CHOLMOD's default (4, 16, 48
-    // columns): each supernode costs a BLAS call and an OpenMP region
-    // (run on one thread, but with its locks and a futex call), and the
-    // normal matrices' 6 x 6 blocks leave many small ones. The 16 x 18
-    // dome's 1,734 rows: 174 supernodes -> 79, its load capacity 25.6 s ->
-    // 23.3 s and important weights 16.9 s -> 15.0 s on one core; the
+    // columns): each supernode and each update between two costs BLAS
+    // calls, and the normal matrices' 6 x 6 blocks leave many small ones.
+    // The 16 x 18 dome's 1,734 rows: 174 supernodes -> 79, its load
+    // capacity 25.6 s -> 23.3 s and important weights 16.9 s -> 15.0 s on
+    // one core (measured with CHOLMOD's own numeric factorisation); the
     // 10,051-block wall's and 10,027-block vault's factorisations 4 % and
     // 9 % faster, for 3-5 % more peak memory (zeros the merge stores).
     common_.nrelax[0] = 16;
@@ -112,11 +123,13 @@ public:
   // The rows' own order (the caller has permuted them), kept as given: no
   // postordering. A lower triangle in natural order is the one form that
   // CHOLMOD factors without first copying it transposed and permuted.
+  // Only a system analysed so can be factorised (factorize()).
   void analyze_as_ordered() {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_NATURAL;
     common_.postorder = 0;
     analyze();
+    prepare_numeric();
   }
 
   int rows() const { return static_cast<int>(matrix_->nrow); }
@@ -124,10 +137,82 @@ public:
   const cholmod_factor& factor() const { return *factor_; }
   double factor_nonzeros() const { return common_.lnz; }
 
+  // Numeric factorisation of the lower triangle in factor order (the
+  // system analysed with analyze_as_ordered) into CHOLMOD's supernodal
+  // factor, which its solves then use; false when the matrix is not
+  // positive definite. CHOLMOD's own numeric factorisation
+  // (cholmod_super_numeric) does the same left-looking supernodal
+  // elimination with the same BLAS calls, but on the small normal matrices
+  // of 3D margins (the 16 x 18 dome's 1,830 rows: 0.9 ms and 9.1 Mflop a
+  // factorisation) about a third of its time was overhead: an OpenMP region
+  // per supernode (a team and a futex system call each, even on one
+  // thread), a timer read around every BLAS call, and workspace allocated
+  // and freed at every call. Here the workspace, and where each value
+  // goes, are set up once: important weights on that dome 7.2 s -> 6.0 s on
+  // 2 cores, the 10,051-block wall's factorisations unchanged (1.33 s
+  // against 1.37 s).
   bool factorize() {
-    use_one_thread_in_factorisations();
-    const int ok = cholmod_factorize(matrix_, factor_, &common_);
-    return ok && common_.status == CHOLMOD_OK && factor_->minor == factor_->n;
+    use_one_blas_thread();
+    const cholmod_factor& f = *factor_;
+    const int* super = static_cast<const int*>(f.super);
+    const int* pi = static_cast<const int*>(f.pi);
+    const int* px = static_cast<const int*>(f.px);
+    const int* row_of = static_cast<const int*>(f.s);
+    double* lx = static_cast<double*>(f.x);
+    const int supernodes = static_cast<int>(f.nsuper);
+    std::fill_n(lx, f.xsize, 0.0);
+    const double* ax = values();
+    for (size_t k = 0; k < value_slot_.size(); ++k) lx[value_slot_[k]] += ax[k];
+    // Left-looking: supernode s first takes the updates of the supernodes
+    // below it whose rows reach its columns (the list head_[s], each
+    // descendant's next row at row_position_), then factors itself.
+    std::fill(head_.begin(), head_.end(), -1);
+    const double one = 1.0, zero = 0.0;
+    for (int s = 0; s < supernodes; ++s) {
+      const int first = super[s], last = super[s + 1], columns = last - first;
+      const int height = pi[s + 1] - pi[s];
+      double* block = lx + px[s];
+      for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = r;
+      for (int d = head_[s]; d != -1;) {
+        const int next_d = next_[d];
+        const int d_height = pi[d + 1] - pi[d], d_columns = super[d + 1] - super[d];
+        const int top = pi[d] + row_position_[d];  // d's first row in s's columns
+        int below = top;
+        while (below < pi[d + 1] && row_of[below] < last) ++below;
+        const int in_columns = below - top, rows = pi[d + 1] - top;
+        const double* d_rows = lx + px[d] + (top - pi[d]);
+        // C = L_d(rows from top) L_d(rows top .. below)^T: its lower
+        // triangle where both are s's columns, all of it below.
+        dsyrk_("L", "N", &in_columns, &d_columns, &one, d_rows, &d_height, &zero, update_.data(), &rows, 1, 1);
+        if (rows > in_columns) {
+          const int rest = rows - in_columns;
+          dgemm_("N", "T", &rest, &in_columns, &d_columns, &one, d_rows + in_columns, &d_height, d_rows,
+                 &d_height, &zero, update_.data() + in_columns, &rows, 1, 1);
+        }
+        for (int j = 0; j < in_columns; ++j) {
+          double* column = block + static_cast<ptrdiff_t>(local_row_[row_of[top + j]]) * height;
+          const double* c = update_.data() + static_cast<ptrdiff_t>(j) * rows;
+          for (int i = j; i < rows; ++i) column[local_row_[row_of[top + i]]] -= c[i];
+        }
+        row_position_[d] = below - pi[d];
+        if (below < pi[d + 1]) append(d, supernode_of_[row_of[below]]);
+        d = next_d;
+      }
+      int info = 0;
+      dpotrf_("L", &columns, block, &height, &info, 1);
+      if (info != 0) {
+        factor_->minor = static_cast<size_t>(first + info - 1);
+        return false;
+      }
+      if (height > columns) {
+        const int rest = height - columns;
+        dtrsm_("R", "L", "T", "N", &rest, &columns, &one, block, &height, block + columns, &height, 1, 1, 1, 1);
+        row_position_[s] = columns;
+        append(s, supernode_of_[row_of[pi[s] + columns]]);
+      }
+    }
+    factor_->minor = factor_->n;
+    return true;
   }
 
   // Solves `system` (CHOLMOD_A, CHOLMOD_L, CHOLMOD_Lt, ...) for the
@@ -152,9 +237,70 @@ public:
   }
 
 private:
+  // The symbolic factor made numeric (its values allocated, as CHOLMOD's
+  // factorisation leaves it: supernodal L L^T), and what factorize() reuses:
+  // the factor slot of each matrix value (the matrix's lower triangle lies
+  // in the factor's pattern), each column's supernode, and the update
+  // workspace (CHOLMOD's bound on an update's size).
+  void prepare_numeric() {
+    if (matrix_->stype != static_cast<int>(Triangle::lower) || !factor_->is_super) {
+      throw Error("the normal-equation factorisation needs a lower triangle, analysed supernodal");
+    }
+    if (factor_->Perm) {
+      const int* perm = static_cast<const int*>(factor_->Perm);
+      for (size_t k = 0; k < factor_->n; ++k) {
+        if (perm[k] != static_cast<int>(k)) throw Error("CHOLMOD reordered a system analysed as ordered");
+      }
+    }
+    if (!cholmod_change_factor(CHOLMOD_REAL, /*to_ll=*/1, /*to_super=*/1, /*to_packed=*/1, /*to_monotonic=*/1,
+                               factor_, &common_) ||
+        !factor_->x) {
+      throw Error("CHOLMOD could not allocate the normal-equation factor");
+    }
+    const cholmod_factor& f = *factor_;
+    const int n = static_cast<int>(f.n);
+    const int supernodes = static_cast<int>(f.nsuper);
+    const int* super = static_cast<const int*>(f.super);
+    const int* pi = static_cast<const int*>(f.pi);
+    const int* px = static_cast<const int*>(f.px);
+    const int* row_of = static_cast<const int*>(f.s);
+    supernode_of_.resize(n);
+    for (int s = 0; s < supernodes; ++s) {
+      std::fill(supernode_of_.begin() + super[s], supernode_of_.begin() + super[s + 1], s);
+    }
+    local_row_.assign(n, -1);
+    const int* column_starts = static_cast<const int*>(matrix_->p);
+    const int* row_indices = static_cast<const int*>(matrix_->i);
+    value_slot_.resize(column_starts[n]);
+    for (int s = 0; s < supernodes; ++s) {
+      const int height = pi[s + 1] - pi[s];
+      for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = r;
+      for (int j = super[s]; j < super[s + 1]; ++j) {
+        for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) {
+          const int local = local_row_[row_indices[e]];
+          if (row_indices[e] < j || local < 0) throw Error("CHOLMOD's factor pattern misses a matrix entry");
+          value_slot_[e] = px[s] + (j - super[s]) * height + local;
+        }
+      }
+      for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = -1;
+    }
+    head_.assign(supernodes, -1);
+    next_.assign(supernodes, -1);
+    row_position_.assign(supernodes, 0);
+    update_.resize(std::max<size_t>(f.maxcsize, 1));
+  }
+  // Puts supernode d on the list of the supernode its next rows update.
+  void append(int d, int target) {
+    next_[d] = head_[target];
+    head_[target] = d;
+  }
+
   cholmod_common common_;
   cholmod_sparse* matrix_ = nullptr;
   cholmod_factor* factor_ = nullptr;
+  std::vector<int> value_slot_;
+  std::vector<int> supernode_of_, local_row_, head_, next_, row_position_;
+  std::vector<double> update_;
   cholmod_dense* solution_ = nullptr;
   cholmod_dense* workspace_y_ = nullptr;
   cholmod_dense* workspace_e_ = nullptr;
@@ -272,15 +418,6 @@ SourcedPattern compress_columns(int n, const std::vector<std::array<int, 3>>& en
 }
 
 }  // namespace
-
-// LAPACK (OpenBLAS's): the product of a triangular matrix with its
-// transpose, and dense Cholesky factorisation and solve, all in place.
-extern "C" {
-void dlauum_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
-void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
-void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda, double* b,
-             const int* ldb, int* info, size_t uplo_length);
-}
 
 // One side of the split: the rows of part A (or B) followed by the
 // separator's, factored with the separator last.
