@@ -403,7 +403,6 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
                                                const Eigen::VectorXd& w, const Eigen::VectorXd& z,
                                                std::vector<PhiFactor>& phi_factors) {
   using BlockByVertexD = Eigen::Matrix<double, D, 4>;
-  using BlockByBlockD = Eigen::Matrix<double, D, D>;
   const int nv = static_cast<int>(problem.groups.size());
   phi_factors.resize(nv);
   // Slacks of active rows may be (near) zero; keep z / w finite.
@@ -426,12 +425,14 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
     const int first = part_first_column_[part], last = part_first_column_[part + 1];
     std::fill(values + column_starts_[D * first], values + column_starts_[D * last], 0.0);
     auto owned = [&](int column) { return column >= first && column < last; };
-    // Adds a D x D block to block column col_block at its rank-th block row.
-    auto add_block = [&](int col_block, int rank, const BlockByBlockD& block, bool diagonal) {
+    // Adds left right^T (D x D) to block column col_block at its rank-th
+    // block row; on the diagonal only its upper triangle, the one stored.
+    auto add_product = [&](int col_block, int rank, const BlockByVertexD& left, const BlockByVertexD& right,
+                           bool diagonal) {
       for (int cj = 0; cj < D; ++cj) {
         double* column = values + column_starts_[D * col_block + cj] + D * rank;
         const int rows = diagonal ? cj + 1 : D;
-        for (int ri = 0; ri < rows; ++ri) column[ri] += block(ri, cj);
+        for (int ri = 0; ri < rows; ++ri) column[ri] += left.row(ri).dot(right.row(cj));
       }
     };
     const std::vector<VertexSlots>& slots = worked_slots();
@@ -444,16 +445,15 @@ void EquilibriumSolver::assemble_normal_matrix(const EquilibriumProblem& problem
       BlockByVertexD a_part, b_part;
       if (v.row_a >= 0 && (owned(a) || ab)) {
         a_part = divide_by_factor<D>(v.on_a.topRows<D>(), phi_factors[k]);
-        if (owned(a)) add_block(a, slot.aa, a_part * a_part.transpose(), true);
+        if (owned(a)) add_product(a, slot.aa, a_part, a_part, true);
       }
       if (v.row_b >= 0 && (owned(b) || ab)) {
         b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
-        if (owned(b)) add_block(b, slot.bb, b_part * b_part.transpose(), true);
+        if (owned(b)) add_product(b, slot.bb, b_part, b_part, true);
       }
-      if (ab) {
-        const BlockByBlockD block = a_part * b_part.transpose();  // rows of a, columns of b
-        if (slot.ab_transposed) add_block(a, slot.ab, block.transpose(), false);
-        else add_block(b, slot.ab, block, false);
+      if (ab) {  // C_a C_b^T: rows of a, columns of b
+        if (slot.ab_transposed) add_product(a, slot.ab, b_part, a_part, false);
+        else add_product(b, slot.ab, a_part, b_part, false);
       }
     };
     if (parts == 1) {
