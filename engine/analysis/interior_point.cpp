@@ -98,8 +98,11 @@ PhiFactor factor_phi(const Vector4& hessian, const RowsMatrix& rows,
 
 // Phi^-1 v for Phi = R^T R (R from factor_phi): two triangular solves,
 // never Phi^-1 itself (whose product with v would round the stiff
-// directions' tiny components to the size of the free ones).
-Vector4 solve_phi(const PhiFactor& r, Vector4 v) {
+// directions' tiny components to the size of the free ones). Inlined into
+// the per-group passes, where a chain of dependent steps of one group
+// overlaps the next group's work: important weights on one core 10.75 s
+// -> 10.2 s.
+[[gnu::always_inline]] inline Vector4 solve_phi(const PhiFactor& r, Vector4 v) {
   v(0) *= r(0, 0);  // R^T t = v
   v(1) = (v(1) - r(0, 1) * v(0)) * r(1, 1);
   v(2) = (v(2) - r(0, 2) * v(0) - r(1, 2) * v(1)) * r(2, 2);
