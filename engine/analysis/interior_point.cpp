@@ -143,8 +143,8 @@ const char* status_name(SolverStatus status) {
   return kSolverStatusNames.name(status);
 }
 
-EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
-    : size_(problem.row_count), block_rows_(problem.block_rows) {
+EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem, SolverCores cores)
+    : loop_(cores == SolverCores::one ? 1 : 0), size_(problem.row_count), block_rows_(problem.block_rows) {
   const int d = block_rows_;
   const int blocks = problem.row_count / d;
   // Upper-triangle block pattern: for block column J, the block rows I <= J.
@@ -174,7 +174,9 @@ EquilibriumSolver::EquilibriumSolver(const EquilibriumProblem& problem)
   }
   find_slots(problem, pattern_slots_);
   if (problem.row_count > 0) {
-    cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices);
+    SparseCholeskyOptions factorisation;
+    if (cores == SolverCores::one) factorisation.split_from_rows = std::numeric_limits<int>::max();
+    cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, column_starts_, row_indices, factorisation);
   }
   partition_columns(blocks);
 }

@@ -93,10 +93,18 @@ struct InteriorPointSolution {
   Eigen::VectorXd x, y, w, z;
 };
 
+// The cores one solver may use: all of them (one analysis at a time), or
+// one, for solvers that run side by side on worker threads (load capacity's
+// and important weights' blocks). There splitting each factorisation over
+// two cores (core/sparse_cholesky.hpp) only made the workers' threads wait
+// for each other: the 16 x 24 dome's load capacity on 2 cores 15.8 s ->
+// 14.4 s, its important weights 10.5 s -> 10.1 s.
+enum class SolverCores { all, one };
+
 class EquilibriumSolver {
 public:
   // Builds and analyses the normal-equation pattern of `problem`.
-  explicit EquilibriumSolver(const EquilibriumProblem& problem);
+  explicit EquilibriumSolver(const EquilibriumProblem& problem, SolverCores cores = SolverCores::all);
   ~EquilibriumSolver();
 
   // Whether `problem` has the pattern this solver analysed: the same

@@ -82,9 +82,9 @@ public:
 
   // as_built: the analysis's optimum of `problem`, shared by the workers.
   InteriorCapacity(const EquilibriumProblem& problem, const InteriorPointSolution& as_built,
-                   const AnalysisSettings& settings, bool maximise)
+                   const AnalysisSettings& settings, bool maximise, SolverCores cores)
       : problem_(problem), rhs_(problem.rhs), as_built_(as_built), settings_(settings.solver),
-        analysis_(problem) {
+        analysis_(problem, cores), cores_(cores) {
     settings_.certify_below = settings.stable_tolerance;
     if (maximise) build_program();
   }
@@ -115,7 +115,7 @@ public:
     program_.rhs(row + vertical) -= weight;
     // The multiple's group moved to this block's diagonal: the pattern holds.
     if (!maximum_solver_ || !maximum_solver_->refit(program_)) {
-      maximum_solver_ = std::make_unique<EquilibriumSolver>(program_);
+      maximum_solver_ = std::make_unique<EquilibriumSolver>(program_, cores_);
     }
     // The as-built forces, tension dropped, carrying t = 1: feasible, and
     // 27 iterations on a dome's blocks where the cold start took 34.
@@ -180,6 +180,7 @@ private:
   const InteriorPointSolution& as_built_;
   InteriorPointSettings settings_;
   EquilibriumSolver analysis_;
+  SolverCores cores_;
   InteriorPointSolution solution_;
   EquilibriumProblem program_;  // the largest multiple's; no groups when not used
   int program_inequalities_ = 0;
@@ -480,9 +481,11 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   // begun once a stop is asked for. Progress is told on the calling thread.
   const Clock::time_point deadline = stop_deadline();
   AsBuiltProgram as_built;  // started once the copies are made
+  const SolverCores solver_cores = workers > 1 ? SolverCores::one : SolverCores::all;
   for (int w = 0; w < workers; ++w) {
     programs.emplace_back(capacity, rays, as_built, problem.block_rows == 3,
-                          interior ? std::make_unique<InteriorCapacity>(problem, as_built_forces, settings, maximise)
+                          interior ? std::make_unique<InteriorCapacity>(problem, as_built_forces, settings, maximise,
+                                                                        solver_cores)
                                    : nullptr);
   }
   as_built.start(capacity, deadline);

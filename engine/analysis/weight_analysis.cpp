@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -24,7 +25,8 @@ namespace {
 // back into the right-hand side and its unknown is cut off.
 class NecessaryWeightsProblem {
 public:
-  NecessaryWeightsProblem(const Structure& structure, const AnalysisSettings& settings)
+  NecessaryWeightsProblem(const Structure& structure, const AnalysisSettings& settings,
+                          SolverCores cores = SolverCores::all)
       : structure_(structure),
         settings_(settings),
         problem_(build_equilibrium_problem(structure, settings.problem)),
@@ -46,7 +48,7 @@ public:
       problem_.groups.push_back(weight);
     }
     rhs_without_weights_ = problem_.rhs;
-    solver_ = std::make_unique<EquilibriumSolver>(problem_);
+    solver_ = std::make_unique<EquilibriumSolver>(problem_, cores);
   }
 
   const EquilibriumProblem& problem() const { return problem_; }
@@ -155,9 +157,12 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
                                    const ProgressCount& progress) {
   const auto start = Clock::now();
   check_analysis_settings(settings);
+  // Each problem's solver on one core when the workers may be several.
+  const SolverCores cores =
+      worker_count(threads, std::numeric_limits<int>::max()) > 1 ? SolverCores::one : SolverCores::all;
   // The calling thread's problem, set up here: it tells which blocks are
   // analysed, and throws for a structure the analysis refuses.
-  auto first_problem = std::make_unique<NecessaryWeightsProblem>(structure, settings);
+  auto first_problem = std::make_unique<NecessaryWeightsProblem>(structure, settings, cores);
   std::vector<int> blocks;  // the free blocks analysed, in block order
   for (int i = 0; i < structure.size(); ++i) {
     if (first_problem->problem().row_of_block[i] >= 0) blocks.push_back(i);
@@ -181,7 +186,7 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     Share& share = shares[w];
     share.per_weight.assign(structure.size(), 0.0);
     const std::unique_ptr<NecessaryWeightsProblem> own =
-        w == 0 ? std::move(first_problem) : std::make_unique<NecessaryWeightsProblem>(structure, settings);
+        w == 0 ? std::move(first_problem) : std::make_unique<NecessaryWeightsProblem>(structure, settings, cores);
     NecessaryWeightsProblem& problem = *own;
     const size_t first = blocks.size() * w / workers, last = blocks.size() * (w + 1) / workers;
     for (size_t k = first; k < last; ++k) {
