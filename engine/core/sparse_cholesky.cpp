@@ -147,10 +147,9 @@ public:
   // factorisation) about a third of its time was overhead: an OpenMP region
   // per supernode (a team and a futex system call each, even on one
   // thread), a timer read around every BLAS call, and workspace allocated
-  // and freed at every call. Here the workspace, and where each value
-  // goes, are set up once: important weights on that dome 7.2 s -> 6.0 s on
-  // 2 cores, the 10,051-block wall's factorisations unchanged (1.33 s
-  // against 1.37 s).
+  // and freed at every call. Here the workspace is set up once: important
+  // weights on that dome 7.2 s -> 6.0 s on 2 cores; the 10,051-block wall's
+  // factorisations unchanged (1.33 s against 1.37 s).
   bool factorize() {
     use_one_blas_thread();
     const cholmod_factor& f = *factor_;
@@ -160,12 +159,13 @@ public:
     const int* row_of = static_cast<const int*>(f.s);
     double* lx = static_cast<double*>(f.x);
     const int supernodes = static_cast<int>(f.nsuper);
-    std::fill_n(lx, f.xsize, 0.0);
+    const int* column_starts = static_cast<const int*>(matrix_->p);
+    const int* row_indices = static_cast<const int*>(matrix_->i);
     const double* ax = values();
-    for (size_t k = 0; k < value_slot_.size(); ++k) lx[value_slot_[k]] += ax[k];
-    // Left-looking: supernode s first takes the updates of the supernodes
-    // below it whose rows reach its columns (the list head_[s], each
-    // descendant's next row at row_position_), then factors itself.
+    // Left-looking: supernode s takes its columns of the matrix, then the
+    // updates of the supernodes below it whose rows reach its columns (the
+    // list head_[s], each descendant's next row at row_position_), then
+    // factors itself.
     std::fill(head_.begin(), head_.end(), -1);
     const double one = 1.0, zero = 0.0;
     for (int s = 0; s < supernodes; ++s) {
@@ -173,6 +173,11 @@ public:
       const int height = pi[s + 1] - pi[s];
       double* block = lx + px[s];
       for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = r;
+      std::fill(block, lx + px[s + 1], 0.0);
+      for (int j = first; j < last; ++j) {
+        double* column = block + static_cast<ptrdiff_t>(j - first) * height;
+        for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) column[local_row_[row_indices[e]]] = ax[e];
+      }
       for (int d = head_[s]; d != -1;) {
         const int next_d = next_[d];
         const int d_height = pi[d + 1] - pi[d], d_columns = super[d + 1] - super[d];
@@ -239,9 +244,8 @@ public:
 private:
   // The symbolic factor made numeric (its values allocated, as CHOLMOD's
   // factorisation leaves it: supernodal L L^T), and what factorize() reuses:
-  // the factor slot of each matrix value (the matrix's lower triangle lies
-  // in the factor's pattern), each column's supernode, and the update
-  // workspace (CHOLMOD's bound on an update's size).
+  // each column's supernode, a row map and the update workspace (CHOLMOD's
+  // bound on an update's size).
   void prepare_numeric() {
     if (matrix_->stype != static_cast<int>(Triangle::lower) || !factor_->is_super) {
       throw Error("the normal-equation factorisation needs a lower triangle, analysed supernodal");
@@ -262,24 +266,23 @@ private:
     const int supernodes = static_cast<int>(f.nsuper);
     const int* super = static_cast<const int*>(f.super);
     const int* pi = static_cast<const int*>(f.pi);
-    const int* px = static_cast<const int*>(f.px);
     const int* row_of = static_cast<const int*>(f.s);
     supernode_of_.resize(n);
     for (int s = 0; s < supernodes; ++s) {
       std::fill(supernode_of_.begin() + super[s], supernode_of_.begin() + super[s + 1], s);
     }
+    // Every entry of the matrix's lower triangle lies in its supernode's rows.
     local_row_.assign(n, -1);
     const int* column_starts = static_cast<const int*>(matrix_->p);
     const int* row_indices = static_cast<const int*>(matrix_->i);
-    value_slot_.resize(column_starts[n]);
     for (int s = 0; s < supernodes; ++s) {
       const int height = pi[s + 1] - pi[s];
       for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = r;
       for (int j = super[s]; j < super[s + 1]; ++j) {
         for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) {
-          const int local = local_row_[row_indices[e]];
-          if (row_indices[e] < j || local < 0) throw Error("CHOLMOD's factor pattern misses a matrix entry");
-          value_slot_[e] = px[s] + (j - super[s]) * height + local;
+          if (row_indices[e] < j || local_row_[row_indices[e]] < 0) {
+            throw Error("CHOLMOD's factor pattern misses a matrix entry");
+          }
         }
       }
       for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = -1;
@@ -298,7 +301,6 @@ private:
   cholmod_common common_;
   cholmod_sparse* matrix_ = nullptr;
   cholmod_factor* factor_ = nullptr;
-  std::vector<int> value_slot_;
   std::vector<int> supernode_of_, local_row_, head_, next_, row_position_;
   std::vector<double> update_;
   cholmod_dense* solution_ = nullptr;
