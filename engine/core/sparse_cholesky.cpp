@@ -143,7 +143,7 @@ public:
   // positive definite. CHOLMOD's own numeric factorisation
   // (cholmod_super_numeric) does the same left-looking supernodal
   // elimination with the same BLAS calls, but on the small normal matrices
-  // of 3D margins (the 16 x 18 dome's 1,830 rows: 0.9 ms and 9.1 Mflop a
+  // of 3D margins (the 16 x 18 dome's 1,734 rows: 0.9 ms and 9.1 Mflop a
   // factorisation) about a third of its time was overhead: an OpenMP region
   // per supernode (a team and a futex system call each, even on one
   // thread), a timer read around every BLAS call, and workspace allocated
@@ -184,20 +184,21 @@ public:
         const int top = pi[d] + row_position_[d];  // d's first row in s's columns
         int below = top;
         while (below < pi[d + 1] && row_of[below] < last) ++below;
-        const int in_columns = below - top, rows = pi[d + 1] - top;
-        const double* d_rows = lx + px[d] + (top - pi[d]);
-        // C = L_d(rows from top) L_d(rows top .. below)^T: its lower
-        // triangle where both are s's columns, all of it below.
-        dsyrk_("L", "N", &in_columns, &d_columns, &one, d_rows, &d_height, &zero, update_.data(), &rows, 1, 1);
-        if (rows > in_columns) {
-          const int rest = rows - in_columns;
-          dgemm_("N", "T", &rest, &in_columns, &d_columns, &one, d_rows + in_columns, &d_height, d_rows,
-                 &d_height, &zero, update_.data() + in_columns, &rows, 1, 1);
+        const int in_columns = below - top, reach = pi[d + 1] - top;
+        const double* d_top = lx + px[d] + (top - pi[d]);
+        // C (reach x in_columns) = L_d(rows top .. end) L_d(rows top ..
+        // below)^T: its lower triangle where both are s's columns, all of
+        // it below.
+        dsyrk_("L", "N", &in_columns, &d_columns, &one, d_top, &d_height, &zero, update_.data(), &reach, 1, 1);
+        if (reach > in_columns) {
+          const int rest = reach - in_columns;
+          dgemm_("N", "T", &rest, &in_columns, &d_columns, &one, d_top + in_columns, &d_height, d_top,
+                 &d_height, &zero, update_.data() + in_columns, &reach, 1, 1);
         }
         for (int j = 0; j < in_columns; ++j) {
           double* column = block + static_cast<ptrdiff_t>(local_row_[row_of[top + j]]) * height;
-          const double* c = update_.data() + static_cast<ptrdiff_t>(j) * rows;
-          for (int i = j; i < rows; ++i) column[local_row_[row_of[top + i]]] -= c[i];
+          const double* c = update_.data() + static_cast<ptrdiff_t>(j) * reach;
+          for (int i = j; i < reach; ++i) column[local_row_[row_of[top + i]]] -= c[i];
         }
         row_position_[d] = below - pi[d];
         if (below < pi[d + 1]) append(d, supernode_of_[row_of[below]]);
