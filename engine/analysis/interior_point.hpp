@@ -97,8 +97,9 @@ struct InteriorPointSolution {
 // one, for solvers that run side by side on worker threads (load capacity's
 // and important weights' blocks). There splitting each factorisation over
 // two cores (core/sparse_cholesky.hpp) only made the workers' threads wait
-// for each other: the 16 x 24 dome's load capacity on 2 cores 15.8 s ->
-// 14.4 s, its important weights 10.5 s -> 10.1 s.
+// for each other: the 16 x 24 dome's 2,310-row normal matrix, its load
+// capacity on 2 cores 16.0-16.5 s -> 15.1-15.5 s in alternating runs, its
+// important weights 10.5 s -> 10.1 s.
 enum class SolverCores { all, one };
 
 class EquilibriumSolver {
