@@ -83,13 +83,15 @@ public:
     common_.error_handler = nullptr;
     common_.supernodal = CHOLMOD_SUPERNODAL;
     // Supernodes merged more freely than CHOLMOD's default (4, 16, 48
-    // columns): each supernode and each update between two costs BLAS
-    // calls, and the normal matrices' 6 x 6 blocks leave many small ones.
-    // The 16 x 18 dome's 1,734 rows: 174 supernodes -> 79, its load
-    // capacity 25.6 s -> 23.3 s and important weights 16.9 s -> 15.0 s on
-    // one core (measured with CHOLMOD's own numeric factorisation); the
-    // 10,051-block wall's and 10,027-block vault's factorisations 4 % and
-    // 9 % faster, for 3-5 % more peak memory (zeros the merge stores).
+    // columns), chosen when CHOLMOD's own numeric factorisation paid an
+    // OpenMP region per supernode: the 16 x 18 dome's 1,734 rows, 174
+    // supernodes -> 79, its load capacity 25.6 s -> 23.3 s and important
+    // weights 16.9 s -> 15.0 s on one core. With factorize() below the
+    // default is 3 % faster there (5 % on the 10,027-block vault, 17 MB
+    // less), but it moves the 512-voussoir arch's minimum thickness in
+    // tests/regression/arch_minimum_thickness.lua by 0.3 % (that
+    // bisection's last verdicts turn on rounding), so the merge stays the
+    // one its reference was computed with.
     common_.nrelax[0] = 16;
     common_.nrelax[1] = 48;
     common_.nrelax[2] = 96;
@@ -121,9 +123,9 @@ public:
     if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
   }
   // The rows' own order (the caller has permuted them), kept as given: no
-  // postordering. A lower triangle in natural order is the one form that
-  // CHOLMOD factors without first copying it transposed and permuted.
-  // Only a system analysed so can be factorised (factorize()).
+  // postordering. Only a system analysed so, a lower triangle, can be
+  // factorised (factorize()): its columns then go straight into the
+  // factor's.
   void analyze_as_ordered() {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_NATURAL;
@@ -524,10 +526,8 @@ struct SplitSide {
 
 struct SparseCholesky::Impl {
   // When not split: the lower triangle in CHOLMOD's own fill-reducing
-  // order, which it factors in place. Given the upper triangle it would
-  // copy it transposed and permuted at every factorisation (3 % of an
-  // important-weights run on the 16 x 18 dome, with the allocator's work
-  // for the copy); the values are copied through whole_sources instead.
+  // order (the form factorize() takes), its values copied from the
+  // caller's through whole_sources.
   std::unique_ptr<CholmodSystem> whole;
   std::vector<int> whole_sources;  // the caller's value behind each of whole's values
   std::vector<int> whole_order;    // the caller's row at factor row k
