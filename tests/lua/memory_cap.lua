@@ -101,8 +101,10 @@ local lf = ashlar.load_factor(s, { friction = 0.7, direction = { 1, 0, 0 } })
 local fd = ashlar.friction_demand(s)
 local cap = ashlar.load_capacity(s, { friction = 0.7, threads = 1, progress = false })
 local iw = ashlar.important_weights(s, { friction = 0.7, threads = 1, progress = false })
-return lf.factor, fd.friction, cap[3].max == math.huge, iw.status, math.floor(iw[3] * 1e6 + 0.5)
-]], { 0.7, 0, true, "done", 2042 } },
+-- The middle block stands on its own: the top one's weight is not needed
+-- (0 N/m^3 to the solver's tolerance, against its own 23,544 N/m^3).
+return lf.factor, fd.friction, cap[3].max == math.huge, iw.status, iw[3] < 0.1
+]], { 0.7, 0, true, "done", true } },
   { "pictures", [[
 local rows = { { x = 1, y = 2 }, { x = 2, y = 3 }, { x = 3, y = 5 } }
 local chart = ashlar.chart{ path = folder .. "/stack.png", data = rows, x = "x", y = "y" }
