@@ -35,7 +35,11 @@ public:
     return [this](int done, int total) {
       done_ = done;
       // Set up at the first report (its rate counts from there), drawn once the delay is past.
-      if (!line_) line_.emplace(label_, static_cast<std::size_t>(total), true, stderr, 10.0, kind_, unit_);
+      if (!line_) {
+        const std::size_t all =
+            total == kTotalUnknown ? study::StudyProgress::kUnknownTotal : static_cast<std::size_t>(total);
+        line_.emplace(label_, all, true, stderr, 10.0, kind_, unit_);
+      }
       if (seconds_since(start_) < delay_) return;
       drawn_ = true;
       line_->update(static_cast<std::size_t>(done), 0);

@@ -19,7 +19,8 @@ int w_load_factor(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load", "method", "tolerance"});
+    const OptionTable options(L, 2,
+                              {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load", "method", "tolerance", "progress"});
     AnalysisSettings analysis = analysis_settings(options);
     analysis.solver = InteriorPointSettings{};  // "tolerance" is the factor's here, as for friction_demand
     read_method(options, analysis);
@@ -59,7 +60,11 @@ int w_load_factor(lua_State* L) {
       });
     }
     if (options.has("tolerance")) throw ArgError(2, "tolerance: only with method = \"kinematic\" (a bisection)");
-    const LoadFactor factor = load_factor(s, settings);
+    // A line once the program has taken 2 s (a 1,008-voussoir vault's
+    // takes 15 s and more); most answer sooner.
+    ProgressLine line(options, "load_factor", std::to_string(s.size()) + " blocks", "iteration", 2.0);
+    const LoadFactor factor = load_factor(s, settings, line.callback());
+    line.finish(factor.status);
     const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
     const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
       return std::array<int, 2>{interfaces[k].a, interfaces[k].b};

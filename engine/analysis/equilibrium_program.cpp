@@ -106,7 +106,7 @@ EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const 
   return program;
 }
 
-void load_program(ClpSimplex& simplex, const EquilibriumProgram& program) {
+void load_program(ClpSimplex& simplex, const EquilibriumProgram& program, IterationTally* tally) {
   // Explicit sizes: a trailing row or column without entries still counts.
   CoinPackedMatrix matrix(true, program.row_index.data(), program.column_index.data(),
                           program.value.data(), static_cast<CoinBigIndex>(program.value.size()));
@@ -115,22 +115,34 @@ void load_program(ClpSimplex& simplex, const EquilibriumProgram& program) {
   simplex.setLogLevel(0);
   simplex.loadProblem(matrix, program.column_lower.data(), program.column_upper.data(),
                       no_objective.data(), program.row_lower.data(), program.row_upper.data());
-  stop_on_request(simplex);
+  stop_on_request(simplex, tally);
 }
 
 namespace {
 
-// Clp asks after every iteration; 0 stops it with status 5.
+// Clp asks after every iteration, the barrier's too; 0 stops it with
+// status 5. Clp works on clones, which share the tally.
 class StopOnRequest : public ClpEventHandler {
 public:
-  int event(Event which) override { return which == endOfIteration && stop_requested() ? 0 : -1; }
+  explicit StopOnRequest(IterationTally* tally) : tally_(tally) {}
+  int event(Event which) override {
+    if (which != endOfIteration) return -1;
+    if (tally_) {
+      ++tally_->iterations;
+      if (tally_->progress) tally_->progress(tally_->iterations, kTotalUnknown);
+    }
+    return stop_requested() ? 0 : -1;
+  }
   ClpEventHandler* clone() const override { return new StopOnRequest(*this); }
+
+private:
+  IterationTally* tally_;
 };
 
 }  // namespace
 
-void stop_on_request(ClpSimplex& simplex) {
-  StopOnRequest handler;
+void stop_on_request(ClpSimplex& simplex, IterationTally* tally) {
+  StopOnRequest handler(tally);
   simplex.passInEventHandler(&handler);  // Clp keeps a clone
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/equilibrium_problem.hpp"
+#include "core/progress.hpp"
 
 class ClpSimplex;
 
@@ -64,13 +65,24 @@ double friction_needed(const EquilibriumOptions& options, double c, double f_u, 
 EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const EquilibriumOptions& options);
 
 // Loads the program into `simplex` with no objective and Clp's log off,
-// stopping on request (stop_on_request).
-void load_program(ClpSimplex& simplex, const EquilibriumProgram& program);
+// stopping on request (stop_on_request, with `tally`).
+struct IterationTally;
+void load_program(ClpSimplex& simplex, const EquilibriumProgram& program, IterationTally* tally = nullptr);
+
+// Every iteration Clp takes on a program: the barrier's, its crossover's
+// and the simplex's pivots (which numberIterations() does not all keep:
+// after a crossover it tells only the barrier's), each told to `progress`
+// as (iterations so far, kTotalUnknown).
+struct IterationTally {
+  int iterations = 0;
+  ProgressCount progress;
+};
 
 // Makes `simplex` stop at the end of an iteration once Ctrl-C or the
 // calling thread's sandbox deadline asks (core/interrupt.hpp): its status
-// is then kClpInterrupted.
-void stop_on_request(ClpSimplex& simplex);
+// is then kClpInterrupted. With `tally` (which must outlive the solves,
+// copies of `simplex` included), each iteration is counted into it too.
+void stop_on_request(ClpSimplex& simplex, IterationTally* tally = nullptr);
 constexpr int kClpInterrupted = 5;  // Clp's "stopped by event handler"
 
 // The status name of a Clp status that is no answer: "stopped" (3, the

@@ -25,47 +25,44 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // unscaled solution breaks bounds or rows beyond the tolerance (by up to
 // 4e-4 of the mean weight near a tipping point: a confident wrong factor).
 // Solve again without scaling, from the basis found.
-int unscaled_status(ClpSimplex& simplex, int& iterations) {
+int unscaled_status(ClpSimplex& simplex) {
   if (simplex.status() == 0 && simplex.secondaryStatus() >= 2 && simplex.secondaryStatus() <= 4) {
     simplex.scaling(0);
     simplex.primal();
-    iterations += simplex.numberIterations();
   }
   return simplex.status();
 }
 
-// Clp's status once `simplex` has solved, counting its iterations. The
-// dual simplex called feasible programs infeasible on fine arches (128 and
-// 200 voussoirs), and so may the primal: "infeasible" stands only when the
-// dual simplex from a slack basis agrees.
-int confirmed_status(ClpSimplex& simplex, int& iterations) {
-  iterations += simplex.numberIterations();
-  if (unscaled_status(simplex, iterations) != 1) return simplex.status();
+// Clp's status once `simplex` has solved (its iterations are counted by
+// the program's IterationTally). The dual simplex called feasible programs
+// infeasible on fine arches (128 and 200 voussoirs), and so may the
+// primal: "infeasible" stands only when the dual simplex from a slack
+// basis agrees.
+int confirmed_status(ClpSimplex& simplex) {
+  if (unscaled_status(simplex) != 1) return simplex.status();
   simplex.allSlackBasis(true);
   simplex.dual();
-  iterations += simplex.numberIterations();
-  return unscaled_status(simplex, iterations);
+  return unscaled_status(simplex);
 }
 
 // A feasibility program (no objective) by the primal simplex.
-int solve_checked(ClpSimplex& simplex, int& iterations) {
+int solve_checked(ClpSimplex& simplex) {
   simplex.primal();
-  return confirmed_status(simplex, iterations);
+  return confirmed_status(simplex);
 }
 
 // Clp's barrier with crossover to a vertex (an optimal basis, with its
 // duals). From scratch it takes far fewer iterations than either simplex
 // on 3D friction programs, whose vertices are highly degenerate.
-int solve_by_barrier(ClpSimplex& simplex, int& iterations) {
+int solve_by_barrier(ClpSimplex& simplex) {
   ClpSolve barrier;
   barrier.setSolveType(ClpSolve::useBarrier);
   barrier.setSpecialOption(2, 1);  // no interrupt handler: analyses may run side by side
   simplex.initialSolve(barrier);
   if (simplex.status() != 0 && simplex.status() != 1 && simplex.status() != 2) {
-    iterations += simplex.numberIterations();
     simplex.primal();  // the barrier stopped short: the simplex from its point
   }
-  return confirmed_status(simplex, iterations);
+  return confirmed_status(simplex);
 }
 
 // The scaled right-hand side (6 rows, as applied_force_rhs) of the load that
@@ -110,7 +107,8 @@ void check_settings(const Structure& structure, const LoadFactorSettings& settin
 
 }  // namespace
 
-LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings) {
+LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings,
+                       const ProgressCount& progress) {
   const auto start = Clock::now();
   check_settings(structure, settings);
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
@@ -140,8 +138,9 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
       }
     }
   }
+  IterationTally tally{0, progress};
   ClpSimplex simplex;
-  load_program(simplex, program);
+  load_program(simplex, program, &tally);
   // Whether it stands with no load: the equilibrium analysis's verdict (its
   // interior point answers in a fiftieth of the simplex's time: 0.04 s
   // against 2.3 s on a 305-block dome), or, where that verdict is at its
@@ -149,19 +148,20 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   AnalysisSettings unloaded;
   unloaded.problem = settings.problem;
   const EquilibriumResult at_rest = analyze_equilibrium(structure, unloaded);
-  if (at_rest.status == SolverStatus::interrupted) {  // Clp's barrier would not hear it
+  if (at_rest.status == SolverStatus::interrupted) {  // no verdict: the programs need not start
     result.status = clp_failure(kClpInterrupted);
     result.factor = kNaN;
     result.seconds = seconds_since(start);
     return result;
   }
-  result.stable = at_rest.borderline ? solve_checked(simplex, result.iterations) == 0 : at_rest.stable;
+  result.stable = at_rest.borderline ? solve_checked(simplex) == 0 : at_rest.stable;
   simplex.setColumnBounds(factor_column, -COIN_DBL_MAX, COIN_DBL_MAX);
   simplex.setObjectiveCoefficient(factor_column, -1.0);
   // The largest factor by Clp's barrier and crossover to a vertex (whose
   // duals are the mechanism): 32 barrier iterations and 0.5 s on that dome,
   // where the primal simplex took 14,453 pivots and 4.4 s.
-  solve_by_barrier(simplex, result.iterations);
+  solve_by_barrier(simplex);
+  result.iterations = tally.iterations;
   switch (simplex.status()) {
     case 0:
       result.factor = simplex.primalColumnSolution()[factor_column];
@@ -226,8 +226,9 @@ public:
         }
       }
     }
+    IterationTally tally;
     ClpSimplex simplex;
-    load_program(simplex, program);
+    load_program(simplex, program, &tally);
     for (int column = first_borrowed; column < program.columns; ++column) {
       simplex.setObjectiveCoefficient(column, 1.0);
     }
@@ -238,11 +239,12 @@ public:
       // From scratch the barrier and crossover (1.7 s on the 305-block
       // dome) beat the dual simplex from all slacks (2.9 s, 8,874 pivots)
       // and the primal (17,148 pivots). From a basis the primal does better.
-      status = solve_by_barrier(simplex, tally_.iterations);
+      status = solve_by_barrier(simplex);
     } else {
       if (warm) simplex.copyinStatus(basis_.data());
-      status = solve_checked(simplex, tally_.iterations);
+      status = solve_checked(simplex);
     }
+    tally_.iterations += tally.iterations;
     ++tally_.programs;
     if (status != 0) return status;
     basis_.assign(simplex.statusArray(), simplex.statusArray() + program.columns + program.rows);

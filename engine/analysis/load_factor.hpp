@@ -52,13 +52,15 @@ struct LoadFactor {
   bool stable = false;  // it stands with no load (lambda = 0)
   std::vector<BlockMotion> mechanism;  // per block, zero for supports; empty unless optimal
   std::vector<LimitInterface> limit;   // interfaces that move in the mechanism
-  int iterations = 0;                  // simplex pivots
+  int iterations = 0;                  // Clp's: barrier iterations, crossover and simplex pivots
   double seconds = 0.0;
 };
 
 // Throws InvalidArgument for bad options (a zero direction, a direction out
 // of a planar structure's plane, point_loads with no point loads).
-LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings);
+// progress: told every Clp iteration, as (iterations so far, kTotalUnknown).
+LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings,
+                       const ProgressCount& progress = {});
 
 struct FrictionDemand {
   // "optimal"; "unstable" when it does not stand even without sliding

@@ -33,6 +33,12 @@ std::string StudyProgress::clock_text(double seconds) {
 
 std::string StudyProgress::status_text(std::size_t done, std::size_t errors, double elapsed) const {
   const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
+  if (total_ == kUnknownTotal) {
+    char buffer[160];
+    std::snprintf(buffer, sizeof buffer, "%zu %ss  %.1f %ss/s  %s", done, unit_.c_str(), rate, unit_.c_str(),
+                  clock_text(elapsed).c_str());
+    return buffer;
+  }
   const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done, total_)) / rate : NAN;
   char buffer[160];
   std::snprintf(buffer, sizeof buffer, "%zu/%zu %3.0f%%  %.1f %ss/s  ETA %s", done, total_,
@@ -50,7 +56,9 @@ void StudyProgress::update(std::size_t done, std::size_t errors) {
   if (last_draw_ >= 0 && now - last_draw_ < interval) return;
   last_draw_ = now;
   const std::string status = status_text(done, errors, now - start_);
-  if (terminal_) {
+  if (terminal_ && total_ == kUnknownTotal) {
+    std::fprintf(out_, "\r\033[K%s %s", label_.c_str(), status.c_str());
+  } else if (terminal_) {
     constexpr int kBarWidth = 24;
     const int filled = total_ ? static_cast<int>(kBarWidth * std::min(done, total_) / total_) : kBarWidth;
     const std::string bar = std::string(filled, '#') + std::string(kBarWidth - filled, '.');

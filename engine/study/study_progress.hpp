@@ -11,6 +11,10 @@ namespace ashlar::study {
 
 class StudyProgress {
 public:
+  // A total not known ahead (a solver's iterations): the line then shows
+  // the count, the rate and the time so far, without a bar or an ETA.
+  static constexpr std::size_t kUnknownTotal = static_cast<std::size_t>(-1);
+
   // total: runs this session will do; out: where to write (stderr by
   // default); enabled = false writes nothing. `kind` begins the lines
   // written off a terminal and the closing line ("study <label>: ..."), and

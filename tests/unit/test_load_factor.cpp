@@ -193,6 +193,21 @@ TEST(FrictionDemand, NoneOnFlatGroundAndNoneEnoughWhenItFalls) {
                        "tolerance"));
 }
 
+TEST(LoadFactor, TellsEveryIterationOfItsProgram) {
+  // One call per Clp iteration (the barrier's, its crossover's and the
+  // simplex's pivots alike), counting up from 1 with no total known ahead;
+  // the factor's iterations are that count, and the count changes nothing.
+  const Structure s = semicircular_arch(16, 0.65);
+  std::vector<std::pair<int, int>> told;
+  const LoadFactor factor =
+      load_factor(s, lateral(kNoSliding), [&](int done, int total) { told.emplace_back(done, total); });
+  ASSERT_EQ(factor.status, "optimal");
+  ASSERT_FALSE(told.empty());
+  for (size_t k = 0; k < told.size(); ++k) EXPECT_EQ(told[k], std::make_pair(static_cast<int>(k) + 1, kTotalUnknown));
+  EXPECT_EQ(factor.iterations, static_cast<int>(told.size()));
+  EXPECT_EQ(load_factor(s, lateral(kNoSliding)).factor, factor.factor);
+}
+
 TEST(LoadFactor, AnInterruptedSearchCarriesNoVerdict) {
   // Ctrl-C (the flag the host's handler sets) stops Clp after its current
   // iteration: the answer says so, with no factor and no verdict, though

@@ -405,6 +405,24 @@ TEST(StudyTable, CsvQuotesAndLeavesPendingRowsEmpty) {
             "0.25,,,,,\r\n");
 }
 
+TEST(StudyProgress, AnUnknownTotalShowsTheCountTheRateAndTheTime) {
+  // A solver's iterations (load_factor): no bar, percentage or ETA.
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  StudyProgress line("1010 blocks", StudyProgress::kUnknownTotal, true, out, 10.0, "load_factor", "iteration");
+  line.update(27577, 0);
+  line.finish(41049, 0, "optimal");
+  std::rewind(out);
+  std::string text;
+  for (int c; (c = std::fgetc(out)) != EOF;) text += static_cast<char>(c);
+  std::fclose(out);
+  EXPECT_EQ(text.rfind("load_factor 1010 blocks: 27577 iterations  ", 0), 0u) << text;
+  EXPECT_NE(text.find("iterations/s  0 s\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("load_factor 1010 blocks: 41049 iterations in 0 s"), std::string::npos) << text;
+  EXPECT_EQ(text.find("ETA"), std::string::npos) << text;
+  EXPECT_EQ(text.find('%'), std::string::npos) << text;
+}
+
 TEST(StudyProgress, ClockText) {
   EXPECT_EQ(StudyProgress::clock_text(7.2), "7 s");
   EXPECT_EQ(StudyProgress::clock_text(245), "4:05");
