@@ -56,8 +56,8 @@ void StudyProgress::update(std::size_t done, std::size_t errors) {
   if (last_draw_ >= 0 && now - last_draw_ < interval) return;
   last_draw_ = now;
   const std::string status = status_text(done, errors, now - start_);
-  if (terminal_ && total_ == kUnknownTotal) {
-    std::fprintf(out_, "\r\033[K%s %s", label_.c_str(), status.c_str());
+  if (terminal_ && total_ == kUnknownTotal) {  // no bar to tell what is running: the kind says it
+    std::fprintf(out_, "\r\033[K%s %s: %s", kind_.c_str(), label_.c_str(), status.c_str());
   } else if (terminal_) {
     constexpr int kBarWidth = 24;
     const int filled = total_ ? static_cast<int>(kBarWidth * std::min(done, total_) / total_) : kBarWidth;
