@@ -34,8 +34,11 @@ int w_load_factor(lua_State* L) {
       settings.direction = *direction;
     }
     if (analysis.method == AnalysisMethod::kinematic) {
+      // A bisection of kinematic analyses: a line of its bracket's digits once it has taken 2 s.
+      ProgressLine line(options, "load_factor", std::to_string(s.size()) + " blocks", "digit", 2.0);
       const KinematicLoadFactor factor =
-          kinematic_load_factor(s, settings, analysis, options.positive("tolerance", 1e-3));
+          kinematic_load_factor(s, settings, analysis, options.positive("tolerance", 1e-3), line.callback());
+      line.finish(factor.status);
       const EquilibriumResult& failure = factor.failure;
       const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
         return std::array<int, 2>{failure.interfaces[k].a, failure.interfaces[k].b};
@@ -60,8 +63,8 @@ int w_load_factor(lua_State* L) {
       });
     }
     if (options.has("tolerance")) throw ArgError(2, "tolerance: only with method = \"kinematic\" (a bisection)");
-    // A line once the program has taken 2 s (a 1,008-voussoir vault's
-    // takes 15 s and more); most answer sooner.
+    // A line of Clp's iterations once the program has taken 2 s (a
+    // 1,008-voussoir vault's takes 15 s and more); most answer sooner.
     ProgressLine line(options, "load_factor", std::to_string(s.size()) + " blocks", "iteration", 2.0);
     const LoadFactor factor = load_factor(s, settings, line.callback());
     line.finish(factor.status);
@@ -101,7 +104,7 @@ int w_friction_demand(lua_State* L) {
     if (tolerance >= 1.0) throw ArgError(2, "tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
     // A line once the search has taken 2 s: most answer sooner.
     ProgressLine line(options, "friction_demand", std::to_string(s.size()) + " blocks", "digit", 2.0);
-    const FrictionDemand demand = kinematic ? kinematic_friction_demand(s, analysis, tolerance)
+    const FrictionDemand demand = kinematic ? kinematic_friction_demand(s, analysis, tolerance, line.callback())
                                             : friction_demand(s, problem, tolerance, line.callback());
     line.finish(demand.status);
     const std::vector<Interface>& interfaces = s.interfaces(problem.contact);

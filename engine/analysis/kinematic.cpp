@@ -217,11 +217,14 @@ Structure loaded(const Structure& structure, const LoadFactorSettings& load, dou
 }  // namespace
 
 KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
-                                          const AnalysisSettings& settings, double tolerance) {
+                                          const AnalysisSettings& settings, double tolerance,
+                                          const ProgressCount& progress) {
   if (!(tolerance > 0.0 && tolerance < 1.0)) {
     throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
   }
   const auto start = Clock::now();
+  const BracketProgress bracket(tolerance, progress);
+  bracket.tell(0.0, std::numeric_limits<double>::infinity());
   KinematicLoadFactor out;
   LoadFactorSettings bound = load;
   bound.problem = settings.problem;
@@ -268,9 +271,13 @@ KinematicLoadFactor kinematic_load_factor(const Structure& structure, const Load
   } else {
     const int verdict = stands(high, &out.failure);
     if (verdict < 0) return no_verdict();
-    if (verdict == 1) return finish("optimal", high);  // the upper bound itself stands
+    if (verdict == 1) {  // the upper bound itself stands
+      bracket.tell(high, high);
+      return finish("optimal", high);
+    }
   }
   while (high - low > tolerance * std::max(high, 1e-12)) {
+    bracket.tell(low, high);
     const double middle = 0.5 * (low + high);
     EquilibriumResult r;
     const int verdict = stands(middle, &r);
@@ -282,15 +289,18 @@ KinematicLoadFactor kinematic_load_factor(const Structure& structure, const Load
       out.failure = std::move(r);
     }
   }
+  bracket.tell(low, high);
   return finish("optimal", low);
 }
 
 FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
-                                         double tolerance) {
+                                         double tolerance, const ProgressCount& progress) {
   if (!(tolerance > 0.0 && tolerance < 1.0)) {
     throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
   }
   const auto start = Clock::now();
+  const BracketProgress bracket(tolerance, progress);
+  bracket.tell(0.0, std::numeric_limits<double>::infinity());
   FrictionDemand out = friction_demand(structure, settings.problem, tolerance);
   if (out.status != "optimal") return out;  // it falls even without sliding, or Clp failed
   out.programs = 0;
@@ -333,11 +343,13 @@ FrictionDemand kinematic_friction_demand(const Structure& structure, const Analy
     high = std::min(kLargestFriction, 2.0 * high);
   }
   while (high - low > tolerance * high) {
+    bracket.tell(low, high);
     const double middle = 0.5 * (low + high);
     const int verdict = stands(middle);
     if (verdict < 0) return no_verdict();
     (verdict == 1 ? high : low) = middle;
   }
+  bracket.tell(low, high);
   out.lower = low;
   return finish("optimal", high);
 }

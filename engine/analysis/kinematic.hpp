@@ -103,11 +103,13 @@ struct KinematicLoadFactor {
 // sliding (friction +inf; a block clamped between walls), "no verdict" when
 // an analysis did not settle, "interrupted" when one was stopped (both NaN).
 // `programs` counts kinematic analyses,
-// `critical` the interfaces that move at `lower`.
+// `critical` the interfaces that move at `lower`. Both searches tell
+// `progress` the digits of their bracket (BracketProgress, core/progress.hpp).
 FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
-                                         double tolerance = 1e-3);
+                                         double tolerance = 1e-3, const ProgressCount& progress = {});
 
 KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
-                                          const AnalysisSettings& settings, double tolerance = 1e-3);
+                                          const AnalysisSettings& settings, double tolerance = 1e-3,
+                                          const ProgressCount& progress = {});
 
 }  // namespace ashlar

@@ -356,17 +356,8 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
   }
   const auto start = Clock::now();
-  // The search's count of steps is not known ahead; its bracket's digits
-  // (-log10 of the relative width) grow towards the tolerance's.
-  const int digits = std::max(1, static_cast<int>(std::ceil(-std::log10(tolerance))));
-  auto tell = [&](double low, double high) {
-    if (!progress) return;
-    const double width = std::isfinite(high) && high > 0.0 ? (high - low) / high : 1.0;
-    // Done is all digits, though the width's logarithm may round below them.
-    const int reached = width <= tolerance ? digits : static_cast<int>(std::floor(-std::log10(width)));
-    progress(std::clamp(reached, 0, digits), digits);
-  };
-  tell(0.0, kInfinity);
+  const BracketProgress bracket(tolerance, progress);
+  bracket.tell(0.0, kInfinity);
   EquilibriumOptions unbounded = options;
   unbounded.friction = kInfinity;
   const EquilibriumProblem problem = build_equilibrium_problem(structure, unbounded);
@@ -456,7 +447,7 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     if (status != 1) return finish(clp_failure(status), kNaN);
   }
   std::vector<Eigen::Vector4d> at_high = unknowns;
-  tell(low, high);
+  bracket.tell(low, high);
   // Each step tries a secant estimate of the demand from the latest two
   // coefficients found too small, a quarter of the tolerance above it
   // (after one too small) or below it (after one that stood), so that a
@@ -503,7 +494,7 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     }
     // Progress: a quarter of the borrowed friction left, or half the bracket.
     halve = secant && (status == 1 ? borrowed > 0.25 * borrowed_before : high - low > 0.5 * width);
-    tell(low, high);
+    bracket.tell(low, high);
   }
   result.lower = low;
   programs.needed(at_high, &result.critical);

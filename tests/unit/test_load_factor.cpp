@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/kinematic.hpp"
 #include "analysis/load_factor.hpp"
 #include "core/interrupt.hpp"
 #include "test_support.hpp"
@@ -206,6 +207,25 @@ TEST(LoadFactor, TellsEveryIterationOfItsProgram) {
   for (size_t k = 0; k < told.size(); ++k) EXPECT_EQ(told[k], std::make_pair(static_cast<int>(k) + 1, kTotalUnknown));
   EXPECT_EQ(factor.iterations, static_cast<int>(told.size()));
   EXPECT_EQ(load_factor(s, lateral(kNoSliding)).factor, factor.factor);
+}
+
+TEST(LoadFactor, TheKinematicSearchTellsTheDigitsOfItsBracket) {
+  // A squat block slides at mu = 0.5 before it tips: 0 of the 3 digits
+  // that tolerance 1e-3 asks for first, then counts that only grow, ending
+  // at 3 with the factor within 1e-3 below the equilibrium method's 0.5.
+  const Structure s = stack(1, 1.0, 0.3);
+  AnalysisSettings settings;
+  settings.problem.friction = 0.5;
+  std::vector<std::pair<int, int>> told;
+  const KinematicLoadFactor factor = kinematic_load_factor(
+      s, lateral(0.5), settings, 1e-3, [&](int done, int total) { told.emplace_back(done, total); });
+  ASSERT_EQ(factor.status, "optimal");
+  ASSERT_GE(told.size(), 2u);
+  EXPECT_EQ(told.front(), std::make_pair(0, 3));
+  EXPECT_EQ(told.back(), std::make_pair(3, 3));
+  for (size_t k = 1; k < told.size(); ++k) EXPECT_GE(told[k].first, told[k - 1].first);
+  EXPECT_LE(factor.factor, 0.5 * (1 + 1e-9));
+  EXPECT_GE(factor.factor, 0.5 * (1 - 1e-3));
 }
 
 TEST(LoadFactor, AnInterruptedSearchCarriesNoVerdict) {
