@@ -64,11 +64,6 @@ double friction_needed(const EquilibriumOptions& options, double c, double f_u, 
 
 EquilibriumProgram equilibrium_program(const EquilibriumProblem& problem, const EquilibriumOptions& options);
 
-// Loads the program into `simplex` with no objective and Clp's log off,
-// stopping on request (stop_on_request, with `tally`).
-struct IterationTally;
-void load_program(ClpSimplex& simplex, const EquilibriumProgram& program, IterationTally* tally = nullptr);
-
 // Every iteration Clp takes on a program: the barrier's, its crossover's
 // and the simplex's pivots (which numberIterations() does not all keep:
 // after a crossover it tells only the barrier's), each told to `progress`
@@ -77,6 +72,10 @@ struct IterationTally {
   int iterations = 0;
   ProgressCount progress;
 };
+
+// Loads the program into `simplex` with no objective and Clp's log off,
+// stopping on request (stop_on_request, with `tally`).
+void load_program(ClpSimplex& simplex, const EquilibriumProgram& program, IterationTally* tally = nullptr);
 
 // Makes `simplex` stop at the end of an iteration once Ctrl-C or the
 // calling thread's sandbox deadline asks (core/interrupt.hpp): its status
