@@ -174,7 +174,7 @@ BarrierSolver::~BarrierSolver() = default;
 BarrierSolver::BarrierSolver(BarrierSolver&&) noexcept = default;
 BarrierSolver& BarrierSolver::operator=(BarrierSolver&&) noexcept = default;
 
-int BarrierSolver::solve(ClpSimplex& model) {
+int BarrierSolver::solve(ClpSimplex& model, int iteration_limit) {
   const ClpMatrixBase& matrix = *model.clpMatrix();
   if (!normal_ || !normal_->fits(matrix)) normal_ = std::make_unique<BarrierNormalEquations>(matrix);
   // As ClpSolve's barrier without crossover, with this Cholesky.
@@ -182,6 +182,7 @@ int BarrierSolver::solve(ClpSimplex& model) {
   barrier.borrowModel(model);
   barrier.eventHandler()->setSimplex(nullptr);
   if (barrier.numberRows() + barrier.numberColumns() > 10000) barrier.setMaximumBarrierIterations(1000);
+  if (iteration_limit > 0) barrier.setMaximumBarrierIterations(iteration_limit);
   barrier.setCholesky(new CholmodCholesky(*normal_));
   barrier.scaling(0);
   barrier.primalDual();

@@ -23,15 +23,19 @@ public:
   BarrierSolver(BarrierSolver&&) noexcept;
   BarrierSolver& operator=(BarrierSolver&&) noexcept;
 
-  // Solves `model`, a program with an optimum (feasible and bounded: on
-  // an infeasible one Clp's predictor-corrector may abort the process,
-  // "dual off to infinity"), by the barrier, without presolve, scaling or
-  // crossover:
+  // Solves `model`, a feasible program (on an infeasible one Clp's
+  // predictor-corrector may abort the process, "dual off to infinity"; on
+  // an unbounded one it may stop far out and call that optimal, a load
+  // factor of 1e16 with rows broken), by the barrier, without presolve,
+  // scaling or crossover:
   // the model's primal and dual solutions are the barrier's last iterate
   // (or, where it stops without a verdict, those of Clp's own barrier and
   // crossover). Returns Clp's status (0 optimal, 1 primal infeasible, 2
   // dual infeasible, 3 iteration limit, 4 numerical difficulties).
-  int solve(ClpSimplex& model);
+  // iteration_limit: the barrier's iterations before it stops with status
+  // 3; 0 for ClpSolve's (1,000 on programs of more than 10,000 rows and
+  // columns, else Clp's default).
+  int solve(ClpSimplex& model, int iteration_limit = 0);
   // Barrier iterations of the last solve.
   int iterations() const { return iterations_; }
 

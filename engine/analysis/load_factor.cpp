@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/clp_barrier.hpp"
 #include "analysis/equilibrium.hpp"
 #include "analysis/equilibrium_analysis.hpp"
 #include "analysis/equilibrium_program.hpp"
@@ -62,6 +63,88 @@ int solve_by_barrier(ClpSimplex& simplex) {
   if (simplex.status() != 0 && simplex.status() != 1 && simplex.status() != 2) {
     simplex.primal();  // the barrier stopped short: the simplex from its point
   }
+  return confirmed_status(simplex);
+}
+
+// The barrier iterations a load factor's program is given. Its optima
+// took 12-44 (a 24 x 30 dome pushed sideways the most); on unbounded
+// programs it wanders: 402 iterations and 12.5 s on the 16 x 18 dome
+// pushed along (1, 0, -3), 1,608 and 27 s on a planar 431-block wall,
+// where Clp's own barrier and crossover answered in 20.5 s and 3.6 s.
+constexpr int kFactorBarrierIterations = 100;
+
+// What Clp's barrier with CHOLMOD's normal equations (BarrierSolver) left
+// in the model: a point to cross over from (it says optimal, and the
+// unscaled answer breaks no bound or row; Clp's checkSolution, which also
+// sums the dual infeasibility), an interrupted solve, or nothing usable. On
+// an unbounded program it called a factor of 1e16 optimal with 2,393 rows
+// broken, and the simplex from there took 27,360 pivots and 60 s on a 3D
+// wall, where Clp's own barrier and crossover took 8.6 s. `tolerance`: the
+// barrier's primal and dual tolerances, 0 for Clp's.
+enum class BarrierPoint { usable, interrupted, unusable };
+BarrierPoint barrier_point(ClpSimplex& simplex, double tolerance) {
+  const double primal_tolerance = simplex.primalTolerance(), dual_tolerance = simplex.dualTolerance();
+  if (tolerance > 0.0) {
+    simplex.setPrimalTolerance(tolerance);
+    simplex.setDualTolerance(tolerance);
+  }
+  BarrierSolver().solve(simplex, kFactorBarrierIterations);
+  simplex.setPrimalTolerance(primal_tolerance);
+  simplex.setDualTolerance(dual_tolerance);
+  if (simplex.status() == kClpInterrupted) return BarrierPoint::interrupted;
+  if (simplex.status() != 0) return BarrierPoint::unusable;
+  simplex.checkSolution(0);  // which marks the program unsolved (-1) if any dual is infeasible
+  if (simplex.numberPrimalInfeasibilities() > 0) return BarrierPoint::unusable;
+  return BarrierPoint::usable;
+}
+
+// The barrier's tolerances when its own last iterate is the answer:
+// Clp's default 1e-7 left the 1,008-voussoir vault's factor 1.2e-8 off and
+// joints moving at about limit_interfaces' threshold (280 limit interfaces
+// against the vertex's 218), and let a block bearing on a 1e-3 strip, whose
+// program is infeasible, through as optimal. At 1e-9 the vault's factor is
+// within 3e-11 of the vertex's, with the same 218 limits.
+constexpr double kBarrierAloneTolerance = 1e-9;
+// The dual infeasibility, summed over the columns, that the barrier's
+// answer may keep (Clp's checkSolution at its default 1e-7 tolerance): the
+// 16 x 18 dome leaves 5.9e-7 over 3 columns; pushed along (0.3, 1, 0) it
+// leaves 3.5e-6 and goes on to the crossover.
+constexpr double kBarrierAloneDualSlack = 1e-6;
+// The factor's distance from 0 under which its sign, the stability
+// verdict, is left to a vertex.
+constexpr double kBarrierAloneClearOfZero = 1e-6;
+// Bodies from which a 3D program's factor is left to the barrier alone.
+// Below, the crossover costs little and its vertex is exact: the block on
+// a table's factors (tests/regression/block_on_table.lua) came out of the
+// barrier alone 1.8e-9 and 2.7e-9 from their closed forms, held to 1e-9.
+constexpr int kBarrierAloneBodies = 100;
+
+// The largest factor. Where the structure stands unloaded the program is
+// feasible, as BarrierSolver needs: the barrier with CHOLMOD's normal
+// equations (Clp's own Cholesky, which orders by row counts only, took
+// 71-73 % of a 1,216-block wall's load factor, planar or 3D), then the
+// simplex from its point (its values pass) to a vertex, whose duals are an
+// extreme mechanism. On a 3D program of kBarrierAloneBodies or more the
+// barrier's point is the optimum when its duals (the mechanism) are
+// feasible to Clp's tolerance and the factor is clear of 0: the
+// crossover's pivots were 80 % of the 1,008-voussoir vault's load factor.
+// Where it does not stand unloaded, or the barrier leaves no usable point,
+// Clp's own barrier and crossover (solve_by_barrier).
+int solve_for_factor(ClpSimplex& simplex, const EquilibriumProblem& problem, int factor_column,
+                     bool stands_unloaded) {
+  if (!stands_unloaded) return solve_by_barrier(simplex);
+  const bool alone = problem.block_rows == 6 && problem.body_count >= kBarrierAloneBodies;
+  switch (barrier_point(simplex, alone ? kBarrierAloneTolerance : 0.0)) {
+    case BarrierPoint::interrupted: return kClpInterrupted;
+    case BarrierPoint::unusable: return solve_by_barrier(simplex);
+    case BarrierPoint::usable: break;
+  }
+  if (alone && simplex.sumDualInfeasibilities() <= kBarrierAloneDualSlack &&
+      std::abs(simplex.primalColumnSolution()[factor_column]) > kBarrierAloneClearOfZero) {
+    simplex.setProblemStatus(0);
+    return 0;
+  }
+  simplex.primal(1);  // the crossover
   return confirmed_status(simplex);
 }
 
@@ -157,10 +240,10 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   result.stable = at_rest.borderline ? solve_checked(simplex) == 0 : at_rest.stable;
   simplex.setColumnBounds(factor_column, -COIN_DBL_MAX, COIN_DBL_MAX);
   simplex.setObjectiveCoefficient(factor_column, -1.0);
-  // The largest factor by Clp's barrier and crossover to a vertex (whose
-  // duals are the mechanism): 32 barrier iterations and 0.5 s on that dome,
-  // where the primal simplex took 14,453 pivots and 4.4 s.
-  solve_by_barrier(simplex);
+  // The largest factor by the barrier (solve_for_factor), whose duals are
+  // the mechanism: 33 iterations and 0.4 s on that dome, where the primal
+  // simplex took 14,453 pivots and 4.4 s.
+  solve_for_factor(simplex, problem, factor_column, result.stable);
   result.iterations = tally.iterations;
   switch (simplex.status()) {
     case 0:
@@ -239,6 +322,9 @@ public:
       // From scratch the barrier and crossover (1.7 s on the 305-block
       // dome) beat the dual simplex from all slacks (2.9 s, 8,874 pivots)
       // and the primal (17,148 pivots). From a basis the primal does better.
+      // (CHOLMOD's barrier and the simplex from its point, as the load
+      // factor's, took 21 s and 27,405 iterations over the dome's five
+      // programs, against 4.8 s and 7,865.)
       status = solve_by_barrier(simplex);
     } else {
       if (warm) simplex.copyinStatus(basis_.data());

@@ -101,3 +101,46 @@ describe("a dome of 8 x 4 blocks (3D references)", function()
     end)
   end)
 end)
+
+-- From 100 bodies on, a 3D load factor is the optimum Clp's barrier reaches
+-- without a crossover to a vertex, kept where its answer checks out (no
+-- bound or row broken, its multipliers feasible to 1e-6 summed) and else
+-- crossed over as before. The references are the vertices of the crossover,
+-- every time (the code at commit 2473619, printed to 15 digits), and the
+-- equilibrium analysis's own verdict either side of the factor.
+describe("the load factor of the 16 x 18 dome (289 free blocks): the barrier's optimum", function()
+  local VERTEX = 1e-9  -- relative: the barrier alone came within 7.5e-11 of the vertex
+
+  it("pushed along x: the vertex's factor and limit interfaces; the analysis stands below it, falls above", function()
+    local f = ashlar.load_factor(models.dome{}, { progress = false })
+    assert.are.equal("optimal", f.status)
+    assert.is_true(f.stable)
+    near(f.factor, 0.419085830034, VERTEX * 0.419085830034, "factor")
+    assert.is_true(f.iterations < 100)  -- the barrier's iterations alone: no crossover pivots
+    assert.are.equal(482, #f.limit)
+    assert.is_true(ashlar.analyze(support.push_laterally(models.dome{}, f.factor * (1 - 1e-4))).stable)
+    assert.is_false(ashlar.analyze(support.push_laterally(models.dome{}, f.factor * (1 + 1e-4))).stable)
+  end)
+
+  it("pushed along (0.3, 1, 0): the barrier's multipliers 3.5e-6 infeasible, so the crossover's vertex", function()
+    local f = ashlar.load_factor(models.dome{}, { direction = { 0.3, 1, 0 }, progress = false })
+    assert.are.equal("optimal", f.status)
+    near(f.factor, 0.41864752746, VERTEX * 0.41864752746, "factor")
+    assert.is_true(f.iterations > 1000)  -- the crossover's pivots
+    assert.are.equal(490, #f.limit)
+  end)
+
+  it("50 stacks of two on a table, one top block on a 1 mm strip: infeasible, as by the simplex", function()
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 200, 1, 0.2 }, center = { 0, 0, -0.1 } }, { support = true })
+    for k = 1, 50 do
+      local x = (k - 25) * 4
+      s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { x, 0, 0.25 } })
+      s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { x + (k == 50 and 1 - 1e-3 or 0.3), 0, 0.75 } })
+    end
+    local f = ashlar.load_factor(s, { progress = false })
+    assert.are.equal("infeasible", f.status)
+    assert.is_false(f.stable)
+    assert.is_true(f.factor ~= f.factor)
+  end)
+end)

@@ -47,6 +47,18 @@ bool stands_with(Structure s, double factor, const Vec3& direction, double frict
   return analyze_equilibrium(s, settings).stable;
 }
 
+// A 3D wall of `columns` x `courses` blocks in stack bond on a support:
+// 120 blocks at 12 x 10, past the bodies from which a 3D load factor keeps
+// the barrier's own optimum.
+Structure stack_bonded_wall(int columns, int courses) {
+  Structure s;
+  s.add(box({0.5 * columns + 1.0, 1.0, 0.2}, {0.25 * (columns - 1), 0, -0.1}), true);
+  for (int k = 0; k < courses; ++k) {
+    for (int c = 0; c < columns; ++c) s.add(box({0.5, 0.3, 0.25}, {0.5 * c, 0, (k + 0.5) * 0.25}));
+  }
+  return s;
+}
+
 }  // namespace
 
 TEST(LoadFactor, BlockTipsAtWidthOverHeight) {
@@ -244,4 +256,25 @@ TEST(LoadFactor, AnInterruptedSearchCarriesNoVerdict) {
   EXPECT_TRUE(std::isnan(demand.friction));
   // And without the request, the same calls answer.
   EXPECT_NEAR(load_factor(s, lateral(kNoSliding)).factor, 0.4 / 1.2, 1e-9);
+}
+
+TEST(LoadFactor, AStopAskedMidProgramCarriesNoVerdict) {
+  // Ctrl-C asked during the program (from its third iteration's progress
+  // call), on a planar arch (barrier and crossover) and on a 3D wall of
+  // 120 blocks (the barrier's own optimum): interrupted, no factor, no
+  // verdict; each answers without the request.
+  for (const Structure& s : {semicircular_arch(16, 0.65), stack_bonded_wall(12, 10)}) {
+    const LoadFactor factor = load_factor(s, lateral(0.7), [](int done, int) {
+      if (done == 3) interrupt_requested() = true;
+    });
+    interrupt_requested() = false;
+    EXPECT_EQ(factor.status, "interrupted");
+    EXPECT_TRUE(std::isnan(factor.factor));
+    EXPECT_FALSE(factor.stable);
+    const LoadFactor answered = load_factor(s, lateral(0.7));
+    EXPECT_EQ(answered.status, "optimal");
+    EXPECT_GT(answered.factor, 0.0);
+    EXPECT_TRUE(stands_with(s, answered.factor * (1 - 1e-4), Vec3(1, 0, 0), 0.7));
+    EXPECT_FALSE(stands_with(s, answered.factor * (1 + 1e-4), Vec3(1, 0, 0), 0.7));
+  }
 }
