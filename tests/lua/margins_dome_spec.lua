@@ -130,6 +130,23 @@ describe("the load factor of the 16 x 18 dome (289 free blocks): the barrier's o
     assert.are.equal(490, #f.limit)
   end)
 
+  it("pushed along (1, 0, -3) at mu = 0.7: unbounded, the push alone proven to stand, no program", function()
+    local f = ashlar.load_factor(models.dome{}, { direction = { 1, 0, -3 }, friction = 0.7, progress = false })
+    assert.are.equal("unbounded", f.status)  -- as Clp's barrier and crossover said in 17 s (commit 2473619)
+    assert.is_true(f.stable)
+    assert.are.equal(0, f.iterations)
+    -- Any multiple stands: 1,000 times the weight along it, by the analysis.
+    local s = models.dome{}
+    for i = 1, #s do
+      if not s:is_support(i) then
+        local b = s:block(i)
+        local push = 1000 * b:mass() * 9.81 / math.sqrt(10)
+        s:add_load{ block = i, force = { push, 0, -3 * push }, at = b:centroid() }
+      end
+    end
+    assert.is_true(ashlar.analyze(s, { friction = 0.7 }).stable)
+  end)
+
   it("50 stacks of two on a table, one top block on a 1 mm strip: infeasible, as by the simplex", function()
     local s = ashlar.structure()
     s:add(ashlar.box{ size = { 200, 1, 0.2 }, center = { 0, 0, -0.1 } }, { support = true })

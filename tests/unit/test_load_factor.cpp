@@ -97,6 +97,26 @@ TEST(LoadFactor, StackTipsAsAWhole) {
   EXPECT_NEAR(f.limit[0].pivot.z(), 0.0, 1e-9);
 }
 
+TEST(LoadFactor, ALoadThatStandsAloneIsUnboundedWithoutAProgram) {
+  // A block of width b and height h pushed by lambda times its weight
+  // along (t, 0, -1) / |(t, 0, -1)|, on top of its weight: with l = lambda
+  // / |(t, 0, -1)| the resultant leans at l t / (1 + l), below t for every
+  // lambda. It stands for every lambda while t stays under both mu
+  // (sliding) and b / h (tipping), and otherwise gives way at l = r / (t -
+  // r), r the smaller of the two.
+  const Structure s = stack(1, 0.4, 1.2);  // b / h = 1/3
+  const LoadFactor leaning = load_factor(s, lateral(0.7, Vec3(0.3, 0, -1)));
+  EXPECT_EQ(leaning.status, "unbounded");
+  EXPECT_TRUE(leaning.stable);
+  EXPECT_EQ(leaning.iterations, 0) << "the load alone was proven to stand: no program solved";
+  const LoadFactor slides = load_factor(s, lateral(0.2, Vec3(0.3, 0, -1)));
+  ASSERT_EQ(slides.status, "optimal");
+  EXPECT_NEAR(slides.factor, std::sqrt(1.09) * 0.2 / (0.3 - 0.2), 1e-9);
+  const LoadFactor tips = load_factor(s, lateral(0.7, Vec3(0.5, 0, -1)));
+  ASSERT_EQ(tips.status, "optimal");
+  EXPECT_NEAR(tips.factor, std::sqrt(1.25) * (1.0 / 3.0) / (0.5 - 1.0 / 3.0), 1e-9);
+}
+
 TEST(LoadFactor, GravityNeverTopplesItAndLiftingOffTakesOneG) {
   const Structure s = stack(2, 0.4, 1.2);
   EXPECT_EQ(load_factor(s, lateral(0.7, Vec3(0, 0, -1))).status, "unbounded");
