@@ -804,7 +804,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     }
     const double error_now = std::max({info.primal_residual / rhs_scale,
                                        info.dual_residual / dual_scale,
-                                       duality_gap / (1.0 + std::abs(objective_value()))});
+                                       duality_gap / (settings.objective_floor + std::abs(objective_value()))});
     if (error_now <= settings.tolerance) {
       info.status = SolverStatus::converged;
       break;

@@ -33,7 +33,11 @@ class SparseCholesky;
 
 struct InteriorPointSettings {
   int max_iterations = 100;   // Newton iterations before giving up
-  double tolerance = 1e-10;   // on scaled residuals, and on the total duality gap relative to 1 + |objective|
+  double tolerance = 1e-10;   // on scaled residuals, and on the total duality gap relative to objective_floor + |objective|
+  // The least objective the duality gap is measured against: 1 (scaled
+  // units), or less for problems whose optimum is far smaller and whose
+  // answer is the optimum's detail, not its value (important weights).
+  double objective_floor = 1.0;
   double step_fraction = 0.99;  // of the step to the boundary taken each iteration
   // When the iterations stop short of `tolerance` (rounding, or the
   // iteration limit), the best iterate is still returned, with status
