@@ -99,6 +99,13 @@ describe("ashlar.friction_demand", function()
 
   it("is 0 where nothing pushes sideways and infinite where the arch falls anyway", function()
     assert.equal(0, ashlar.friction_demand(models.stack{}).friction)
+    -- A running-bond wall under its weight: bed joints carry it, head
+    -- joints nothing, no joint needs friction. One program confirms it
+    -- (the analyses once halved the coefficient to 4.9e-324 first).
+    local wall = ashlar.friction_demand(models.wall{ length = 2.4, height = 0.84 }, { progress = false })
+    assert.equal("optimal", wall.status)
+    assert.equal(0, wall.friction)
+    assert.equal(1, wall.programs)
     local thin = ashlar.friction_demand(models.arch{ radius = 1, thickness = 0.09, voussoirs = 32 })
     assert.equal("unstable", thin.status)
     assert.equal(math.huge, thin.friction)
