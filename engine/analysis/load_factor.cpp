@@ -196,14 +196,9 @@ bool live_load_stands_alone(const EquilibriumProblem& problem, const Eigen::Vect
   for (const ForceGroup& group : problem.groups) {
     if (group.bound != 0.0 && problem.rules_of(group).bound_coefficients.size()) return false;
   }
-  EquilibriumProblem alone = problem;
-  alone.rhs = live_load;
-  EquilibriumSolver solver(alone);
-  InteriorPointSettings verdict;
-  verdict.max_iterations = kRayIterations;
-  verdict.certify_below = AnalysisSettings{}.stable_tolerance;
-  InteriorPointSolution forces;
-  return solver.solve(alone, verdict, forces).status == SolverStatus::certified;
+  EquilibriumSolver solver(problem);
+  int iterations = 0;
+  return carries_alone(solver, problem, live_load, AnalysisSettings{}.stable_tolerance, kRayIterations, iterations);
 }
 
 void check_settings(const Structure& structure, const LoadFactorSettings& settings) {
