@@ -520,32 +520,24 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   // 3.9 s -> 1.9 s).
   const double analysed = analysed_demand(structure, options);
   if (std::isfinite(analysed)) {
-    const double below = analysed * (1.0 - 2.0 * kAnalysedWidth);
-    double borrowed = 0.0;
-    if (below > 0.0) {
-      status = programs.stands(below, &unknowns, &borrowed);
+    // One end's program: it moves low (too small) or high (stands); false
+    // when Clp failed (status says how).
+    auto confirm = [&](double friction) {
+      double borrowed = 0.0;
+      status = programs.stands(friction, &unknowns, &borrowed);
       if (status == 1) {
-        low = below;
+        low = friction;
         short_of.emplace_back(low, borrowed);
       } else if (status == 0) {
-        high = std::min(below, programs.needed(unknowns));
+        high = std::min(friction, programs.needed(unknowns));
         high_stands = true;
-      } else {
-        return finish(clp_failure(status), kNaN);
       }
-    }
-    if (!high_stands) {
-      const double above = analysed * (1.0 + kAnalysedWidth);
-      status = programs.stands(above, &unknowns, &borrowed);
-      if (status == 0) {
-        high = std::min(above, programs.needed(unknowns));
-        high_stands = true;
-      } else if (status == 1) {
-        low = above;
-        short_of.emplace_back(low, borrowed);
-      } else {
-        return finish(clp_failure(status), kNaN);
-      }
+      return status == 0 || status == 1;
+    };
+    const double below = analysed * (1.0 - 2.0 * kAnalysedWidth);
+    if ((below > 0.0 && !confirm(below)) ||
+        (!high_stands && !confirm(analysed * (1.0 + kAnalysedWidth)))) {
+      return finish(clp_failure(status), kNaN);
     }
   }
   if (!high_stands) {
