@@ -31,6 +31,12 @@ int threads_option(const OptionTable& options) {
       options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
 }
 
+// The `symmetry` option of the per-block analyses: solve one block per
+// orbit of the problem's symmetries (default true).
+bool symmetry_option(const OptionTable& options) {
+  return options.boolean("symmetry").value_or(true);
+}
+
 int w_weight_sensitivity(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
@@ -66,11 +72,11 @@ int w_load_capacity(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = threads_option(options);
     ProgressLine line(options, "load_capacity", std::to_string(s.size()) + " blocks", "block");
-    const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback());
+    const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback(), symmetry_option(options));
     line.finish(capacity.status);
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, s.size(), 5);
@@ -87,6 +93,7 @@ int w_load_capacity(lua_State* L) {
       set_boolean(L, "stable", capacity.stable);
       set_string(L, "status", capacity.status.c_str());
       set_field(L, "programs", capacity.programs);
+      set_field(L, "symmetries", capacity.symmetries);
       set_field(L, "iterations", capacity.simplex_iterations);
       set_field(L, "seconds", capacity.seconds);
       return 1;
@@ -118,11 +125,12 @@ int w_important_weights(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry"});
     const AnalysisSettings settings = analysis_settings(options);
     const int threads = threads_option(options);
     ProgressLine line(options, "important_weights", std::to_string(s.size()) + " blocks", "block");
-    const ImportantWeights important = important_weights(s, settings, threads, line.callback());
+    const ImportantWeights important =
+        important_weights(s, settings, threads, line.callback(), symmetry_option(options));
     const char* status = important.interrupted ? "interrupted" : "done";
     line.finish(status);
     return call_protected(L, 0, [&](lua_State* L) {
@@ -136,6 +144,7 @@ int w_important_weights(lua_State* L) {
       lua_setfield(L, -2, "unstable");
       set_string(L, "status", status);
       set_field(L, "solves", important.solves);
+      set_field(L, "symmetries", important.symmetries);
       set_field(L, "seconds", important.seconds);
       return 1;
     });

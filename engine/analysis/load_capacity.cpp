@@ -15,6 +15,7 @@
 #include "analysis/clp_barrier.hpp"
 #include "analysis/equilibrium_program.hpp"
 #include "analysis/interior_point.hpp"
+#include "analysis/problem_symmetry.hpp"
 #include "core/clock.hpp"
 #include "core/interrupt.hpp"
 #include "core/parallel_loop.hpp"
@@ -468,9 +469,12 @@ private:
 }  // namespace
 
 LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads,
-                           const ProgressCount& progress) {
+                           const ProgressCount& progress, bool use_symmetry) {
   const auto start = Clock::now();
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
+  // A block's bounds are optimal values: its images under the problem's
+  // symmetries have the same, and only one block of each orbit is solved.
+  const ProblemSymmetry symmetry = find_problem_symmetry(structure, problem, use_symmetry);
   std::vector<int> multiplier_column;
   const EquilibriumProgram program = capacity_program(structure, problem, settings.problem, multiplier_column);
 
@@ -482,9 +486,16 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   const CoinPackedMatrix matrix = *capacity.matrix();
   const ClpSimplex rays = recession_program(matrix, program);
 
-  std::vector<int> blocks;
+  std::vector<int> blocks;  // the blocks solved: one per orbit
+  std::vector<int> solved_as(structure.size(), -1);  // per block, its orbit's index in `blocks`
   for (int j = 0; j < structure.size(); ++j) {
-    if (multiplier_column[j] >= 0) blocks.push_back(j);
+    if (multiplier_column[j] < 0) continue;
+    if (symmetry.representative[j] == j) {
+      solved_as[j] = static_cast<int>(blocks.size());
+      blocks.push_back(j);
+    } else {
+      solved_as[j] = solved_as[symmetry.representative[j]];
+    }
   }
   std::vector<BlockBounds> bounds(blocks.size());
   // The copies are made here, one thread reading the models at a time.
@@ -534,6 +545,7 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   if (progress) progress(done, total);
 
   result.programs = 1;
+  result.symmetries = static_cast<int>(symmetry.block_maps.size());
   result.simplex_iterations = as_built.pivots();
   result.stable = as_built.status() == 0 && !problem.has_floating_bodies();
   if (as_built.status() > 2) {  // no bounds without the as-built program
@@ -543,9 +555,12 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   }
 
   bool interrupted = false;
+  for (int j = 0; j < structure.size(); ++j) {
+    if (solved_as[j] < 0) continue;
+    result.min[j] = bounds[solved_as[j]].min;
+    result.max[j] = bounds[solved_as[j]].max;
+  }
   for (size_t k = 0; k < blocks.size(); ++k) {
-    result.min[blocks[k]] = bounds[k].min;
-    result.max[blocks[k]] = bounds[k].max;
     result.programs += bounds[k].programs;
     result.simplex_iterations += bounds[k].pivots;
     if (bounds[k].failure != 0 && result.status == "optimal") result.status = clp_failure(bounds[k].failure);

@@ -54,6 +54,10 @@ struct LoadCapacity {
   // "interrupted" (Ctrl-C or a sandbox deadline): the blocks not done are
   // NaN, and stable is false (no verdict).
   std::string status = "optimal";
+  // The problem's symmetries used (analysis/problem_symmetry.hpp; 1: none,
+  // or not searched): one block of each orbit is solved and its bounds
+  // are its orbit's.
+  int symmetries = 1;
   int programs = 0;            // linear programs and equilibrium solves
   int simplex_iterations = 0;  // simplex pivots, barrier and interior-point iterations over all of them
   double seconds = 0.0;
@@ -61,8 +65,10 @@ struct LoadCapacity {
 
 // Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
 // threads: worker threads, 0 for one per hardware thread; the bounds do not
-// depend on it. progress: blocks done (core/progress.hpp; none when empty).
+// depend on it. progress: blocks solved (core/progress.hpp; none when
+// empty). use_symmetry: solve one block per orbit of the problem's
+// symmetries (false: every block, for checking them).
 LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0,
-                           const ProgressCount& progress = {});
+                           const ProgressCount& progress = {}, bool use_symmetry = true);
 
 }  // namespace ashlar

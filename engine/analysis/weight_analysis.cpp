@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "analysis/equilibrium_analysis.hpp"
+#include "analysis/problem_symmetry.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
@@ -191,7 +192,7 @@ NecessaryWeights necessary_weights(const Structure& structure, int block,
 }
 
 ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings, int threads,
-                                   const ProgressCount& progress) {
+                                   const ProgressCount& progress, bool use_symmetry) {
   const auto start = Clock::now();
   check_analysis_settings(settings);
   // Each problem's solver on one core when the workers may be several.
@@ -200,9 +201,18 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
   // The calling thread's problem, set up here: it tells which blocks are
   // analysed, and throws for a structure the analysis refuses.
   auto first_problem = std::make_unique<NecessaryWeightsProblem>(structure, settings, cores);
-  std::vector<int> blocks;  // the free blocks analysed, in block order
+  // Eq. 8's optimum is unique (its objective is strictly convex), so the
+  // necessary weights for a block's image under a symmetry of the problem
+  // are the image of the block's own: one block of each orbit is solved.
+  const ProblemSymmetry symmetry =
+      find_problem_symmetry(structure, build_equilibrium_problem(structure, settings.problem), use_symmetry);
+  std::vector<std::vector<int>> orbit_of(structure.size());  // per block solved: its orbit's symmetries
+  std::vector<int> blocks;  // the free blocks solved, in block order
   for (int i = 0; i < structure.size(); ++i) {
-    if (first_problem->problem().row_of_block[i] >= 0) blocks.push_back(i);
+    if (first_problem->problem().row_of_block[i] < 0) continue;
+    const int solved = symmetry.representative[i];
+    if (solved == i) blocks.push_back(i);
+    orbit_of[solved].push_back(symmetry.symmetry_of[i]);
   }
   // Each worker takes a contiguous share of the blocks, in order, on a
   // problem and solver of its own, each solve warm from its own last one:
@@ -236,9 +246,12 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
       ++share.solves;
       const int now = ++done;
       if (w == 0 && progress) progress(now, total);  // on the calling thread
-      if (!needed.stable) share.unstable.push_back(i);
-      for (int j = 0; j < structure.size(); ++j) {
-        if (j != i) share.per_weight[j] += needed.weights[j];
+      for (const int e : orbit_of[i]) {
+        const std::vector<int>& image = symmetry.block_maps[e];
+        if (!needed.stable) share.unstable.push_back(image[i]);
+        for (int j = 0; j < structure.size(); ++j) {
+          if (j != i && image[j] >= 0) share.per_weight[image[j]] += needed.weights[j];
+        }
       }
     }
   };
@@ -255,8 +268,10 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     for (int j = 0; j < structure.size(); ++j) result.per_volume[j] += share.per_weight[j];
     result.unstable_blocks.insert(result.unstable_blocks.end(), share.unstable.begin(), share.unstable.end());
     result.solves += share.solves;
+    result.symmetries = static_cast<int>(symmetry.block_maps.size());
     result.interrupted = result.interrupted || share.interrupted;
   }
+  std::sort(result.unstable_blocks.begin(), result.unstable_blocks.end());
   for (int j = 0; j < structure.size(); ++j) {
     if (result.per_volume[j] != 0.0) result.per_volume[j] /= structure.block(j).volume();
   }

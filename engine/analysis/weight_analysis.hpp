@@ -61,9 +61,12 @@ struct ImportantWeights {
   // solution (0-based); they add what they found all the same.
   std::vector<int> unstable_blocks;
   // Every free block done, or stopped by Ctrl-C or a sandbox deadline:
-  // per_volume then sums only the `solves` blocks done before.
+  // per_volume then sums only the orbits of the `solves` blocks done before.
   bool interrupted = false;
-  int solves = 0;
+  int solves = 0;  // problems solved: one per orbit of the symmetries
+  // The problem's symmetries used (analysis/problem_symmetry.hpp; 1: none,
+  // or not searched).
+  int symmetries = 1;
   double seconds = 0.0;
 };
 
@@ -72,8 +75,11 @@ struct ImportantWeights {
 // one per hardware thread; each takes a contiguous share of the blocks
 // (its own problem, each solve warm from its own last), so the answer
 // depends on the count only to the solver's tolerance. progress: as
-// load_capacity's (analysis/load_capacity.hpp).
+// load_capacity's (analysis/load_capacity.hpp). use_symmetry: solve one
+// block per orbit of the problem's symmetries and map its weights to the
+// others (false: every block, for checking them).
 ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings,
-                                   int threads = 0, const ProgressCount& progress = {});
+                                   int threads = 0, const ProgressCount& progress = {},
+                                   bool use_symmetry = true);
 
 }  // namespace ashlar
