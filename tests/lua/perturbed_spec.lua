@@ -152,3 +152,27 @@ describe("a perturbed thin dome", function()
     assert.is_false(ashlar.analyze(s, { friction = 0.7 }).stable)
   end)
 end)
+
+describe("the margins of a perturbed dome", function()
+  it("see the joints the analysis sees: contact_angle reaches their programs", function()
+    -- An 8 x 4 dome moved by up to 3 %: at the default contact angle 53 of
+    -- its 80 joints are found and blocks float; at 15 degrees 71, every
+    -- block is held, and no friction makes it stand.
+    local s = models.dome{ meridians = 8, parallels = 4 }
+    local moved = models.perturbed(s, { amount = 0.03, seed = 3 })
+    local tolerance = 2.5 * 0.03 * mean_block_size(s)
+    local angle = math.rad(15)
+    assert.equal(53, #moved:interfaces{ tolerance = tolerance })
+    assert.equal(71, #moved:interfaces{ tolerance = tolerance, angle = angle })
+    local held = { contact_tolerance = tolerance, contact_angle = angle, progress = false }
+    local r = ashlar.analyze(moved, { friction = 100, contact_tolerance = tolerance, contact_angle = angle })
+    assert.equal(0, #r.floating)
+    assert.is_false(r.stable)
+    assert.equal("unstable", ashlar.friction_demand(moved, held).status)
+    assert.equal("infeasible", ashlar.load_factor(moved, held).status)
+    local loose = { contact_tolerance = tolerance, progress = false }
+    assert.is_true(#ashlar.analyze(moved, { contact_tolerance = tolerance }).floating > 0)
+    assert.equal("floating", ashlar.friction_demand(moved, loose).status)
+    assert.equal("floating", ashlar.load_factor(moved, loose).status)
+  end)
+end)
