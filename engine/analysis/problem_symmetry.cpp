@@ -1,6 +1,7 @@
 #include "analysis/problem_symmetry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/point_grid.hpp"
@@ -20,8 +21,10 @@ constexpr double kSamePosition = 1e-7;
 // usually stops at its first blocks).
 constexpr int kMaxCandidates = 4096;
 
-// The unknowns' signed permutations that may carry a contact vertex's
-// forces to its image's: (c, s) kept, (f_u, f_v) permuted with signs.
+// The unknowns' signed permutations that may carry a group's unknowns to
+// its image's: the first two kept, the last two (a contact vertex's
+// friction pair f_u, f_v) permuted with signs, where the kind's rules,
+// Hessian and linear term allow.
 std::vector<Eigen::Matrix4d> friction_permutations(const GroupRules& rules) {
   std::vector<Eigen::Matrix4d> kept;
   for (int swap = 0; swap < 2; ++swap) {
@@ -65,9 +68,9 @@ public:
       : structure_(structure),
         problem_(problem),
         tolerance_(kSamePosition * problem.length_unit),
-        permutations_(friction_permutations(problem.rules[static_cast<int>(GroupKind::contact_vertex)])),
         blocks_(Vec3::Zero(), 4.0 * tolerance_),
         vertices_(Vec3::Zero(), 4.0 * tolerance_) {
+    for (int kind = 0; kind < kGroupKinds; ++kind) permutations_[kind] = friction_permutations(problem.rules[kind]);
     for (int j = 0; j < structure.size(); ++j) {
       if (problem.row_of_block[j] >= 0) blocks_.insert(structure.block(j).centroid(), j);
     }
@@ -122,27 +125,29 @@ public:
 
 private:
   // Whether `group`'s image under the motion (block map `map`, 6 x 6
-  // action t) is `image`, through one of the friction permutations.
+  // action t) is `image`, through one of its kind's permutations.
   bool maps_to(const ForceGroup& group, const ForceGroup& image, const std::vector<int>& map,
                const Motion6& t) const {
     if (image.kind != group.kind || std::abs(image.bound - group.bound) > kSameScaled * (1.0 + std::abs(group.bound))) {
       return false;
     }
-    // The image body of each side: a free block's image, or "a support".
-    auto image_row = [&](int block, int row) { return row < 0 ? -1 : problem_.row_of_block[map[block]]; };
-    auto is_support = [&](int block) { return block >= 0 && structure_.is_support(block); };
-    const int a = image_row(group.block_a, group.row_a), b = image_row(group.block_b, group.row_b);
-    auto sides_match = [&](int row_a, int block_a, int row_b, int block_b) {
-      return row_a == a && row_b == b && (a >= 0 || is_support(block_a)) && (b >= 0 || is_support(block_b)) &&
-             (group.row_a >= 0 || is_support(group.block_a)) && (group.row_b >= 0 || is_support(group.block_b));
+    // Each side of `group` (a free block, a support, or none, as a
+    // weight's second side) against a side of `image`: the free block's
+    // image, any support, or none.
+    auto side_maps = [&](int block, int row, int image_block, int image_row) {
+      if (block < 0) return image_block < 0;
+      if (row < 0) return image_block >= 0 && structure_.is_support(image_block);
+      return image_row == problem_.row_of_block[map[block]];
     };
-    const bool same_order = sides_match(image.row_a, image.block_a, image.row_b, image.block_b);
-    const bool swapped = !same_order && sides_match(image.row_b, image.block_b, image.row_a, image.block_a);
+    const bool same_order = side_maps(group.block_a, group.row_a, image.block_a, image.row_a) &&
+                            side_maps(group.block_b, group.row_b, image.block_b, image.row_b);
+    const bool swapped = !same_order && side_maps(group.block_a, group.row_a, image.block_b, image.row_b) &&
+                         side_maps(group.block_b, group.row_b, image.block_a, image.row_a);
     if (!same_order && !swapped) return false;
     const Effect on_a = t * group.on_a, on_b = t * group.on_b;
     const Effect& image_on_a = same_order ? image.on_a : image.on_b;
     const Effect& image_on_b = same_order ? image.on_b : image.on_a;
-    for (const Eigen::Matrix4d& s : permutations_) {
+    for (const Eigen::Matrix4d& s : permutations_[static_cast<int>(group.kind)]) {
       if ((group.row_a < 0 || same_scaled(image_on_a * s, on_a)) &&
           (group.row_b < 0 || same_scaled(image_on_b * s, on_b))) {
         return true;
@@ -154,14 +159,14 @@ private:
   const Structure& structure_;
   const EquilibriumProblem& problem_;
   double tolerance_;
-  std::vector<Eigen::Matrix4d> permutations_;
+  std::array<std::vector<Eigen::Matrix4d>, kGroupKinds> permutations_;  // per group kind
   PointGrid blocks_, vertices_;
 };
 
 bool searchable(const Structure& structure, const EquilibriumProblem& problem) {
   if (problem.block_rows != 6 || problem.has_floating_bodies() || !problem.junctions.empty()) return false;
   for (const ForceGroup& group : problem.groups) {
-    if (group.kind != GroupKind::contact_vertex) return false;
+    if (group.kind != GroupKind::contact_vertex && group.kind != GroupKind::weight) return false;
   }
   for (int j = 0; j < structure.size(); ++j) {
     if (problem.row_of_block[j] >= 0) return true;
@@ -189,17 +194,12 @@ void assign_orbits(const Structure& structure, const EquilibriumProblem& problem
 
 }  // namespace
 
-ProblemSymmetry find_problem_symmetry(const Structure& structure, const EquilibriumProblem& problem, bool search) {
-  ProblemSymmetry symmetry;
-  std::vector<int> identity(structure.size(), -1);
-  for (int j = 0; j < structure.size(); ++j) {
-    if (problem.row_of_block[j] >= 0) identity[j] = j;
-  }
-  symmetry.block_maps.push_back(std::move(identity));
-  if (!search || !searchable(structure, problem)) {
-    assign_orbits(structure, problem, symmetry);
-    return symmetry;
-  }
+namespace {
+
+// Appends to symmetry.block_maps every turn about the vertical axis through
+// the free blocks' mean centroid, and every mirror in a vertical plane
+// through it, that maps `problem` onto itself.
+void add_motions(const Structure& structure, const EquilibriumProblem& problem, ProblemSymmetry& symmetry) {
   // A symmetry permutes the free blocks, so it keeps their mean centroid:
   // the vertical axis passes through it.
   Vec3 axis = Vec3::Zero();
@@ -226,17 +226,14 @@ ProblemSymmetry find_problem_symmetry(const Structure& structure, const Equilibr
   }
   const Vec3 c0 = structure.block(chosen).centroid();
   const double r0 = horizontal(c0).norm();
-  if (r0 <= tolerance) {
-    assign_orbits(structure, problem, symmetry);
-    return symmetry;
-  }
+  if (r0 <= tolerance) return;
   const double angle0 = std::atan2(horizontal(c0).y(), horizontal(c0).x());
+  const double mass = structure.block(chosen).mass();
   const SymmetrySearch motions(structure, problem);
   int candidates = 0;
   for (int j = 0; j < structure.size() && candidates < kMaxCandidates; ++j) {
     if (problem.row_of_block[j] < 0) continue;
     const Vec3 c = structure.block(j).centroid();
-    const double mass = structure.block(chosen).mass();
     if (std::abs(c.z() - c0.z()) > tolerance || std::abs(horizontal(c).norm() - r0) > tolerance ||
         std::abs(structure.block(j).mass() - mass) > kSameScaled * mass) {
       continue;
@@ -258,6 +255,18 @@ ProblemSymmetry find_problem_symmetry(const Structure& structure, const Equilibr
       }
     }
   }
+}
+
+}  // namespace
+
+ProblemSymmetry find_problem_symmetry(const Structure& structure, const EquilibriumProblem& problem, bool search) {
+  ProblemSymmetry symmetry;
+  std::vector<int> identity(structure.size(), -1);
+  for (int j = 0; j < structure.size(); ++j) {
+    if (problem.row_of_block[j] >= 0) identity[j] = j;
+  }
+  symmetry.block_maps.push_back(std::move(identity));
+  if (search && searchable(structure, problem)) add_motions(structure, problem, symmetry);
   assign_orbits(structure, problem, symmetry);
   return symmetry;
 }

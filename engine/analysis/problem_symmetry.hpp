@@ -43,8 +43,9 @@ struct ProblemSymmetry {
   std::vector<int> symmetry_of;
 };
 
-// The symmetries of `problem`, built from `structure`: the identity alone
-// unless `search`, and for planar problems, cables and floating bodies.
+// The symmetries of `problem` (its groups contact vertices, or weights as
+// eq. 8 adds them), built from `structure`: the identity alone unless
+// `search`, and for planar problems, cables and floating bodies.
 // Linear in the problem's size per candidate motion; the candidates are
 // the blocks at the height and distance from the axis of one chosen block.
 ProblemSymmetry find_problem_symmetry(const Structure& structure, const EquilibriumProblem& problem,

@@ -204,8 +204,7 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
   // Eq. 8's optimum is unique (its objective is strictly convex), so the
   // necessary weights for a block's image under a symmetry of the problem
   // are the image of the block's own: one block of each orbit is solved.
-  const ProblemSymmetry symmetry =
-      find_problem_symmetry(structure, build_equilibrium_problem(structure, settings.problem), use_symmetry);
+  const ProblemSymmetry symmetry = find_problem_symmetry(structure, first_problem->problem(), use_symmetry);
   std::vector<std::vector<int>> orbit_of(structure.size());  // per block solved: its orbit's symmetries
   std::vector<int> blocks;  // the free blocks solved, in block order
   for (int i = 0; i < structure.size(); ++i) {
@@ -268,9 +267,9 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     for (int j = 0; j < structure.size(); ++j) result.per_volume[j] += share.per_weight[j];
     result.unstable_blocks.insert(result.unstable_blocks.end(), share.unstable.begin(), share.unstable.end());
     result.solves += share.solves;
-    result.symmetries = static_cast<int>(symmetry.block_maps.size());
     result.interrupted = result.interrupted || share.interrupted;
   }
+  result.symmetries = static_cast<int>(symmetry.block_maps.size());
   std::sort(result.unstable_blocks.begin(), result.unstable_blocks.end());
   for (int j = 0; j < structure.size(); ++j) {
     if (result.per_volume[j] != 0.0) result.per_volume[j] /= structure.block(j).volume();
