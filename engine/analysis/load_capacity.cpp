@@ -393,6 +393,18 @@ private:
         return kNaN;
       }
     }
+    // Unbounded blocks come in runs (a dome's lowest courses, a vault's
+    // springings): after one, the proof that the weight alone is carried
+    // goes first and saves the capped program, 11-21 iterations on the
+    // 16 x 18 dome's unbounded blocks against 8-12 for the proof. A wrong
+    // guess, once per run, costs the proof's 30. Iterations in all: an
+    // imperfect 16 x 18 dome 9,560 -> 8,655, the 1,008-voussoir vault
+    // 21,176 -> 19,735; the bounds the same.
+    bool alone_tried = false;
+    if (interior_ && interior_->maximises() && last_unbounded_) {
+      alone_tried = true;
+      if (carried_alone(row, weight, bounds)) return std::numeric_limits<double>::infinity();
+    }
     for (double cap = kFirstCap; cap <= kLastCap; cap *= 100) {
       if (cap < bounds.min) continue;  // the capped program must be feasible (clp_barrier.hpp)
       double multiple = kNaN;
@@ -412,17 +424,25 @@ private:
       // 498-block vault's 107 s on one core (its load capacity on 2 cores
       // 99.6 s -> 64.8 s, the bounds the same to the bit).
       if (multiple < cap * (1 - kAtCap)) return multiple;
-      if (interior_ && interior_->maximises() && cap == kFirstCap) {
-        int iterations = 0;
-        const bool alone = interior_->carries_weight_alone(row, weight, iterations);
-        count(bounds, iterations);
-        if (alone) return std::numeric_limits<double>::infinity();
+      if (interior_ && interior_->maximises() && cap == kFirstCap && !alone_tried &&
+          carried_alone(row, weight, bounds)) {
+        return std::numeric_limits<double>::infinity();
       }
       if (has_ray(column, bounds)) return std::numeric_limits<double>::infinity();
       if (bounds.failure != 0) return kNaN;
     }
     bounds.failure = 4;
     return kNaN;
+  }
+
+  // The equilibrium solver's proof that the block's weight alone is
+  // carried (InteriorCapacity::carries_weight_alone), remembered for the
+  // next block.
+  bool carried_alone(int row, double weight, BlockBounds& bounds) {
+    int iterations = 0;
+    last_unbounded_ = interior_->carries_weight_alone(row, weight, iterations);
+    count(bounds, iterations);
+    return last_unbounded_;
   }
 
   // The largest multiple under `cap` by Clp's barrier.
@@ -464,6 +484,7 @@ private:
   bool solved_copy_ = false;  // capacity_ copied from the solved as-built program
   bool planar_;
   int ray_column_ = -1;
+  bool last_unbounded_ = false;  // whether this worker's last block was proven unbounded by the solver
 };
 
 }  // namespace
