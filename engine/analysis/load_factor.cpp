@@ -440,7 +440,7 @@ private:
 // end, which was near the demand already, and the estimate's other side
 // goes next. Judged by the bracket, an imperfect dome's friction demand
 // alternated secant steps that stood with bisections from below: 13
-// programs, now 8.
+// programs, now 9.
 class SecantBracket {
 public:
   // width: relative, as closed() asks.
