@@ -400,15 +400,16 @@ private:
     // guess, once per run, costs the proof's 30. Iterations in all: an
     // imperfect 16 x 18 dome 9,560 -> 8,655, the 1,008-voussoir vault
     // 21,176 -> 19,735; the bounds the same.
+    const bool maximises = interior_ && interior_->maximises();
     bool alone_tried = false;
-    if (interior_ && interior_->maximises() && last_unbounded_) {
+    if (maximises && last_unbounded_) {
       alone_tried = true;
       if (carried_alone(row, weight, bounds)) return std::numeric_limits<double>::infinity();
     }
     for (double cap = kFirstCap; cap <= kLastCap; cap *= 100) {
       if (cap < bounds.min) continue;  // the capped program must be feasible (clp_barrier.hpp)
       double multiple = kNaN;
-      if (interior_ && interior_->maximises()) {
+      if (maximises) {
         int iterations = 0;
         multiple = interior_->largest(row, weight, cap, iterations);
         count(bounds, iterations);
@@ -424,8 +425,7 @@ private:
       // 498-block vault's 107 s on one core (its load capacity on 2 cores
       // 99.6 s -> 64.8 s, the bounds the same to the bit).
       if (multiple < cap * (1 - kAtCap)) return multiple;
-      if (interior_ && interior_->maximises() && cap == kFirstCap && !alone_tried &&
-          carried_alone(row, weight, bounds)) {
+      if (maximises && cap == kFirstCap && !alone_tried && carried_alone(row, weight, bounds)) {
         return std::numeric_limits<double>::infinity();
       }
       if (has_ray(column, bounds)) return std::numeric_limits<double>::infinity();

@@ -58,8 +58,10 @@ std::vector<Eigen::Matrix4d> friction_permutations(const GroupRules& rules) {
   return kept;
 }
 
-bool same_scaled(const Effect& a, const Effect& b) {
-  return (a - b).lpNorm<Eigen::Infinity>() <= kSameScaled * (1.0 + b.lpNorm<Eigen::Infinity>());
+// Whether a is b to kSameScaled, relative to b's size (at least 1).
+template <class A, class B>
+bool same_scaled(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b) {
+  return (a - b).template lpNorm<Eigen::Infinity>() <= kSameScaled * (1.0 + b.template lpNorm<Eigen::Infinity>());
 }
 
 class SymmetrySearch {
@@ -101,9 +103,7 @@ public:
       if (found < 0) return {};
       const Eigen::Matrix<double, 6, 1> loads = t * problem_.rhs.segment<6>(row);
       const Eigen::Matrix<double, 6, 1> image_loads = problem_.rhs.segment<6>(problem_.row_of_block[found]);
-      if ((loads - image_loads).lpNorm<Eigen::Infinity>() > kSameScaled * (1.0 + image_loads.lpNorm<Eigen::Infinity>())) {
-        return {};
-      }
+      if (!same_scaled(loads, image_loads)) return {};
       map[j] = found;
       taken[found] = 1;
     }
@@ -191,10 +191,6 @@ void assign_orbits(const Structure& structure, const EquilibriumProblem& problem
     }
   }
 }
-
-}  // namespace
-
-namespace {
 
 // Appends to symmetry.block_maps every turn about the vertical axis through
 // the free blocks' mean centroid, and every mirror in a vertical plane
