@@ -60,7 +60,8 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
   problem.friction_model = options.choice("friction_model", kFrictionModelNames).value_or(problem.friction_model);
   problem.tension_weight = options.positive("tension_weight", problem.tension_weight, true);
   problem.force_weight = options.positive("force_weight", problem.force_weight);
-  problem.contact = contact_options(options, "contact_tolerance", "contact_angle", "contact_min_area");
+  problem.contact = contact_options(options, "contact_tolerance", "contact_angle", "contact_min_width",
+                                     "contact_min_area");
   settings.solver.tolerance = options.positive("tolerance", settings.solver.tolerance);
   if (options.push("max_iterations") != LUA_TNIL) {
     settings.solver.max_iterations = static_cast<int>(check_integer(L, -1, "max_iterations"));

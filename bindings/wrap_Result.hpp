@@ -18,7 +18,7 @@ class OptionTable;
 #define ASHLAR_ANALYSIS_OPTIONS                                                          \
   "friction", "friction_sides", "friction_model", "tension_weight", "force_weight",      \
       "tolerance", "max_iterations", "stable_tolerance", "contact_tolerance", "contact_angle",     \
-      "contact_min_area"
+      "contact_min_width", "contact_min_area"
 // The `friction` option: a number >= 0, math.huge for no sliding;
 // `fallback` when absent.
 double friction_option(const OptionTable& options, double fallback);

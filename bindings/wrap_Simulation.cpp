@@ -217,7 +217,7 @@ int w_simulate(lua_State* L) {
     std::shared_ptr<SimulationProgress> progress;
     SimulationOptions settings = simulation_options(options, *structure, progress);
     settings.friction = friction_option(options, settings.friction);
-    settings.contact = contact_options(options, "contact_tolerance", "contact_angle", nullptr);
+    settings.contact = contact_options(options, "contact_tolerance", "contact_angle", nullptr, nullptr);
     SimulationResult result = simulate(*structure, settings);
     if (progress) progress->finish(result);
     luax_pushSimulation(L, *structure, std::move(result));

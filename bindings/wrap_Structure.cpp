@@ -11,7 +11,7 @@
 namespace ashlar::lua {
 
 ContactOptions contact_options(const OptionTable& options, const char* tolerance_key, const char* angle_key,
-                               const char* min_area_key) {
+                               const char* min_width_key, const char* min_area_key) {
   ContactOptions contact;
   contact.tolerance = options.positive(tolerance_key, 0.0, true);
   if (const std::optional<double> angle = options.number(angle_key)) {
@@ -21,6 +21,7 @@ ContactOptions contact_options(const OptionTable& options, const char* tolerance
     }
     contact.angle = *angle;
   }
+  if (min_width_key) contact.min_width = options.positive(min_width_key, 0.0, true);
   if (min_area_key) contact.min_area = options.positive(min_area_key, 0.0, true);
   return contact;
 }
@@ -295,8 +296,8 @@ int w_Structure_interfaces(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {"tolerance", "angle", "min_area"});
-    const ContactOptions contact = contact_options(options, "tolerance", "angle", "min_area");
+    const OptionTable options(L, 2, {"tolerance", "angle", "min_width", "min_area"});
+    const ContactOptions contact = contact_options(options, "tolerance", "angle", "min_width", "min_area");
     const std::vector<Interface>& found = s.interfaces(contact);
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, static_cast<int>(found.size()), 0);
@@ -329,7 +330,7 @@ int w_Structure_contact_report(lua_State* L) {
   return guard(L, [&] {
     const Structure& s = *luax_checkStructure(L, 1);
     const OptionTable options(L, 2, {"tolerance", "angle", "range"});
-    const ContactOptions contact = contact_options(options, "tolerance", "angle", nullptr);
+    const ContactOptions contact = contact_options(options, "tolerance", "angle", nullptr, nullptr);
     const double range = options.positive("range", 10.0);
     if (range <= 1.0) throw ArgError(2, "range: expected a number > 1 (a multiple of the tolerance), got " + number_text(range));
     const double tolerance = s.contact_tolerance(contact);

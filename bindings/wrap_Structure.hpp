@@ -21,6 +21,7 @@ void set_structure_functions(lua_State* L);
 // angle (rad) and the smallest interface area (m^2); absent keys keep the
 // defaults.
 ContactOptions contact_options(const OptionTable& options, const char* tolerance_key, const char* angle_key,
+                               const char* min_width_key,
                                const char* min_area_key);
 
 // Block index argument: an integer 1..#s or a block name; returns 0-based.

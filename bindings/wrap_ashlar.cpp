@@ -206,7 +206,7 @@ int w_import(lua_State* L) {
                                     [&](const ImportedBlock& imported) { return is_support(L, rule, imported); });
     } else {
       for (ImportedBlock& imported : import_blocks(path, import_options)) {
-        const bool support = is_support(L, rule, imported);
+        const bool support = !imported.surface.empty() || is_support(L, rule, imported);
         structure->add(std::make_shared<const Block>(std::move(imported.block)), support,
                        imported.name);
       }

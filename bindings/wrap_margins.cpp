@@ -14,7 +14,7 @@ namespace {
 // The options that shape the program (friction and contacts, as the
 // analysis finds them); the interior point solver's do not apply.
 #define ASHLAR_PROGRAM_OPTIONS \
-  "friction_sides", "friction_model", "contact_tolerance", "contact_angle", "contact_min_area"
+  "friction_sides", "friction_model", "contact_tolerance", "contact_angle", "contact_min_width", "contact_min_area"
 
 int w_load_factor(lua_State* L) {
   return guard(L, [&] {

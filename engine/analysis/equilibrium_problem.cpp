@@ -131,16 +131,6 @@ void check_planar_loads_and_cables(const Structure& structure, double tolerance)
 
 }  // namespace
 
-double block_size(const Block& block) {
-  const std::vector<Vec3>& vertices = block.vertices();
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& p : vertices) mean += p;
-  mean /= static_cast<double>(vertices.size());
-  double sum = 0.0;
-  for (const Vec3& p : vertices) sum += (p - mean).squaredNorm();
-  return 2.0 * std::sqrt(sum / static_cast<double>(vertices.size()));
-}
-
 // The balance rows a problem keeps, in order: all six, or for a planar
 // structure (x-z plane) the in-plane force and moment Fx, Fz, My.
 const std::array<int, 6>& balance_rows(bool planar) {

@@ -208,10 +208,6 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
 // means x certifies stability, whatever the solver's status.
 double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x);
 
-// A block's size for the unit of length (m): twice the root mean square
-// distance of its vertices from their mean, which is a box's diagonal but,
-// unlike the bounding box, smooth in the vertices (the gradient needs that).
-double block_size(const Block& block);
 
 // The balance rows a problem keeps, in order, as indices into (Fx, Fy, Fz,
 // Mx, My, Mz): all six, or for a planar structure (x-z plane) Fx, Fz, My

@@ -6,20 +6,18 @@ namespace ashlar {
 
 Mat3 inertia_tensor(const Block& block) {
   // Second moment C = integral of x x^T over the solid, x from the
-  // centroid, summed over signed tetrahedra (centroid, v0, vi, vi+1): for a
-  // tetrahedron (0, a, b, c) it is det[a b c] / 120 (a a^T + b b^T + c c^T
-  // + s s^T), s = a + b + c.
+  // centroid, summed over signed tetrahedra (centroid, triangle) of the
+  // block's surface: for a tetrahedron (0, a, b, c) it is det[a b c] / 120
+  // (a a^T + b b^T + c c^T + s s^T), s = a + b + c.
   const Vec3& c0 = block.centroid();
-  const std::vector<Vec3>& p = block.vertices();
   Mat3 second = Mat3::Zero();
   for (const FaceLoop& face : block.faces()) {
-    const Vec3 a = p[face[0]] - c0;
-    for (size_t k = 1; k + 1 < face.size(); ++k) {
-      const Vec3 b = p[face[k]] - c0, c = p[face[k + 1]] - c0;
+    for_each_surface_triangle(block.vertices(), face, [&](const Vec3& pa, const Vec3& pb, const Vec3& pc) {
+      const Vec3 a = pa - c0, b = pb - c0, c = pc - c0;
       const double det = a.dot(b.cross(c));
       const Vec3 s = a + b + c;
       second += det / 120.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
-    }
+    });
   }
   second *= block.density();
   return second.trace() * Mat3::Identity() - second;

@@ -17,7 +17,7 @@ using Quat = Eigen::Quaterniond;
 
 // Inertia tensor (kg m^2) of the solid polyhedron about its centroid, in the
 // block's own coordinates: exact for the polyhedron (its faces
-// fan-triangulated from their first vertex, as mass_properties does),
+// triangulated by for_each_surface_triangle, as mass_properties does),
 // density block.density().
 Mat3 inertia_tensor(const Block& block);
 

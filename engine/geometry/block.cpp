@@ -41,9 +41,26 @@ void check_finite(const Vec3& v, const char* what) {
 
 }  // namespace
 
+double block_size(const Block& block) {
+  const std::vector<Vec3>& vertices = block.vertices();
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : vertices) mean += p;
+  mean /= static_cast<double>(vertices.size());
+  double sum = 0.0;
+  for (const Vec3& p : vertices) sum += (p - mean).squaredNorm();
+  return 2.0 * std::sqrt(sum / static_cast<double>(vertices.size()));
+}
+
 std::string block_label(const std::string& name) {
   return name.empty() ? std::string("unnamed block") : "block '" + name + "'";
 }
+
+Vec3 face_centre(const std::vector<Vec3>& vertices, const FaceLoop& face) {
+  Vec3 centre = Vec3::Zero();
+  for (int index : face) centre += vertices[index];
+  return centre / static_cast<double>(face.size());
+}
+
 
 MassProperties mass_properties(const std::vector<Vec3>& vertices,
                                const std::vector<FaceLoop>& faces) {
@@ -57,14 +74,12 @@ MassProperties mass_properties(const std::vector<Vec3>& vertices,
   double six_volume = 0.0;
   Vec3 moment = Vec3::Zero();  // sum of 6V_t * (sum of the three face points)
   for (const FaceLoop& face : faces) {
-    const Vec3 p0 = vertices[face[0]] - ref;
-    for (size_t i = 1; i + 1 < face.size(); ++i) {
-      const Vec3 p1 = vertices[face[i]] - ref;
-      const Vec3 p2 = vertices[face[i + 1]] - ref;
+    for_each_surface_triangle(vertices, face, [&](const Vec3& q0, const Vec3& q1, const Vec3& q2) {
+      const Vec3 p0 = q0 - ref, p1 = q1 - ref, p2 = q2 - ref;
       const double d = p0.dot(p1.cross(p2));
       six_volume += d;
       moment += d * (p0 + p1 + p2);
-    }
+    });
   }
   props.volume = six_volume / 6.0;
   // Centroid of tetrahedron (0, p0, p1, p2) is (p0 + p1 + p2) / 4.
@@ -90,20 +105,39 @@ MassPropertiesGradient mass_properties_gradient(const std::vector<Vec3>& vertice
   Vec3 moment = Vec3::Zero();
   std::vector<Vec3> d_six_volume(n, Vec3::Zero());
   std::vector<Mat3> d_moment(n, Mat3::Zero());
+  // A face of more than three corners is the fan about its centre (the mean
+  // of its corners), whose derivatives go to every corner with weight 1/n.
   for (const FaceLoop& face : faces) {
-    for (size_t i = 1; i + 1 < face.size(); ++i) {
-      const int corner[3] = {face[0], face[i], face[i + 1]};
-      const Vec3 p[3] = {vertices[corner[0]] - ref, vertices[corner[1]] - ref,
-                         vertices[corner[2]] - ref};
+    const size_t n = face.size();
+    const bool fan = n > 3;
+    const Vec3 centre = fan ? face_centre(vertices, face) : Vec3::Zero();
+    Vec3 d_six_volume_centre = Vec3::Zero();
+    Mat3 d_moment_centre = Mat3::Zero();
+    const size_t triangles = fan ? n : 1;
+    for (size_t i = 0; i < triangles; ++i) {
+      // corner[a] < 0: the face's centre
+      const int corner[3] = {fan ? -1 : face[0], fan ? face[i] : face[1], fan ? face[(i + 1) % n] : face[2]};
+      Vec3 p[3];
+      for (int a = 0; a < 3; ++a) p[a] = (corner[a] < 0 ? centre : vertices[corner[a]]) - ref;
       const double d = p[0].dot(p[1].cross(p[2]));
       const Vec3 sum = p[0] + p[1] + p[2];
       six_volume += d;
       moment += d * sum;
       for (int a = 0; a < 3; ++a) {
         const Vec3 dd = p[(a + 1) % 3].cross(p[(a + 2) % 3]);
-        d_six_volume[corner[a]] += dd;
-        d_moment[corner[a]] += sum * dd.transpose() + d * Mat3::Identity();
+        const Mat3 dm = sum * dd.transpose() + d * Mat3::Identity();
+        if (corner[a] < 0) {
+          d_six_volume_centre += dd;
+          d_moment_centre += dm;
+        } else {
+          d_six_volume[corner[a]] += dd;
+          d_moment[corner[a]] += dm;
+        }
       }
+    }
+    for (int index : face) {
+      d_six_volume[index] += d_six_volume_centre / static_cast<double>(n);
+      d_moment[index] += d_moment_centre / static_cast<double>(n);
     }
   }
   if (six_volume == 0.0) {

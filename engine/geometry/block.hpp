@@ -2,7 +2,9 @@
 // faces are polygons (convex or not) with outward normals, planar to
 // rounding or, with a planarity allowance, warped (as fabricated and
 // scanned blocks are): the solid is then the one bounded by each face's fan
-// triangulation from its first vertex, and contact uses each face's
+// of triangles about its centre (the mean of its corners), one surface
+// whichever corner a loop starts at, so the two sides of a warped joint
+// with the same corners are the same surface; contact uses each face's
 // best-fit plane.
 #pragma once
 
@@ -24,6 +26,12 @@ struct FacePlane {
 };
 
 // Exact mass properties of the polyhedron (divergence theorem over the faces).
+// A face whose corners lie off its best-fit plane by more than this
+// fraction of its block's size (bounding-box diagonal) is warped: the
+// block's surface there is the fan about the face's centre, which is not
+// the convex hull of the corners.
+constexpr double kWarpedFace = 1e-9;
+
 struct MassProperties {
   double volume = 0.0;       // m^3, positive for outward-oriented faces
   Vec3 centroid = Vec3::Zero();  // m
@@ -49,6 +57,8 @@ public:
   double planarity() const { return planarity_; }
   // The largest distance (m) of a vertex from its face's best-fit plane.
   double warp() const { return warp_; }
+  // Whether some face is warped (kWarpedFace).
+  bool warped() const { return warp_ > kWarpedFace * bounds_.diagonal(); }
 
   double volume() const { return mass_.volume; }
   double mass() const { return density_ * mass_.volume; }  // kg
@@ -85,13 +95,21 @@ private:
 
 using BlockPtr = std::shared_ptr<const Block>;
 
+// A block's size (m): twice the root mean square distance of its vertices
+// from their mean, which is a box's diagonal but, unlike the bounding box,
+// smooth in the vertices (the gradient needs that) and the same however the
+// block is turned.
+double block_size(const Block& block);
+
 // "block 'name'", or "unnamed block": how messages name a block outside a
 // structure (inside one, Structure::label gives its index too).
 std::string block_label(const std::string& name);
 
 // Exact volume and centroid of a closed polyhedron with planar (or not)
-// polygon faces; faces are fan-triangulated, which is exact for planar faces
-// whatever their convexity because the signed contributions cancel.
+// polygon faces; a face of more than three corners is the fan of triangles
+// about its centre (face_centre), which is exact for planar faces whatever
+// their convexity because the signed contributions cancel, and for warped
+// faces the canonical surface of Block.
 MassProperties mass_properties(const std::vector<Vec3>& vertices,
                                const std::vector<FaceLoop>& faces);
 
@@ -102,6 +120,24 @@ struct MassPropertiesGradient {
   std::vector<Vec3> volume;    // m^2: d(volume) / d(vertex k)
   std::vector<Mat3> centroid;  // dimensionless: (i, j) = d(centroid_i) / d(vertex k)_j
 };
+
+// The centre of a face: the mean of its corners, the apex of its fan.
+Vec3 face_centre(const std::vector<Vec3>& vertices, const FaceLoop& face);
+
+// Calls visit(p0, p1, p2) (m) for each triangle of a face's surface,
+// oriented as the face: a triangle is itself, a face of more corners the fan
+// about its centre.
+template <class Visit>
+void for_each_surface_triangle(const std::vector<Vec3>& vertices, const FaceLoop& face, Visit visit) {
+  if (face.size() == 3) {
+    visit(vertices[face[0]], vertices[face[1]], vertices[face[2]]);
+    return;
+  }
+  const Vec3 centre = face_centre(vertices, face);
+  for (size_t i = 0; i < face.size(); ++i) {
+    visit(centre, vertices[face[i]], vertices[face[(i + 1) % face.size()]]);
+  }
+}
 
 // Exact derivatives of mass_properties (the same fan triangulation, so they
 // also hold for moves that bend a face out of its plane). Throws

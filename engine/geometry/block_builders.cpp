@@ -132,6 +132,19 @@ Block make_prism(const std::vector<Vec3>& polygon, const Vec3& direction,
   return Block(std::move(vertices), std::move(faces), style.density, style.name, style.planarity);
 }
 
+Block support_plate(const std::vector<Vec3>& outline, const Vec3& toward, const BlockStyle& style) {
+  Box3 extent;
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : outline) {
+    extent.add(p);
+    centre += p;
+  }
+  centre /= static_cast<double>(outline.size());
+  Vec3 away = -newell_normal(outline).normalized();
+  if (away.dot(toward - centre) > 0.0) away = -away;
+  return make_prism(outline, kSupportPlateThickness * extent.diagonal() * away, style);
+}
+
 Block make_loft(const std::vector<Vec3>& polygon_a, const std::vector<Vec3>& polygon_b,
                 const BlockStyle& style) {
   check_points(polygon_a, "loft polygon_a", 3);

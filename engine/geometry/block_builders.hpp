@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "geometry/block.hpp"
@@ -47,5 +48,26 @@ SplitResult split_block(const Block& block, const Vec3& point, const Vec3& norma
 // into polygons, then validates. `what` names the source in messages.
 Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
                       double weld_tolerance, const BlockStyle& style, const std::string& what);
+
+// The outline (m) of a polygon soup that is an open planar surface (a
+// ground plane or a bearing surface given as one polygon, or as facets on
+// one plane): after block_from_mesh's welding and merging it is one simple
+// polygon face, planar within `planarity` of its size (or 1e-6 of it).
+// Projected onto its best-fit plane, counter-clockwise about the normal of
+// the given winding. Nothing for anything else (a closed or a bent surface).
+std::optional<std::vector<Vec3>> open_planar_outline(const std::vector<Vec3>& vertices,
+                                                     const std::vector<FaceLoop>& faces,
+                                                     double weld_tolerance, double planarity);
+
+// A plate's thickness as a fraction of its outline's size (bounding-box
+// diagonal): a support has no equations, so only its face on the outline
+// matters.
+constexpr double kSupportPlateThickness = 0.05;
+
+// The support block of an open planar surface: the prism of `outline`
+// (open_planar_outline's) extruded away from `toward` (m) by
+// kSupportPlateThickness of its size, so that its face on the outline's
+// plane faces `toward`, where the blocks it bears are.
+Block support_plate(const std::vector<Vec3>& outline, const Vec3& toward, const BlockStyle& style);
 
 }  // namespace ashlar

@@ -16,6 +16,7 @@
 #include "core/point_grid.hpp"
 #include "geometry/block_builders.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/polygon_boolean.hpp"
 
 namespace ashlar {
 
@@ -443,6 +444,48 @@ Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceL
   } catch (const GeometryError& error) {
     throw GeometryError(what + ": " + error.what() + repair.str());
   }
+}
+
+std::optional<std::vector<Vec3>> open_planar_outline(const std::vector<Vec3>& vertices,
+                                                     const std::vector<FaceLoop>& faces,
+                                                     double weld_tolerance, double planarity) {
+  for (const Vec3& p : vertices) {
+    if (!p.allFinite()) return std::nullopt;
+  }
+  for (const FaceLoop& face : faces) {
+    for (int index : face) {
+      if (index < 0 || index >= static_cast<int>(vertices.size())) return std::nullopt;
+    }
+  }
+  if (!std::isfinite(weld_tolerance) || weld_tolerance < 0.0) return std::nullopt;
+  Box3 box;
+  for (const Vec3& p : vertices) box.add(p);
+  const double size = box.diagonal();
+  std::vector<Vec3> points = vertices;
+  std::vector<FaceLoop> loops = reindex_faces(faces, weld(vertices, weld_tolerance));
+  loops = drop_flat_faces(points, std::move(loops), size);
+  loops = merge_coplanar_faces(points, loops, kPlaneTolerance * size);
+  remove_edge_midpoints(points, loops, kCollinear * size);
+  if (loops.size() != 1 || loops[0].size() < 3) return std::nullopt;
+  std::vector<Vec3> outline;
+  for (int index : loops[0]) outline.push_back(points[index]);
+  const Vec3 normal = newell_normal(outline);
+  if (!(normal.norm() > 0.0)) return std::nullopt;
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : outline) centre += p;
+  centre /= static_cast<double>(outline.size());
+  const PlaneFrame frame = PlaneFrame::from_normal(centre, normal.normalized());
+  Box3 extent;
+  for (const Vec3& p : outline) extent.add(p);
+  const double allowed = std::max(planarity, 1e-6) * extent.diagonal();
+  Loop2 flat;
+  for (const Vec3& p : outline) {
+    if (std::abs(frame.distance(p)) > allowed) return std::nullopt;
+    flat.push_back(frame.project(p));
+  }
+  if (!is_simple_loop(flat)) return std::nullopt;
+  for (size_t i = 0; i < outline.size(); ++i) outline[i] = frame.lift(flat[i]);
+  return outline;
 }
 
 }  // namespace ashlar

@@ -1,6 +1,8 @@
 #include "geometry/polygon.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ashlar {
 
@@ -123,6 +125,48 @@ Loop2 clip_convex(const Loop2& subject, const Loop2& clip) {
   }
   if (cleaned.size() < 3) cleaned.clear();
   return cleaned;
+}
+
+double perimeter(const Loop2& loop) {
+  double length = 0.0;
+  for (size_t i = 0; i < loop.size(); ++i) length += (loop[(i + 1) % loop.size()] - loop[i]).norm();
+  return length;
+}
+
+double least_width(const Loop2& loop) {
+  // Andrew's monotone chain: the hull counter-clockwise, collinear points dropped.
+  Loop2 points = loop;
+  std::sort(points.begin(), points.end(), [](const Vec2& p, const Vec2& q) {
+    return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
+  });
+  if (points.size() < 3) return 0.0;
+  Loop2 hull(2 * points.size());
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross2(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross2(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // the last point is the first again
+  const size_t n = hull.size();
+  if (n < 3) return 0.0;
+  // The least width is attained with one line along a hull edge: for each
+  // edge the farthest hull point, advanced monotonically (O(n)).
+  double width = std::numeric_limits<double>::infinity();
+  size_t far = 1;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2& p = hull[i];
+    const Vec2 edge = hull[(i + 1) % n] - p;
+    const double length = edge.norm();
+    if (length == 0.0) continue;
+    auto height = [&](size_t j) { return cross2(edge, hull[j % n] - p); };
+    while (height(far + 1) > height(far)) ++far;
+    width = std::min(width, height(far) / length);
+  }
+  return std::isfinite(width) ? width : 0.0;
 }
 
 }  // namespace ashlar

@@ -29,6 +29,15 @@ double signed_area(const Loop2& loop);
 Vec2 area_centroid(const Loop2& loop);
 bool is_convex(const Loop2& loop);  // counter-clockwise, allowing collinear runs
 
+// Length of a closed 2D loop.
+double perimeter(const Loop2& loop);
+
+// The least width of a 2D loop: the least distance between two parallel
+// lines that enclose it (rotating calipers on its convex hull), which does
+// not depend on how the loop is turned. 0 for fewer than three distinct
+// points or collinear ones.
+double least_width(const Loop2& loop);
+
 // Intersection of two convex counter-clockwise loops (Sutherland-Hodgman).
 // Empty when they do not overlap.
 Loop2 clip_convex(const Loop2& subject, const Loop2& clip);

@@ -168,7 +168,7 @@ private:
     for (const Vec3& p : vertices) bounds.add(p);
     const double weld = bounds.empty() ? 0.0 : options_.relative_weld_tolerance * bounds.diagonal();
     const BlockStyle style{options_.density, name, options_.planarity};
-    out_.blocks.push_back({name, block_from_mesh(vertices, faces, weld, style, path_ + ": " + where + " ('" + name + "')")});
+    out_.blocks.push_back(import_object(name, vertices, faces, weld, style, path_ + ": " + where + " ('" + name + "')"));
     out_.supports.push_back(support);
   }
 
@@ -270,14 +270,18 @@ json mesh_json(const Structure& structure, int i) {
 CompasAssembly read_compas_assembly(const std::string& path, const ImportOptions& options) {
   const std::string text = read_file(path);
   const JsonReader reader(path);
-  return read_json_document(text, reader, [&](const json& root) { return AssemblyReader(path, options).read(root); });
+  CompasAssembly assembly =
+      read_json_document(text, reader, [&](const json& root) { return AssemblyReader(path, options).read(root); });
+  face_plates_to_blocks(assembly.blocks);
+  return assembly;
 }
 
 Structure compas_structure(CompasAssembly assembly, bool stored_interfaces,
                            const std::function<bool(const ImportedBlock&)>& also_support) {
   Structure structure;
   for (size_t i = 0; i < assembly.blocks.size(); ++i) {
-    const bool support = assembly.supports[i] || (also_support && also_support(assembly.blocks[i]));
+    const bool support = assembly.supports[i] || !assembly.blocks[i].surface.empty() ||
+                         (also_support && also_support(assembly.blocks[i]));
     // A repeated name gets the block's index appended (Structure::add).
     const std::string& name = assembly.blocks[i].name;
     structure.add(std::make_shared<const Block>(std::move(assembly.blocks[i].block)), support,

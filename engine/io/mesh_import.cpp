@@ -19,10 +19,12 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "geometry/block_builders.hpp"
+#include "geometry/polygon.hpp"
 #include "io/mesh_io.hpp"
 
 namespace ashlar {
@@ -232,13 +234,44 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
     const BlockStyle style{options.density, object.name, options.planarity};
     const std::string what = "object '" + object.name + "' in '" + path + "'";
     try {
-      blocks.push_back({object.name, block_from_mesh(object.vertices, object.faces,
-                                                     weld_tolerance, style, what)});
+      blocks.push_back(import_object(object.name, object.vertices, object.faces, weld_tolerance, style, what));
     } catch (const GeometryError& error) {
       throw GeometryError(error.what() + single_precision_note(object.vertices));
     }
   }
+  face_plates_to_blocks(blocks);
   return blocks;
+}
+
+ImportedBlock import_object(const std::string& name, const std::vector<Vec3>& vertices,
+                            const std::vector<FaceLoop>& faces, double weld_tolerance,
+                            const BlockStyle& style, const std::string& what) {
+  try {
+    return {name, block_from_mesh(vertices, faces, weld_tolerance, style, what), {}};
+  } catch (const GeometryError&) {
+    std::optional<std::vector<Vec3>> outline = open_planar_outline(vertices, faces, weld_tolerance, style.planarity);
+    if (!outline) throw;
+    const Vec3 front = (*outline)[0] + newell_normal(*outline);
+    Block plate = support_plate(*outline, front, style);
+    return {name, std::move(plate), std::move(*outline)};
+  }
+}
+
+void face_plates_to_blocks(std::vector<ImportedBlock>& blocks) {
+  double volume = 0.0;
+  Vec3 moment = Vec3::Zero();
+  for (const ImportedBlock& imported : blocks) {
+    if (!imported.surface.empty()) continue;
+    volume += imported.block.volume();
+    moment += imported.block.volume() * imported.block.centroid();
+  }
+  if (!(volume > 0.0)) return;
+  const Vec3 centroid = moment / volume;
+  for (ImportedBlock& imported : blocks) {
+    if (imported.surface.empty()) continue;
+    const BlockStyle style{imported.block.density(), imported.block.name(), imported.block.planarity()};
+    imported.block = support_plate(imported.surface, centroid, style);
+  }
 }
 
 }  // namespace ashlar

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/block.hpp"
+#include "geometry/block_builders.hpp"
 #include "io/color.hpp"
 #include "structure/structure.hpp"
 
@@ -31,7 +32,22 @@ struct ImportOptions {
 struct ImportedBlock {
   std::string name;  // node name, made unique ("name#2") when repeated
   Block block;
+  // An open planar surface's outline (open_planar_outline): the object is
+  // a support, and block its support_plate, facing the other blocks.
+  std::vector<Vec3> surface;
 };
+
+// The object's block (block_from_mesh), or, for an open planar surface, a
+// support plate facing the outline's own normal until
+// face_plates_to_blocks turns it. Throws block_from_mesh's GeometryError
+// for anything else.
+ImportedBlock import_object(const std::string& name, const std::vector<Vec3>& vertices,
+                            const std::vector<FaceLoop>& faces, double weld_tolerance,
+                            const BlockStyle& style, const std::string& what);
+
+// Turns every support plate of `blocks` to face the centroid of the blocks
+// that are not plates (by volume), where the blocks it bears are.
+void face_plates_to_blocks(std::vector<ImportedBlock>& blocks);
 
 // Every node that carries meshes becomes one block (its meshes joined, in
 // world coordinates). Throws IoError for unreadable files and GeometryError

@@ -117,6 +117,22 @@ Loop2 simplify_loop(const Loop2& loop, double size) {
   return out;
 }
 
+// The least width (m) and area (m^2) of a contact piece between two blocks.
+struct SliverLimits {
+  double width = 0.0;
+  double area = 0.0;
+};
+
+SliverLimits sliver_limits(const ContactOptions& options, double tolerance, const Block& a, const Block& b) {
+  const double size = std::min(block_size(a), block_size(b));
+  return {options.min_width > 0.0 ? options.min_width : std::min(tolerance, options.relative_min_width * size),
+          options.min_area > 0.0 ? options.min_area : options.relative_min_area * size * size};
+}
+
+bool is_sliver(const Loop2& outer, double area, const SliverLimits& limits) {
+  return area <= 0.0 || area < limits.area || contact_width(outer, area) < limits.width;
+}
+
 // The faces of block a and block b that touch on one plane.
 struct PlaneContact {
   std::vector<int> faces_a, faces_b;
@@ -128,7 +144,7 @@ public:
 
   void add_contacts(int ia, int ib, const std::vector<FaceInfo>& fa,
                     const std::vector<FaceInfo>& fb, const Box3& box_a, const Box3& box_b,
-                    std::vector<Interface>& out) const {
+                    const SliverLimits& limits, std::vector<Interface>& out) const {
     std::vector<std::pair<int, int>> near;
     for_each_overlapping_face_pair(fa, box_a, fb, box_b, tol_, [&](int f, int g) { near.emplace_back(f, g); });
     // A face that is one copy of a joint meets its other copy across the
@@ -138,7 +154,7 @@ public:
     for (const auto& [f, g] : near) {
       if (paired_a[f] || paired_b[g]) continue;
       const std::optional<std::vector<int>> pairing = mid_plane_pairing(fa[f].loop, fb[g].loop, tol_);
-      if (pairing && add_mid_plane_contact(ia, ib, fa[f].loop, fb[g].loop, *pairing, out)) {
+      if (pairing && add_mid_plane_contact(ia, ib, fa[f].loop, fb[g].loop, *pairing, limits, out)) {
         paired_a[f] = paired_b[g] = true;
         out.back().face_a = f;
         out.back().face_b = g;
@@ -164,7 +180,7 @@ public:
       }
     }
     for (const PlaneContact& contact : planes) {
-      add_plane_contact(ia, ib, fa, fb, contact, out);
+      add_plane_contact(ia, ib, fa, fb, contact, limits, out);
     }
   }
 
@@ -173,23 +189,19 @@ private:
   // plane (Newell normal, through the mean of the midpoints), kept in
   // loop_a's order so that interface vertex k comes from vertex k of each
   // copy. False, and nothing added, when the polygon crosses itself or is
-  // a strip narrower than the tolerance: the faces are then cut as others.
+  // a sliver: the faces are then cut as others.
   bool add_mid_plane_contact(int ia, int ib, const std::vector<Vec3>& loop_a,
                              const std::vector<Vec3>& loop_b, const std::vector<int>& pairing,
-                             std::vector<Interface>& out) const {
+                             const SliverLimits& limits, std::vector<Interface>& out) const {
     const std::vector<Vec3> midpoints = paired_midpoints(loop_a, loop_b, pairing);
     Vec3 centre = Vec3::Zero();
     for (const Vec3& p : midpoints) centre += p;
     centre /= static_cast<double>(midpoints.size());
     const PlaneFrame frame = PlaneFrame::from_normal(centre, newell_normal(midpoints).normalized());
     Loop2 loop;
-    Box3 extent;
-    for (const Vec3& p : midpoints) {
-      loop.push_back(frame.project(p));
-      extent.add(p);
-    }
+    for (const Vec3& p : midpoints) loop.push_back(frame.project(p));
     const double area = signed_area(loop);
-    if (area <= tol_ * extent.diagonal() || !is_simple_loop(loop)) return false;
+    if (is_sliver(loop, area, limits) || !is_simple_loop(loop)) return false;
     Interface contact;
     contact.a = ia;
     contact.b = ib;
@@ -205,7 +217,7 @@ private:
 
   void add_plane_contact(int ia, int ib, const std::vector<FaceInfo>& fa,
                          const std::vector<FaceInfo>& fb, const PlaneContact& contact,
-                         std::vector<Interface>& out) const {
+                         const SliverLimits& limits, std::vector<Interface>& out) const {
     const FacePlane& plane_a = fa[contact.faces_a.front()].plane;
     const PlaneFrame frame =
         PlaneFrame::from_normal(plane_a.normal * plane_a.offset, plane_a.normal);
@@ -235,7 +247,7 @@ private:
     for (int g : contact.faces_b) planes_b.push_back(fb[g].plane);
     for (const PolygonWithHoles2& piece : pieces) {
       const size_t before = out.size();
-      add_piece(ia, ib, frame, planes_b, piece, out);
+      add_piece(ia, ib, frame, planes_b, piece, limits, out);
       if (out.size() == before) continue;
       out.back().face_a = contact.faces_a.front();
       out.back().face_b = contact.faces_b.front();
@@ -243,7 +255,8 @@ private:
   }
 
   void add_piece(int ia, int ib, const PlaneFrame& frame, const std::vector<FacePlane>& planes_b,
-                 const PolygonWithHoles2& piece, std::vector<Interface>& out) const {
+                 const PolygonWithHoles2& piece, const SliverLimits& limits,
+                 std::vector<Interface>& out) const {
     Box3 extent;
     for (const Vec2& p : piece.outer) extent.add(Vec3(p.x(), p.y(), 0.0));
     const double size = extent.diagonal();
@@ -260,8 +273,8 @@ private:
       moment += hole_area * area_centroid(simple);
       holes.push_back(std::move(simple));
     }
-    // A strip narrower than the tolerance is an edge or corner touch.
-    if (area <= tol_ * size) return;
+    // A strip narrower than the least width is an edge or corner touch.
+    if (is_sliver(outer, area, limits)) return;
     Interface contact;
     contact.a = ia;
     contact.b = ib;
@@ -347,7 +360,13 @@ double opposite_cosine(const ContactOptions& options) { return -std::cos(options
 
 bool same_contacts(const ContactOptions& x, const ContactOptions& y) {
   return x.tolerance == y.tolerance && x.relative_tolerance == y.relative_tolerance && x.angle == y.angle &&
-         x.min_area == y.min_area;
+         x.min_width == y.min_width && x.relative_min_width == y.relative_min_width &&
+         x.min_area == y.min_area && x.relative_min_area == y.relative_min_area;
+}
+
+double contact_width(const Loop2& outer, double area) {
+  const double length = perimeter(outer);
+  return length > 0.0 ? std::min(least_width(outer), 4.0 * area / length) : 0.0;
 }
 
 double effective_tolerance(const std::vector<const Block*>& blocks,
@@ -365,6 +384,14 @@ double effective_tolerance(const std::vector<const Block*>& blocks,
   if (!std::isfinite(options.min_area) || options.min_area < 0.0) {
     throw InvalidArgument("contact min_area must be a finite number >= 0 (m^2), got " +
                           std::to_string(options.min_area));
+  }
+  if (!std::isfinite(options.min_width) || options.min_width < 0.0) {
+    throw InvalidArgument("contact min_width must be a finite number >= 0 (m), got " +
+                          std::to_string(options.min_width));
+  }
+  if (!(options.relative_min_width >= 0.0 && options.relative_min_width < 1.0) ||
+      !(options.relative_min_area >= 0.0 && options.relative_min_area < 1.0)) {
+    throw InvalidArgument("relative contact min_width and min_area must be numbers in [0, 1)");
   }
   if (options.tolerance > 0.0) return options.tolerance;
   Box3 box;
@@ -408,7 +435,9 @@ std::vector<NearMiss> find_near_misses(const std::vector<const Block*>& blocks, 
   auto touch = [&](int a, int b, double tolerance) {
     std::vector<Interface> found;
     ContactBuilder(tolerance, opposite).add_contacts(a, b, faces_of(a), faces_of(b), blocks[a]->bounds(),
-                                           blocks[b]->bounds(), found);
+                                                     blocks[b]->bounds(),
+                                                     sliver_limits(options, tolerance, *blocks[a], *blocks[b]),
+                                                     found);
     return !found.empty();
   };
   for (const auto& [a, b] : box_pairs(blocks, 0.5 * reach)) {
@@ -464,12 +493,7 @@ std::vector<Interface> detect_interfaces(const std::vector<const Block*>& blocks
   std::vector<Interface> interfaces;
   for (const auto& [a, b] : candidates) {
     builder.add_contacts(a, b, faces[a], faces[b], blocks[a]->bounds(), blocks[b]->bounds(),
-                         interfaces);
-  }
-  if (options.min_area > 0.0) {
-    interfaces.erase(std::remove_if(interfaces.begin(), interfaces.end(),
-                                    [&](const Interface& c) { return c.area < options.min_area; }),
-                     interfaces.end());
+                         sliver_limits(options, tol, *blocks[a], *blocks[b]), interfaces);
   }
   // Same-pair pieces in a stable order, whatever order CGAL reported pairs in.
   std::stable_sort(interfaces.begin(), interfaces.end(), [](const Interface& x, const Interface& y) {

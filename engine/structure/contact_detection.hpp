@@ -13,10 +13,11 @@
 namespace ashlar {
 
 struct ContactOptions {
-  // Largest gap or overlap (m) between two faces that still counts as
-  // contact, measured at every vertex of the contact polygon; also the
-  // thinnest contact kept (narrower strips are edge or corner touches).
-  // <= 0 means relative_tolerance times the model's bounding-box diagonal.
+  // Largest gap, overlap or warp (m) between two faces that still counts as
+  // contact, measured at every vertex of the contact polygon. <= 0 means
+  // relative_tolerance times the model's bounding-box diagonal. It decides
+  // which faces meet, never how large a contact must be (min_width and
+  // min_area do), so a larger tolerance never loses a contact.
   double tolerance = 0.0;
   double relative_tolerance = 1e-6;
   // Largest angle (rad) between one face's outward normal and the reverse of
@@ -24,10 +25,27 @@ struct ContactOptions {
   // by default; larger for warped or curved joints whose facets do not
   // match, less than pi / 2.
   double angle = std::acos(0.99);
+  // Contact pieces narrower than this (m) are edge or corner touches and
+  // are dropped. The width is contact_width's: it does not depend on how
+  // the joint is turned. <= 0 means the tolerance (faces misaligned within
+  // it overlap in strips as narrow: imprecision, not contact), but at most
+  // relative_min_width times the size of the smaller of the two blocks
+  // (block_size: a box's diagonal), so that a larger tolerance never loses
+  // a joint wider than that.
+  double min_width = 0.0;
+  double relative_min_width = 0.02;
   // Interfaces smaller than this (m^2) are dropped: slivers of imperfect
-  // models.
+  // models. <= 0 means relative_min_area times the square of the smaller
+  // block's size (rounding's pieces of no area at any scale).
   double min_area = 0.0;
+  double relative_min_area = 1e-8;
 };
+
+// The width (m) of a contact piece with outer loop `outer` and net area
+// `area`: its least caliper width (least_width), or 4 area / perimeter
+// where that is smaller (a thin L- or U-shaped piece, whose hull is wide).
+// A rectangle's is its shorter side.
+double contact_width(const Loop2& outer, double area);
 
 // -cos(options.angle): two faces may touch when the dot product of their
 // outward normals is at most this.

@@ -96,9 +96,11 @@ std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) 
   const std::vector<Vec3> more = edge_axes(a, b);
   if (separated(more)) return std::nullopt;
   axes.insert(axes.end(), more.begin(), more.end());
-  if (a.convex() && b.convex()) return least;
+  if (a.convex() && b.convex() && !a.warped() && !b.warped()) return least;
   // Unseparated non-convex blocks may still only touch (a box in an L's
-  // corner): measure the solid they share, piece by piece (the depth is the
+  // corner), and so may warped ones, whose solids are not the hulls of
+  // their corners (the hulls of the two sides of a warped joint share its
+  // warp): measure the solid they share, piece by piece (the depth is the
   // thickest piece's thinnest extent along the axes: differently faceted
   // curved joints share many thin pieces that together span the joint).
   // When CGAL cannot build it, the pair is left alone: a refused valid

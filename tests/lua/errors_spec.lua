@@ -20,7 +20,7 @@ describe("argument errors", function()
   it("names unknown options and lists the allowed ones", function()
     expect_error({ "bad argument #1 to ", "unknown option 'colour'", "allowed: center, density, name, size" },
       ashlar.box, { size = { 1, 1, 1 }, colour = 1 })
-    expect_error({ "unknown option 'tol'", "allowed: angle, min_area, tolerance" },
+    expect_error({ "unknown option 'tol'", "allowed: angle, min_area, min_width, tolerance" },
       function() ashlar.structure():interfaces{ tol = 1 } end)
     expect_error({ "unknown option 'suport'" },
       function() ashlar.structure():add(ashlar.box{ size = { 1, 1, 1 } }, { suport = true }) end)

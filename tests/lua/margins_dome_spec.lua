@@ -148,15 +148,38 @@ describe("the load factor of the 16 x 18 dome (289 free blocks): the barrier's o
     near(turned.factor, f.factor, VERTEX * f.factor, "factor along (1, 1, 0)")
   end)
 
-  it("pushed along (0.5, 1, 0): the barrier's multipliers infeasible, so the crossover's vertex", function()
+  it("pushed along (0.5, 1, 0): the same factor whichever way the barrier ends", function()
     local f = ashlar.load_factor(models.dome{}, { direction = { 0.5, 1, 0 }, progress = false })
     assert.are.equal("optimal", f.status)
     near(f.factor, 0.41864814359, VERTEX * 0.41864814359, "factor")
-    assert.is_true(f.iterations > 1000)  -- the crossover's pivots
     assert.are.equal(486, #f.limit)
     -- The same push turned by 90 degrees about the dome's axis.
     local turned = ashlar.load_factor(models.dome{}, { direction = { -1, 0.5, 0 }, progress = false })
     near(turned.factor, f.factor, VERTEX * f.factor, "factor along (-1, 0.5, 0)")
+  end)
+
+  it("pushed along (1, 0.3, 0): the barrier's multipliers infeasible, so the crossover's vertex", function()
+    local f = ashlar.load_factor(models.dome{}, { direction = { 1, 0.3, 0 }, progress = false })
+    assert.are.equal("optimal", f.status)
+    assert.is_true(f.iterations > 1000)  -- the crossover's pivots
+    assert.are.equal(487, #f.limit)
+    -- The same push turned by 90 degrees about the dome's axis, which the
+    -- barrier ends without a crossover, and the analysis either side.
+    local turned = ashlar.load_factor(models.dome{}, { direction = { -0.3, 1, 0 }, progress = false })
+    near(turned.factor, f.factor, VERTEX * f.factor, "factor along (-0.3, 1, 0)")
+    local function pushed(factor)
+      local s = models.dome{}
+      local norm = math.sqrt(1 + 0.3 ^ 2)
+      for i = 1, #s do
+        if not s:is_support(i) then
+          local w = factor * s:block(i):mass() * 9.81 / norm
+          s:add_load{ block = i, force = { w, 0.3 * w, 0 }, at = s:block(i):centroid() }
+        end
+      end
+      return s
+    end
+    assert.is_true(ashlar.analyze(pushed(f.factor * (1 - 1e-7))).stable)
+    assert.is_false(ashlar.analyze(pushed(f.factor * (1 + 1e-5))).stable)
   end)
 
   it("pushed along (1, 0, -3) at mu = 0.7: unbounded, the push alone proven to stand, no program", function()

@@ -1,8 +1,8 @@
 -- Warped faces (CAD exports, remeshed and scanned blocks): the planarity
 -- option accepts faces whose vertices lie off their best-fit plane by up to
 -- a fraction of the face's size. The solid is then bounded by each face's
--- fan triangulation, whose volume and centroid are checked here against
--- closed forms.
+-- fan of triangles about its centre, whose volume and centroid are checked
+-- here against closed forms.
 local ashlar = require "ashlar"
 local support = require "spec_support"
 
@@ -48,26 +48,28 @@ describe("planarity", function()
       ashlar.import, path, { planarity = 0.001 })
   end)
 
-  it("accepts it, with the fan-triangulated solid's exact volume and centroid", function()
+  it("accepts it, with the exact volume and centroid of the solid its centre fans bound", function()
     local b = ashlar.import(path, { planarity = 0.002 }):block(1)
-    -- The top is two triangles fanned from (0,0,1), each over half the unit
-    -- square with one corner raised by h: the wedge above z = 1 has volume
-    -- h / 3 and its centroid at z = 1 + h / 4.
+    -- The top is four triangles fanned from its centre (0.5, 0.5, 1 + h/4),
+    -- over quarters of the unit square: the volume above z = 1 is h / 4 and
+    -- its moment about z = 0 is h / 4 + 11 h^2 / 192
+    -- (tests/unit/test_block_validation.cpp derives both).
     -- (OBJ coordinates are single precision: 1 + h is read to 1e-8.)
-    local volume = 1 + h / 3
+    local volume = 1 + h / 4
     assert.near(volume, b:volume(), 1e-8)
-    assert.near((0.5 + h / 3 * (1 + h / 4)) / volume, b:centroid()[3], 1e-8)
+    assert.near((0.5 + h / 4 + 11 * h * h / 192) / volume, b:centroid()[3], 1e-8)
     assert.near(h / 4, b:warp(), 1e-4 * h)
     assert.equal(0.002, b:planarity())
     assert.is_true(b:is_convex())
   end)
 
-  it("makes a warped quad that a file holds as two triangles one face again, with the same solid", function()
+  it("makes a warped quad that a file holds as two triangles one face again, with the canonical surface", function()
     -- The warped top as two triangles, split along either diagonal: the
     -- one through the raised corner (5-7) bounds a wedge of volume h / 3,
     -- the other (6-8) one of h / 6 (only triangle 6 7 8 rises). Merged, the
-    -- quad starts at an end of that diagonal, so its fan is the file's two
-    -- triangles and the volume stays the file's.
+    -- quad is one face whose surface is its fan about its centre, whichever
+    -- diagonal the file took: the volume 1 + h / 4 of the quad given as one
+    -- face, so that two files of one block split differently give one solid.
     for _, case in ipairs{ { "f 5 6 7\nf 5 7 8", h / 3 }, { "f 5 6 8\nf 6 7 8", h / 6 } } do
       local triangles = folder .. "/triangles.obj"
       support.write_file(triangles, (warped_cube_obj(h):gsub("f 5 6 7 8", case[1])))
@@ -77,8 +79,9 @@ describe("planarity", function()
       local merged = ashlar.import(triangles, { planarity = 0.002 }):block(1)
       assert.equal(6, #merged:faces())
       for _, face in ipairs(merged:faces()) do assert.equal(4, #face) end
-      assert.near(exact:volume(), merged:volume(), 1e-14)
-      for k = 1, 3 do assert.near(exact:centroid()[k], merged:centroid()[k], 1e-14) end
+      local quad = ashlar.import(path, { planarity = 0.002 }):block(1)
+      assert.near(quad:volume(), merged:volume(), 1e-14)
+      for k = 1, 3 do assert.near(quad:centroid()[k], merged:centroid()[k], 1e-14) end
       -- A planarity below the quad's warp leaves the triangles as they are.
       assert.equal(7, #ashlar.import(triangles, { planarity = 0.001 }):block(1):faces())
     end
@@ -96,7 +99,7 @@ describe("planarity", function()
     local bare = folder .. "/bare.json"
     support.write_file(bare, text)
     support.expect_error({ "is not planar", "needs at least 0.0018" }, ashlar.load, bare)
-    assert.near(1 + h / 3, ashlar.load(bare, { planarity = 0.002 }):block(1):volume(), 1e-8)
+    assert.near(1 + h / 4, ashlar.load(bare, { planarity = 0.002 }):block(1):volume(), 1e-8)
   end)
 
   it("is an option of ashlar.block, and a block keeps it through rigid motions", function()
@@ -105,7 +108,7 @@ describe("planarity", function()
       vertices = { {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, top}, {0, 1, 1} },
       faces = { {1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8} },
       planarity = 0.002 }
-    assert.near(1 + h / 3, b:volume(), 1e-12)
+    assert.near(1 + h / 4, b:volume(), 1e-12)
     local moved = b:rotated({ 0, 0, 1 }, 0.3):translated{ 5, 0, 0 }
     assert.equal(0.002, moved:planarity())
     assert.near(b:warp(), moved:warp(), 1e-12)

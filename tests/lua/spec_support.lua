@@ -197,6 +197,46 @@ function support.statics(s, r, contact)
   return worst_force, worst_moment, tension
 end
 
+-- The verdict of an LP that shares no code with ashlar's analysis
+-- (tests/tools/equilibrium_lp.py, cvxopt): does a compression-only
+-- equilibrium within the four-sided friction pyramid exist on the contact
+-- polygons s:interfaces(contact) finds? Returns its JSON's stable,
+-- infeasibility and failing blocks (1-based). `friction`: mu, or
+-- math.huge for no sliding.
+function support.independent_verdict(s, friction, contact)
+  local function point(p) return ("[%.17g,%.17g,%.17g]"):format(p[1], p[2], p[3]) end
+  local parts = {}
+  for i = 1, #s do
+    local b = s:block(i)
+    parts[#parts + 1] = ('{"support":%s,"weight":%.17g,"centroid":%s,"size":%.17g}'):format(
+      tostring(s:is_support(i)), 9.81 * b:mass(), point(b:centroid()), b:volume() ^ (1 / 3))
+  end
+  local blocks = table.concat(parts, ",")
+  parts = {}
+  for _, f in ipairs(s:interfaces(contact)) do
+    local vertices = {}
+    for k, p in ipairs(f.vertices) do vertices[k] = point(p) end
+    parts[#parts + 1] = ('{"a":%d,"b":%d,"normal":%s,"u":%s,"v":%s,"vertices":[%s]}'):format(
+      f.a, f.b, point(f.normal), point(f.u), point(f.v), table.concat(vertices, ","))
+  end
+  local path = os.tmpname()
+  support.write_file(path, ('{"friction":%s,"blocks":[%s],"interfaces":[%s]}'):format(
+    friction == math.huge and "null" or ("%.17g"):format(friction), blocks, table.concat(parts, ",")))
+  local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."
+  local script = here .. "/../tools/equilibrium_lp.py"
+  local output, code = support.run("/usr/bin/python3 " .. support.quote(script) .. " " .. support.quote(path))
+  os.remove(path)
+  assert(code == 0, "equilibrium_lp.py failed:\n" .. output)
+  local stable = output:match('"stable": (%a+)')
+  local infeasibility = tonumber(output:match('"infeasibility": ([^,}]+)'))
+  assert(stable and infeasibility, "unexpected output of equilibrium_lp.py:\n" .. output)
+  local failing = {}
+  for block in (output:match('"failing_blocks": %[([^%]]*)%]') or ""):gmatch("%d+") do
+    failing[#failing + 1] = tonumber(block)
+  end
+  return stable == "true", infeasibility, failing
+end
+
 -- The text of each <text> element of an SVG that PLplot's svg driver wrote
 -- (every character as &#xHH;; a superscript in a <tspan> raised by dy < 0,
 -- here written "^": "10^-6").

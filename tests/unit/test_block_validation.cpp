@@ -70,7 +70,7 @@ TEST(BlockValidation, NonPlanarFace) {
   expect_error(m, "not planar");
 }
 
-TEST(BlockValidation, WarpedFacesNeedAPlanarityAndThenBoundTheFanTriangulatedSolid) {
+TEST(BlockValidation, WarpedFacesNeedAPlanarityAndThenBoundTheSolidOfTheirCentreFans) {
   // Vertex 8 (1, 1, 1) raised by h: the top face is warped, its vertices
   // h / 4 off its best-fit plane, whose size is sqrt(2 + h^2).
   const double h = 0.02;
@@ -85,13 +85,17 @@ TEST(BlockValidation, WarpedFacesNeedAPlanarityAndThenBoundTheFanTriangulatedSol
     EXPECT_NE(std::string(e.what()).find("face 2 is warped beyond planarity 0.003"), std::string::npos) << e.what();
   }
   const Block b(m.vertices, m.faces, kDefaultDensity, "test", 0.004);
-  // The top's fan from vertex 5 (0, 0, 1): two triangles over half the unit
-  // square, each with one corner h higher: a wedge of volume h / 3 whose
-  // centroid is h / 4 above z = 1. The raised side faces (x = 1, y = 1)
-  // stay planar.
-  const double volume = 1 + h / 3;
+  // The top's fan about its centre (0.5, 0.5, 1 + h / 4): four triangles
+  // over quarters of the unit square, with heights f above z = 1 of
+  // (h/4, 0, 0), (h/4, 0, h), (h/4, h, 0), (h/4, 0, 0) at their corners.
+  // The volume above z = 1 is the integral of f, h / 4; its moment about
+  // z = 0 adds the integral of f + f^2 / 2, h / 4 + 11 h^2 / 192 (for a
+  // linear f over a triangle of area A, the integral of f^2 is A (a^2 + b^2
+  // + c^2 + ab + bc + ca) / 6). The raised side faces (x = 1, y = 1) stay
+  // planar.
+  const double volume = 1 + h / 4;
   EXPECT_NEAR(b.volume(), volume, 1e-14);
-  EXPECT_NEAR(b.centroid().z(), (0.5 + h / 3 * (1 + h / 4)) / volume, 1e-14);
+  EXPECT_NEAR(b.centroid().z(), (0.5 + h / 4 + 11 * h * h / 192) / volume, 1e-14);
   EXPECT_NEAR(b.warp(), h / 4, 1e-4 * h);
   EXPECT_TRUE(b.convex());
   EXPECT_THROW(Block(m.vertices, m.faces, kDefaultDensity, "test", 0.3), InvalidArgument);
