@@ -106,6 +106,14 @@ public:
     for (int k = 0; k < vertices_; ++k) {
       const int first = problem_.row_count + per_vertex_rows_ * k + 3;
       for (Eigen::Index i = 0; i < friction_.rows(); ++i) g_u[first + i] = inf;
+      // The complementarity products of factors bounded below by 0 as
+      // "<= 0", which is the same set: one-sided, IPOPT gives them a slack
+      // instead of an equality that is degenerate wherever a factor sits
+      // at its bound (with "= 0" the penalty form failed on a column of
+      // three blocks at tolerance 1e-8).
+      const int products = first + static_cast<int>(friction_.rows());
+      g_l[products] = -inf;
+      if (layout_.penalty) g_l[products + 3] = -inf;
     }
     return true;
   }
