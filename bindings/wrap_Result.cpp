@@ -7,6 +7,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "analysis/cra.hpp"
 #include "analysis/equilibrium.hpp"
 #include "analysis/kinematic.hpp"
 #include "analysis/qps_export.hpp"
@@ -71,10 +72,45 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
   return settings;
 }
 
-// The analysis method option ("equilibrium" or "kinematic") into settings.
-void read_method(const OptionTable& options, AnalysisSettings& settings) {
+void read_method(const OptionTable& options, AnalysisSettings& settings, const char* caller) {
   settings.method = options.choice("method", kAnalysisMethodNames).value_or(settings.method);
+  if (caller && is_cra(settings.method)) {
+    throw ArgError(options.arg(), std::string("method: '") + kAnalysisMethodNames.name(settings.method) +
+                                      "' is not available in " + caller + " (expected 'equilibrium' or 'kinematic')");
+  }
 }
+
+namespace {
+
+// The options of methods cra and cra_penalty: their own keys, and the
+// solver keys they share with the other methods (tolerance and
+// max_iterations are IPOPT's, tension_weight the penalty's) at CRA's
+// defaults when absent. Their own keys with another method are errors.
+void read_cra_options(const OptionTable& options, AnalysisSettings& settings) {
+  CraSettings& cra = settings.cra;
+  if (!is_cra(settings.method)) {
+    for (const char* key : {"overlap", "displacement_bound"}) {
+      if (options.has(key)) {
+        throw ArgError(options.arg(), std::string(key) + ": only with method = 'cra' or 'cra_penalty', got method = '" +
+                                          kAnalysisMethodNames.name(settings.method) + "'");
+      }
+    }
+    return;
+  }
+  cra.overlap = options.positive("overlap", cra.overlap, true);
+  cra.displacement_bound = options.positive("displacement_bound", cra.displacement_bound);
+  cra.tolerance = options.positive("tolerance", cra.tolerance);
+  if (options.has("max_iterations")) cra.max_iterations = settings.solver.max_iterations;
+  if (options.has("tension_weight")) {
+    if (settings.method != AnalysisMethod::cra_penalty) {
+      throw ArgError(options.arg(), "tension_weight: not with method = 'cra' (no tension there; use 'cra_penalty')");
+    }
+    cra.tension_weight = settings.problem.tension_weight;
+  }
+  check_cra_settings(cra);  // overlap below displacement_bound; guard() reports it
+}
+
+}  // namespace
 
 namespace {
 
@@ -91,14 +127,20 @@ int w_analyze(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only", "method"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only", "method", "overlap",
+                                     "displacement_bound"});
     AnalysisSettings settings = analysis_settings(options);
     settings.verdict_only = options.boolean("verdict_only").value_or(false);
     read_method(options, settings);
+    read_cra_options(options, settings);
     lua_settop(L, 2);
     const bool warm_start = options.push("warm_start") != LUA_TNIL;
     if (settings.method == AnalysisMethod::kinematic && warm_start) {
       throw ArgError(2, "warm_start: not with method = \"kinematic\" (its rounds start from no prestress)");
+    }
+    if (is_cra(settings.method) && (warm_start || settings.verdict_only)) {
+      throw ArgError(2, std::string(warm_start ? "warm_start" : "verdict_only") + ": not with method = '" +
+                            kAnalysisMethodNames.name(settings.method) + "' (IPOPT solves it whole, from rest)");
     }
     std::shared_ptr<const AnalysisRecord> warm;
     if (warm_start) {
@@ -197,6 +239,22 @@ void push_interfaces(lua_State* L, const EquilibriumResult& result) {
   }
 }
 
+// A block's virtual displacement (methods cra, cra_penalty) as
+// { translation = {x, y, z} (m), rotation = {x, y, z} (rad) }.
+void push_displacement(lua_State* L, const BlockDisplacement& d) {
+  lua_createtable(L, 0, 2);
+  set_field(L, "translation", d.translation);
+  set_field(L, "rotation", d.rotation);
+}
+
+void push_displacements(lua_State* L, const EquilibriumResult& result) {
+  lua_createtable(L, static_cast<int>(result.displacements.size()), 0);
+  for (size_t i = 0; i < result.displacements.size(); ++i) {
+    push_displacement(L, result.displacements[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
 void push_blocks(lua_State* L, const EquilibriumResult& result) {
   // For floating blocks, the contact they miss (if one is near): scratch
   // memory in a userdata, which Lua frees however this ends.
@@ -219,6 +277,10 @@ void push_blocks(lua_State* L, const EquilibriumResult& result) {
     set_field(L, "tension", result.block_tension[i]);
     set_field(L, "virtual_torque", result.virtual_torques[i]);
     set_boolean(L, "floating", blocks[i].floating);
+    if (i < result.displacements.size()) {
+      push_displacement(L, result.displacements[i]);
+      lua_setfield(L, -2, "displacement");
+    }
     if (const MissedContact* missed = blocks[i].missed) {
       lua_pushinteger(L, missed->block + 1);
       lua_setfield(L, -2, "nearest");
@@ -330,6 +392,10 @@ int w_Result_index(lua_State* L) {
       else if (is("blocks")) return push_cached_table(L, "blocks", r, push_blocks);
       else if (is("vertices")) return push_cached_table(L, "vertices", r, push_vertices);
       else if (is("cables")) return push_cached_table(L, "cables", r, push_cables);
+      else if (is("displacements")) {
+        if (!is_cra(r.method)) return 0;
+        return push_cached_table(L, "displacements", r, push_displacements);
+      }
       else return 0;
       return 1;
     });

@@ -34,8 +34,10 @@ std::shared_ptr<const EquilibriumResult> result_option(lua_State* L, const Optio
 void register_Result(lua_State* L);
 // A new Result of `structure` holding `result`.
 void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult result);
-// The "method" option ("equilibrium", "kinematic") into settings.
-void read_method(const OptionTable& options, AnalysisSettings& settings);
+// The "method" option ("equilibrium", "kinematic", "cra", "cra_penalty")
+// into settings. With a `caller` (a function that offers only the first
+// two), "cra" and "cra_penalty" are errors naming the caller.
+void read_method(const OptionTable& options, AnalysisSettings& settings, const char* caller = nullptr);
 
 // A collapse mechanism as Lua tables (ashlar.analyze's and
 // ashlar.load_factor's): per block { velocity, rotation }, and the moving

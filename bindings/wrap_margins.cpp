@@ -24,7 +24,7 @@ int w_load_factor(lua_State* L) {
                               {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load", "method", "tolerance", "progress"});
     AnalysisSettings analysis = analysis_settings(options);
     analysis.solver = InteriorPointSettings{};  // "tolerance" is the factor's here, as for friction_demand
-    read_method(options, analysis);
+    read_method(options, analysis, "load_factor");
     LoadFactorSettings settings;
     settings.problem = analysis.problem;
     settings.pattern = options.choice("load", kLoadPatternNames).value_or(settings.pattern);
@@ -98,7 +98,7 @@ int w_friction_demand(lua_State* L) {
     const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance", "method", "progress"});
     AnalysisSettings analysis = analysis_settings(options);
     analysis.solver = InteriorPointSettings{};  // "tolerance" is the demand's
-    read_method(options, analysis);
+    read_method(options, analysis, "friction_demand");
     const EquilibriumOptions& problem = analysis.problem;
     const bool kinematic = analysis.method == AnalysisMethod::kinematic;
     const double tolerance = options.positive("tolerance", kinematic ? 1e-3 : 1e-6);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/cra.hpp"
 #include "analysis/equilibrium_analysis.hpp"
 #include "analysis/kinematic.hpp"
 #include "core/error.hpp"
@@ -68,6 +69,13 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
       throw InvalidArgument("the kinematic method takes no warm start and gives no problem out");
     }
     return analyze_kinematic(structure, settings);
+  }
+  if (is_cra(settings.method)) {
+    if (warm_start || problem_out) {
+      throw InvalidArgument(std::string("method ") + kAnalysisMethodNames.name(settings.method) +
+                            " takes no warm start and gives no problem out");
+    }
+    return analyze_cra(structure, settings);
   }
   EquilibriumAnalysis analysis(structure, settings);
   if (warm_start) analysis.set_starting_point(warm_start->solution);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/enum_names.hpp"
+#include "analysis/cra_settings.hpp"
 #include "analysis/equilibrium_problem.hpp"
 #include "analysis/interior_point.hpp"
 #include "analysis/mechanism.hpp"
@@ -22,6 +23,15 @@ enum class AnalysisMethod {
   // Is there one whose friction needs no more normal force than the joints
   // develop from an unstressed state (kinematic.hpp)?
   kinematic,
+  // Coupled rigid-block analysis (Kao et al. 2022, cra.hpp): a
+  // compression-only equilibrium within the friction cones together with a
+  // compatible virtual displacement of the blocks, whose sliding the
+  // friction opposes; a nonlinear program solved by IPOPT.
+  cra,
+  // Its penalty form: tension allowed at a high quadratic cost, so that an
+  // unstable structure still has an answer (the tension it needs and how it
+  // would move).
+  cra_penalty,
 };
 
 struct AnalysisSettings {
@@ -45,6 +55,15 @@ struct AnalysisSettings {
   // changes by more than round_tolerance of the mean block weight.
   int max_rounds = 200;
   double round_tolerance = 1e-5;
+  // Methods cra and cra_penalty (cra_settings.hpp).
+  CraSettings cra;
+};
+
+// A block's small virtual displacement (methods cra and cra_penalty):
+// the translation of its centroid (m) and its rotation about it (rad).
+struct BlockDisplacement {
+  Vec3 translation = Vec3::Zero();
+  Vec3 rotation = Vec3::Zero();
 };
 
 // A verdict is borderline when imbalance_without_tension lies between these
@@ -135,11 +154,22 @@ struct EquilibriumResult {
   // Kinematic method: equilibrium solves until the joints' strengths
   // settled (1 for the equilibrium method).
   int rounds = 1;
+  // Methods cra and cra_penalty: per block (zero for supports and blocks
+  // not analysed) the virtual displacement of the solution. Empty for the
+  // other methods and when the solve gave no answer.
+  std::vector<BlockDisplacement> displacements;
   InteriorPointSolution solution;              // scaled; for warm starts (filled by analyze_equilibrium)
 };
 
-inline constexpr EnumNames<AnalysisMethod, 2> kAnalysisMethodNames{
-    {{{AnalysisMethod::equilibrium, "equilibrium"}, {AnalysisMethod::kinematic, "kinematic"}}}};
+inline constexpr EnumNames<AnalysisMethod, 4> kAnalysisMethodNames{{{{AnalysisMethod::equilibrium, "equilibrium"},
+                                                                    {AnalysisMethod::kinematic, "kinematic"},
+                                                                    {AnalysisMethod::cra, "cra"},
+                                                                    {AnalysisMethod::cra_penalty, "cra_penalty"}}}};
+
+// Whether `method` is one of the coupled rigid-block analyses.
+inline bool is_cra(AnalysisMethod method) {
+  return method == AnalysisMethod::cra || method == AnalysisMethod::cra_penalty;
+}
 
 // Runs the analysis (the method of `settings`). Throws InvalidArgument for bad settings; every outcome
 // (unstable, not converged, floating blocks) is reported in the result.

@@ -17,6 +17,64 @@ constexpr double kNearMiss = 0.01;
 
 }  // namespace
 
+double fill_result_forces(const Structure& structure, const std::vector<Interface>& interfaces,
+                          const EquilibriumProblem& problem, const Eigen::VectorXd& x, EquilibriumResult& result) {
+  result.interfaces.resize(interfaces.size());
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.interfaces[i].a = interfaces[i].a;
+    result.interfaces[i].b = interfaces[i].b;
+  }
+  std::vector<double> pressure_weight(interfaces.size(), 0.0);
+  std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
+  result.block_tension.assign(structure.size(), 0.0);
+  const double wu = problem.weight_unit;
+  result.cables.resize(structure.cables().size());
+  result.virtual_torques.assign(structure.size(), Vec3::Zero());
+  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
+  double penalised = 0.0;  // scaled
+  for (size_t k = 0; k < problem.groups.size(); ++k) {
+    const ForceGroup& v = problem.groups[k];
+    const Eigen::Vector4d scaled = x.segment<4>(4 * static_cast<Eigen::Index>(k));
+    // The penalised unknowns are bounded below by 0; an iterate short of
+    // convergence may still sit a little outside, which must not make the
+    // infeasibility negative.
+    penalised += problem.rules_of(v).linear.dot(scaled.cwiseMax(0.0));
+    if (v.kind == GroupKind::cable || v.kind == GroupKind::bounded_cable) {
+      result.cables[v.source].tension = (scaled(0) - scaled(1)) * wu;
+      result.cables[v.source].compression = scaled(1) * wu;
+      continue;
+    }
+    if (v.kind == GroupKind::slack) {
+      if (v.block_a >= 0 && rows[v.component] >= 3) {
+        result.virtual_torques[v.block_a](rows[v.component] - 3) =
+            (scaled(0) - scaled(1)) * wu * problem.length_unit;
+      }
+      continue;
+    }
+    const Eigen::Vector4d forces = scaled * wu;
+    const Interface& contact = interfaces[v.source];
+    InterfaceForces& through = result.interfaces[v.source];
+    const double normal = forces(0) - forces(1);
+    through.compression += forces(0);
+    through.tension += forces(1);
+    through.normal_force += normal;
+    through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
+    pressure_weight[v.source] += normal;
+    pressure_moment[v.source] += normal * v.position;
+    result.block_tension[v.block_a] += forces(1);
+    result.block_tension[v.block_b] += forces(1);
+    result.vertex_forces.push_back(forces);
+    result.vertex_positions.push_back(v.position);
+    result.vertex_interface.push_back(v.source);
+  }
+  for (size_t i = 0; i < interfaces.size(); ++i) {
+    result.interfaces[i].center_of_pressure = pressure_weight[i] > 0.0
+                                                  ? Vec3(pressure_moment[i] / pressure_weight[i])
+                                                  : interfaces[i].center;
+  }
+  return penalised;
+}
+
 EquilibriumAnalysis::EquilibriumAnalysis(const Structure& structure, const AnalysisSettings& settings) {
   update(structure, settings);
 }
@@ -72,61 +130,8 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   result.floating_gaps = floating_gaps_;
 
   const std::vector<Interface>& interfaces = structure_->interfaces(settings_.problem.contact);
-  result.interfaces.resize(interfaces.size());
-  for (size_t i = 0; i < interfaces.size(); ++i) {
-    result.interfaces[i].a = interfaces[i].a;
-    result.interfaces[i].b = interfaces[i].b;
-  }
-  std::vector<double> pressure_weight(interfaces.size(), 0.0);
-  std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
-  result.block_tension.assign(structure_->size(), 0.0);
   const Eigen::VectorXd& x = solution_.x;
-  const double wu = problem_.weight_unit;
-  result.cables.resize(structure_->cables().size());
-  result.virtual_torques.assign(structure_->size(), Vec3::Zero());
-  const std::array<int, 6>& rows = balance_rows(problem_.block_rows == 3);
-  double penalised = 0.0;  // scaled
-  for (size_t k = 0; k < problem_.groups.size(); ++k) {
-    const ForceGroup& v = problem_.groups[k];
-    const Eigen::Vector4d scaled = x.segment<4>(4 * static_cast<Eigen::Index>(k));
-    // The penalised unknowns are bounded below by 0; an iterate short of
-    // convergence may still sit a little outside, which must not make the
-    // infeasibility negative.
-    penalised += problem_.rules_of(v).linear.dot(scaled.cwiseMax(0.0));
-    if (v.kind == GroupKind::cable || v.kind == GroupKind::bounded_cable) {
-      result.cables[v.source].tension = (scaled(0) - scaled(1)) * wu;
-      result.cables[v.source].compression = scaled(1) * wu;
-      continue;
-    }
-    if (v.kind == GroupKind::slack) {
-      if (v.block_a >= 0 && rows[v.component] >= 3) {
-        result.virtual_torques[v.block_a](rows[v.component] - 3) =
-            (scaled(0) - scaled(1)) * wu * problem_.length_unit;
-      }
-      continue;
-    }
-    const Eigen::Vector4d forces = scaled * wu;
-    const Interface& contact = interfaces[v.source];
-    InterfaceForces& through = result.interfaces[v.source];
-    const double normal = forces(0) - forces(1);
-    through.compression += forces(0);
-    through.tension += forces(1);
-    through.normal_force += normal;
-    through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
-    pressure_weight[v.source] += normal;
-    pressure_moment[v.source] += normal * v.position;
-    result.block_tension[v.block_a] += forces(1);
-    result.block_tension[v.block_b] += forces(1);
-    result.vertex_forces.push_back(forces);
-    result.vertex_positions.push_back(v.position);
-    result.vertex_interface.push_back(v.source);
-  }
-  for (size_t i = 0; i < interfaces.size(); ++i) {
-    result.interfaces[i].center_of_pressure = pressure_weight[i] > 0.0
-                                                  ? Vec3(pressure_moment[i] / pressure_weight[i])
-                                                  : interfaces[i].center;
-  }
-
+  const double penalised = fill_result_forces(*structure_, interfaces, problem_, x, result);
   result.imbalance_without_tension = compression_only_imbalance(problem_, x);
   // Stability is a question of feasibility: forces that balance every block
   // without tension prove it, converged or not. Without such forces only a

@@ -60,16 +60,18 @@ enum class SolverStatus {
   numerical_error,  // a factorisation or step failed (e.g. loss of positive definiteness)
   interrupted,      // Ctrl-C or a sandboxed script's deadline (ashlar::stop_requested)
   certified,        // stopped at forces that prove stability (InteriorPointSettings::certify_below)
+  infeasible,       // the constraints have no solution (IPOPT, method cra: no compatible compression-only equilibrium)
 };
-inline constexpr EnumNames<SolverStatus, 6> kSolverStatusNames{{{{SolverStatus::converged, "converged"},
+inline constexpr EnumNames<SolverStatus, 7> kSolverStatusNames{{{{SolverStatus::converged, "converged"},
                                                                  {SolverStatus::inaccurate, "inaccurate"},
                                                                  {SolverStatus::max_iterations, "max_iterations"},
                                                                  {SolverStatus::numerical_error, "numerical_error"},
                                                                  {SolverStatus::interrupted, "interrupted"},
-                                                                 {SolverStatus::certified, "certified"}}}};
+                                                                 {SolverStatus::certified, "certified"},
+                                                                 {SolverStatus::infeasible, "infeasible"}}}};
 
-// "converged", "inaccurate", "max_iterations", "numerical_error", "interrupted"
-// or "certified".
+// "converged", "inaccurate", "max_iterations", "numerical_error", "interrupted",
+// "certified" or "infeasible".
 const char* status_name(SolverStatus status);
 
 // Whether the solve ended without an equilibrium one may use.
