@@ -80,8 +80,12 @@ std::vector<Vec3> edge_axes(const Block& a, const Block& b) {
   return axes;
 }
 
-// How deep a and b overlap (m), or nothing when they do not by more than tol.
+// How deep a and b overlap (m), or nothing when they do not by more than
+// tol plus the warp of both blocks: two sides of a joint whose warped faces
+// are cut differently (one face against two, as in staggered courses) are
+// different surfaces, and share a lens as thick as their warp.
 std::optional<double> overlap_depth(const Block& a, const Block& b, double tol) {
+  tol += a.warp() + b.warp();
   const Vec3 origin = 0.5 * (a.bounds().lo + a.bounds().hi);
   std::vector<Vec3> axes = face_axes(a, b);
   double least = std::numeric_limits<double>::infinity();

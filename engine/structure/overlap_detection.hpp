@@ -18,8 +18,11 @@ struct BlockOverlap {
   double depth = 0.0;
 };
 
-// Pairs whose overlap is deeper than `tolerance` (m), sorted by (a, b).
-// Blocks that touch along a face, an edge or a corner do not overlap.
+// Pairs whose overlap is deeper than `tolerance` (m) plus the warp of the
+// two blocks (Block::warp: two sides of a joint with warped faces cut
+// differently are different surfaces, as far apart as their warp), sorted
+// by (a, b). Blocks that touch along a face, an edge or a corner do not
+// overlap.
 // Convex pairs are decided by the separating-axis theorem (face normals of
 // both, cross products of their edges); a pair with a non-convex block that
 // no such axis separates is intersected exactly with CGAL.
