@@ -203,7 +203,9 @@ end
 -- polygons s:interfaces(contact) finds? Returns its JSON's stable,
 -- infeasibility and failing blocks (1-based). `friction`: mu, or
 -- math.huge for no sliding.
-function support.independent_verdict(s, friction, contact)
+-- Writes the input of tests/tools/equilibrium_lp.py for s (see
+-- independent_verdict) to `path`.
+function support.write_equilibrium_lp(s, friction, contact, path)
   local function point(p) return ("[%.17g,%.17g,%.17g]"):format(p[1], p[2], p[3]) end
   local parts = {}
   for i = 1, #s do
@@ -219,9 +221,13 @@ function support.independent_verdict(s, friction, contact)
     parts[#parts + 1] = ('{"a":%d,"b":%d,"normal":%s,"u":%s,"v":%s,"vertices":[%s]}'):format(
       f.a, f.b, point(f.normal), point(f.u), point(f.v), table.concat(vertices, ","))
   end
-  local path = os.tmpname()
   support.write_file(path, ('{"friction":%s,"blocks":[%s],"interfaces":[%s]}'):format(
     friction == math.huge and "null" or ("%.17g"):format(friction), blocks, table.concat(parts, ",")))
+end
+
+function support.independent_verdict(s, friction, contact)
+  local path = os.tmpname()
+  support.write_equilibrium_lp(s, friction, contact, path)
   local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."
   local script = here .. "/../tools/equilibrium_lp.py"
   local output, code = support.run("/usr/bin/python3 " .. support.quote(script) .. " " .. support.quote(path))

@@ -17,13 +17,13 @@ along u: the pyramid ashlar uses by default); the force acts on block b as
 c n + f_u u + f_v v and its opposite on block a. Every free block must
 balance its weight in force and in moment about its centroid. Slack
 variables on those six rows (forces over the mean block weight, moments
-over it times the mean block size) are minimised by GLPK's simplex method
-(through cvxopt): the optimum is 0 exactly when such an equilibrium exists.
+over it times the mean block size) are minimised by HiGHS (through SciPy's
+linprog): the optimum is 0 exactly when such an equilibrium exists.
 
-Prints one JSON object: status (cvxopt's for GLPK's), infeasibility (the optimum,
+Prints one JSON object: status (HiGHS's message), infeasibility (the optimum,
 summed over blocks), stable (infeasibility below --tolerance, default
 1e-6), the free blocks whose rows need slack (1-based, largest first) and
-the problem's sizes. Needs Debian's python3-cvxopt and python3-numpy.
+the problem's sizes. Needs Debian's python3-scipy and python3-numpy.
 """
 
 import argparse
@@ -31,11 +31,12 @@ import json
 import sys
 
 try:
-    import cvxopt
-    import cvxopt.solvers
+    import numpy
+    import scipy.optimize
+    import scipy.sparse
 except ImportError:
-    sys.exit("equilibrium_lp.py: cvxopt is missing: install it with "
-             "'apt-get install python3-cvxopt python3-numpy' (run.sh does) "
+    sys.exit("equilibrium_lp.py: scipy is missing: install it with "
+             "'apt-get install python3-scipy python3-numpy' (run.sh does) "
              "and run this script with /usr/bin/python3")
 
 
@@ -53,26 +54,24 @@ def solve(model, tolerance):
     sizes = [b.get("size", 1.0) for b in blocks]
     mean_size = sum(sizes[i] for i in free) / len(free)
 
-    equality = {}  # (row, column) -> value
-    rhs = [0.0] * (6 * len(free))
+    # Columns: per contact vertex c, f_u, f_v; then per balance row s+, s-.
+    rows, cols, values = [], [], []          # equality rows
+    g_rows, g_cols, g_values = [], [], []    # friction rows, <= 0
     columns = 0
-    inequality = []  # (row, column, value)
-    inequality_rows = 0
+    friction_rows = 0
     for contact in model["interfaces"]:
         a, b = contact["a"] - 1, contact["b"] - 1
         directions = [contact["normal"], contact["u"], contact["v"]]
         for point in contact["vertices"]:
             c, fu, fv = columns, columns + 1, columns + 2
             columns += 3
-            inequality.append((inequality_rows, c, -1.0))  # c >= 0
-            inequality_rows += 1
             if mu is not None:
                 for su in (1.0, -1.0):
                     for sv in (1.0, -1.0):
-                        inequality.append((inequality_rows, fu, su))
-                        inequality.append((inequality_rows, fv, sv))
-                        inequality.append((inequality_rows, c, -mu))
-                        inequality_rows += 1
+                        g_rows += [friction_rows] * 3
+                        g_cols += [fu, fv, c]
+                        g_values += [su, sv, -mu]
+                        friction_rows += 1
             for block, sign in ((b, 1.0), (a, -1.0)):
                 if block not in row_of:
                     continue
@@ -82,41 +81,42 @@ def solve(model, tolerance):
                     force = [sign * d / mean_weight for d in direction]
                     moment = [m / mean_size for m in cross(arm, force)]
                     for k in range(3):
-                        equality[(row + k, column)] = equality.get((row + k, column), 0.0) + force[k]
-                        equality[(row + 3 + k, column)] = equality.get((row + 3 + k, column), 0.0) + moment[k]
+                        rows += [row + k, row + 3 + k]
+                        cols += [column, column]
+                        values += [force[k], moment[k]]
+    balance_rows = 6 * len(free)
+    rhs = numpy.zeros(balance_rows)
     for k, block in enumerate(free):
         rhs[6 * k + 2] = blocks[block]["weight"] / mean_weight  # the forces carry the weight
-    # Slack: row + s_plus - s_minus, both >= 0, minimised.
     slack = columns
-    rows = 6 * len(free)
-    for row in range(rows):
-        equality[(row, slack + 2 * row)] = 1.0
-        equality[(row, slack + 2 * row + 1)] = -1.0
-        for column in (slack + 2 * row, slack + 2 * row + 1):
-            inequality.append((inequality_rows, column, -1.0))
-            inequality_rows += 1
-    total = slack + 2 * rows
-    cost = cvxopt.matrix([0.0] * slack + [1.0] * (2 * rows))
-    A = cvxopt.spmatrix([v for v in equality.values()], [r for r, _ in equality], [c for _, c in equality],
-                        (rows, total))
-    G = cvxopt.spmatrix([v for _, _, v in inequality], [r for r, _, _ in inequality],
-                        [c for _, c, _ in inequality], (inequality_rows, total))
-    h = cvxopt.matrix([0.0] * inequality_rows)
-    # GLPK's presolver and tight bounds: without them its simplex method has
-    # stopped "optimal" at a vertex whose slack was 0.005 above the optimum.
-    cvxopt.solvers.options["glpk"] = {"msg_lev": "GLP_MSG_OFF", "presolve": "GLP_ON",
-                                      "tol_bnd": 1e-10, "tol_dj": 1e-10}
-    answer = cvxopt.solvers.lp(cost, G, h, A, cvxopt.matrix(rhs), solver="glpk")
-    x = answer["x"]
+    for row in range(balance_rows):
+        rows += [row, row]
+        cols += [slack + 2 * row, slack + 2 * row + 1]
+        values += [1.0, -1.0]
+    total = slack + 2 * balance_rows
+    A = scipy.sparse.csr_matrix((values, (rows, cols)), shape=(balance_rows, total))
+    G = scipy.sparse.csr_matrix((g_values, (g_rows, g_cols)), shape=(friction_rows, total)) if friction_rows else None
+    cost = numpy.zeros(total)
+    cost[slack:] = 1.0
+    bounds = []
+    for k in range(slack // 3):
+        bounds += [(0, None), (None, None), (None, None)]
+    bounds += [(0, None)] * (2 * balance_rows)
+    answer = scipy.optimize.linprog(cost, A_ub=G, b_ub=numpy.zeros(friction_rows) if friction_rows else None,
+                                    A_eq=A, b_eq=rhs, bounds=bounds, method="highs",
+                                    options={"primal_feasibility_tolerance": 1e-10,
+                                             "dual_feasibility_tolerance": 1e-10})
+    x = answer.x
     need = []
-    for k, block in enumerate(free):
-        amount = sum(x[slack + 2 * row] + x[slack + 2 * row + 1] for row in range(6 * k, 6 * k + 6))
-        if amount > tolerance:
-            need.append((amount, block + 1))
+    if x is not None:
+        for k, block in enumerate(free):
+            amount = float(numpy.sum(x[slack + 12 * k: slack + 12 * k + 12]))
+            if amount > tolerance:
+                need.append((amount, block + 1))
     need.sort(reverse=True)
-    infeasibility = max(0.0, answer["primal objective"]) if x is not None else float("inf")
+    infeasibility = max(0.0, float(answer.fun)) if x is not None else float("inf")
     return {
-        "status": answer["status"],
+        "status": answer.message,
         "infeasibility": infeasibility,
         "stable": infeasibility <= tolerance,
         "failing_blocks": [block for _, block in need],
