@@ -256,8 +256,8 @@ void push_displacements(lua_State* L, const EquilibriumResult& result) {
 }
 
 void push_blocks(lua_State* L, const EquilibriumResult& result) {
-  // For floating blocks, the contact they miss (if one is near): scratch
-  // memory in a userdata, which Lua frees however this ends.
+  // For floating and failing blocks, the contact they miss (if one is
+  // near): scratch memory in a userdata, which Lua frees however this ends.
   const size_t count = result.block_tension.size();
   struct Floating {
     bool floating;
@@ -269,6 +269,11 @@ void push_blocks(lua_State* L, const EquilibriumResult& result) {
     blocks[result.floating_blocks[k]].floating = true;
     if (k < result.floating_gaps.size() && result.floating_gaps[k].block >= 0) {
       blocks[result.floating_blocks[k]].missed = &result.floating_gaps[k];
+    }
+  }
+  for (size_t k = 0; k < result.failing_blocks.size(); ++k) {
+    if (k < result.failing_gaps.size() && result.failing_gaps[k].block >= 0) {
+      blocks[result.failing_blocks[k]].missed = &result.failing_gaps[k];
     }
   }
   lua_createtable(L, static_cast<int>(count), 0);
@@ -373,10 +378,17 @@ int w_Result_index(lua_State* L) {
         set_field(L, "assembly", r.timings.assembly);
         set_field(L, "factorization", r.timings.factorization);
         set_field(L, "solve", r.timings.solve);
-      } else if (is("floating")) {
-        lua_createtable(L, static_cast<int>(r.floating_blocks.size()), 0);
-        for (size_t i = 0; i < r.floating_blocks.size(); ++i) {
-          lua_pushinteger(L, r.floating_blocks[i] + 1);
+      } else if (is("floating") || is("failing")) {
+        const std::vector<int>& which = is("floating") ? r.floating_blocks : r.failing_blocks;
+        lua_createtable(L, static_cast<int>(which.size()), 0);
+        for (size_t i = 0; i < which.size(); ++i) {
+          lua_pushinteger(L, which[i] + 1);
+          lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+        }
+      } else if (is("warnings")) {
+        lua_createtable(L, static_cast<int>(r.warnings.size()), 0);
+        for (size_t i = 0; i < r.warnings.size(); ++i) {
+          push_string(L, r.warnings[i]);
           lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
         }
       } else if (is("method")) {
@@ -421,6 +433,16 @@ int w_Result_tostring(lua_State* L) {
         text << " touches nothing within 1 % of the structure's size";
       }
     }
+    // The first failing block that just misses a contact: the verdict may
+    // turn on a joint the tolerance did not find.
+    for (size_t k = 0; k < r.failing_gaps.size() && k < r.failing_blocks.size(); ++k) {
+      if (r.failing_gaps[k].block < 0) continue;
+      text << "; failing block " << r.failing_blocks[k] + 1 << " is " << r.failing_gaps[k].tolerance
+           << " m from block " << r.failing_gaps[k].block + 1 << " (contact_tolerance = " << r.failing_gaps[k].tolerance
+           << " closes it)";
+      break;
+    }
+    if (!r.warnings.empty()) text << "; " << r.warnings.size() << (r.warnings.size() == 1 ? " warning" : " warnings");
     text << ")";
     return push_string(L, text.str());
   });

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "io/structure_json.hpp"
+#include "structure/tolerance_sweep.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"
 #include "wrap_Block.hpp"
@@ -13,7 +14,7 @@ namespace ashlar::lua {
 ContactOptions contact_options(const OptionTable& options, const char* tolerance_key, const char* angle_key,
                                const char* min_width_key, const char* min_area_key) {
   ContactOptions contact;
-  contact.tolerance = options.positive(tolerance_key, 0.0, true);
+  if (tolerance_key) contact.tolerance = options.positive(tolerance_key, 0.0, true);
   if (const std::optional<double> angle = options.number(angle_key)) {
     if (!(*angle > 0.0 && *angle < 0.5 * M_PI)) {
       throw ArgError(options.arg(), std::string(angle_key) + ": expected an angle in radians between 0 and pi/2, got " +
@@ -464,9 +465,62 @@ void register_Structure(lua_State* L) {
   register_type(L, kStructureMeta, methods, metamethods);
 }
 
+// ashlar.suggest_tolerance(s, { tolerances = {...}, angle, min_width, min_area }):
+// the contacts at each candidate tolerance and the range where they do not
+// change.
+int w_suggest_tolerance(lua_State* L) {
+  return guard(L, [&] {
+    const Structure& s = *luax_checkStructure(L, 1);
+    const OptionTable options(L, 2, {"tolerances", "angle", "min_width", "min_area"});
+    const ContactOptions contact = contact_options(options, nullptr, "angle", "min_width", "min_area");
+    std::vector<double> tolerances;
+    const int type = options.push("tolerances");
+    if (type == LUA_TTABLE) {
+      const lua_Integer count = luaL_len(L, -1);
+      for (lua_Integer k = 1; k <= count; ++k) {
+        lua_rawgeti(L, -1, k);
+        if (lua_type(L, -1) != LUA_TNUMBER) {
+          throw ArgError(2, "tolerances[" + std::to_string(k) + "]: expected a number (m), got " + type_name(L, -1));
+        }
+        tolerances.push_back(lua_tonumber(L, -1));
+        lua_pop(L, 1);
+      }
+    } else if (type != LUA_TNIL) {
+      throw ArgError(2, "tolerances: expected a list of increasing numbers (m), got " + type_name(L, -1));
+    }
+    lua_pop(L, 1);
+    if (tolerances.empty()) tolerances = default_sweep_tolerances(s);
+    const ToleranceSweep sweep = sweep_contact_tolerance(s, contact, tolerances);
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 4);
+      lua_createtable(L, static_cast<int>(sweep.rows.size()), 0);
+      for (size_t k = 0; k < sweep.rows.size(); ++k) {
+        const ToleranceRow& row = sweep.rows[k];
+        lua_createtable(L, 0, 8);
+        set_field(L, "tolerance", row.tolerance);
+        set_field(L, "interfaces", row.interfaces);
+        set_field(L, "pairs", row.pairs);
+        set_field(L, "new_pairs", row.new_pairs);
+        set_field(L, "lost_pairs", row.lost_pairs);
+        set_field(L, "overlaps", row.overlaps);
+        set_field(L, "floating", row.floating);
+        set_field(L, "warped", row.warped);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "rows");
+      if (sweep.suggested > 0.0) {
+        set_field(L, "lo", sweep.lo);
+        set_field(L, "hi", sweep.hi);
+        set_field(L, "suggested", sweep.suggested);
+      }
+      return 1;
+    });
+  });
+}
+
 void set_structure_functions(lua_State* L) {
   static const luaL_Reg functions[] = {
-      {"structure", w_structure}, {"load", w_load}, {nullptr, nullptr}};
+      {"structure", w_structure}, {"load", w_load}, {"suggest_tolerance", w_suggest_tolerance}, {nullptr, nullptr}};
   luaL_setfuncs(L, functions, 0);
 }
 

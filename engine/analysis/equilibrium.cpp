@@ -6,6 +6,7 @@
 #include "analysis/cra.hpp"
 #include "analysis/equilibrium_analysis.hpp"
 #include "analysis/kinematic.hpp"
+#include "analysis/verdict_notes.hpp"
 #include "core/error.hpp"
 #include "core/text.hpp"
 
@@ -61,9 +62,10 @@ void check_analysed_block(const EquilibriumProblem& problem, const Structure& st
   }
 }
 
-EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
-                                      const EquilibriumResult* warm_start,
-                                      EquilibriumProblem* problem_out) {
+namespace {
+
+EquilibriumResult analyze_by_method(const Structure& structure, const AnalysisSettings& settings,
+                                    const EquilibriumResult* warm_start, EquilibriumProblem* problem_out) {
   if (settings.method == AnalysisMethod::kinematic) {
     if (warm_start || problem_out) {
       throw InvalidArgument("the kinematic method takes no warm start and gives no problem out");
@@ -82,6 +84,16 @@ EquilibriumResult analyze_equilibrium(const Structure& structure, const Analysis
   EquilibriumResult result = analysis.solve(warm_start != nullptr);
   result.solution = analysis.take_solution();  // moved: the object ends here
   if (problem_out) *problem_out = analysis.take_problem();
+  return result;
+}
+
+}  // namespace
+
+EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
+                                      const EquilibriumResult* warm_start,
+                                      EquilibriumProblem* problem_out) {
+  EquilibriumResult result = analyze_by_method(structure, settings, warm_start, problem_out);
+  annotate_verdict(structure, settings, result);
   return result;
 }
 

@@ -158,6 +158,16 @@ struct EquilibriumResult {
   // not analysed) the virtual displacement of the solution. Empty for the
   // other methods and when the solve gave no answer.
   std::vector<BlockDisplacement> displacements;
+  // An unstable verdict without floating blocks: the blocks whose balance
+  // needs the most tension (over 1e-3 of the largest, at most
+  // kFailingBlocksShown, most first), and parallel to them the contact each
+  // just misses, as floating_gaps: a verdict that turns on a joint the
+  // contact tolerance did not find. Filled by analyze_equilibrium.
+  std::vector<int> failing_blocks;
+  std::vector<MissedContact> failing_gaps;
+  // What a user should know before trusting the verdict (verdict_notes.hpp),
+  // e.g. a stable verdict that rests on friction at its limit.
+  std::vector<std::string> warnings;
   InteriorPointSolution solution;              // scaled; for warm starts (filled by analyze_equilibrium)
 };
 

@@ -128,9 +128,10 @@ public:
   // Throws InvalidArgument unless some block is not a support: an empty
   // structure, or ground alone, has nothing to analyse.
   void require_free_block(const std::string& caller) const;
+  // Every block, in order, for the detection functions that take a list.
+  std::vector<const Block*> block_pointers() const;
 
 private:
-  std::vector<const Block*> block_pointers() const;
   void check_cable(const Cable& cable, int index) const;
   Interface explicit_interface(int a, int b, std::vector<Vec3> polygon, const std::optional<Vec3>& normal,
                                const std::string& what) const;
