@@ -16,8 +16,11 @@
 // dilatancy), then sets each strength to mu times the compression that
 // round found. In that QP joints carry no tension, and what they cannot
 // carry goes to virtual forces and torques on the blocks at the price of the
-// kinetic energy of the motion they would start (plus an exact linear
-// penalty): a round is one step of frictional contact dynamics from rest
+// kinetic energy of the motion they would start (plus a linear penalty of
+// 1e-2, just enough to make zero virtual load exact: a larger one is a dead
+// zone in which a block whose fall a steep face blocks gets no force from
+// that face, so the joint never gains strength): a round is one step of
+// frictional contact dynamics from rest
 // (Gauss's least constraint), so its compressions are those the loads press
 // into the joints, and among equilibria it picks the least sum of squared
 // forces (contacts with equal springs). The first round has no strength at
