@@ -54,7 +54,8 @@ Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceL
 // one plane): after block_from_mesh's welding and merging it is one simple
 // polygon face, planar within `planarity` of its size (or 1e-6 of it).
 // Projected onto its best-fit plane, counter-clockwise about the normal of
-// the given winding. Nothing for anything else (a closed or a bent surface).
+// the given winding. Nothing for anything else (a closed or a bent surface,
+// or input block_from_mesh refuses).
 std::optional<std::vector<Vec3>> open_planar_outline(const std::vector<Vec3>& vertices,
                                                      const std::vector<FaceLoop>& faces,
                                                      double weld_tolerance, double planarity);

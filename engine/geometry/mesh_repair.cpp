@@ -414,22 +414,34 @@ void drop_unused_vertices(std::vector<Vec3>& points, std::vector<FaceLoop>& face
   points = std::move(used);
 }
 
+// The mesh welded, without what welding made degenerate, coplanar faces
+// merged (and, with a planarity, warped triangle pairs), edge midpoints and
+// unused vertices dropped.
+struct RepairedMesh {
+  std::vector<Vec3> points;
+  std::vector<FaceLoop> loops;
+};
+
+RepairedMesh repair_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
+                         double weld_tolerance, double planarity) {
+  Box3 box;
+  for (const Vec3& p : vertices) box.add(p);
+  const double size = box.diagonal();
+  RepairedMesh mesh{vertices, reindex_faces(faces, weld(vertices, weld_tolerance))};
+  mesh.loops = drop_flat_faces(mesh.points, std::move(mesh.loops), size);
+  mesh.loops = merge_coplanar_faces(mesh.points, mesh.loops, kPlaneTolerance * size);
+  if (planarity > 0.0) mesh.loops = merge_warped_triangle_pairs(mesh.points, std::move(mesh.loops), planarity);
+  remove_edge_midpoints(mesh.points, mesh.loops, kCollinear * size);
+  drop_unused_vertices(mesh.points, mesh.loops);
+  return mesh;
+}
+
 }  // namespace
 
 Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
                       double weld_tolerance, const BlockStyle& style, const std::string& what) {
   check_input(vertices, faces, weld_tolerance, what);
-  Box3 box;
-  for (const Vec3& p : vertices) box.add(p);
-  const double size = box.diagonal();
-
-  std::vector<Vec3> points = vertices;
-  std::vector<FaceLoop> loops = reindex_faces(faces, weld(vertices, weld_tolerance));
-  loops = drop_flat_faces(points, std::move(loops), size);
-  loops = merge_coplanar_faces(points, loops, kPlaneTolerance * size);
-  if (style.planarity > 0.0) loops = merge_warped_triangle_pairs(points, std::move(loops), style.planarity);
-  remove_edge_midpoints(points, loops, kCollinear * size);
-  drop_unused_vertices(points, loops);
+  auto [points, loops] = repair_mesh(vertices, faces, weld_tolerance, style.planarity);
   // The defect is reported in the repaired mesh's numbering, so say what
   // the repair did when it changed the counts.
   std::ostringstream repair;
@@ -449,23 +461,12 @@ Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceL
 std::optional<std::vector<Vec3>> open_planar_outline(const std::vector<Vec3>& vertices,
                                                      const std::vector<FaceLoop>& faces,
                                                      double weld_tolerance, double planarity) {
-  for (const Vec3& p : vertices) {
-    if (!p.allFinite()) return std::nullopt;
+  try {
+    check_input(vertices, faces, weld_tolerance, "open surface");
+  } catch (const Error&) {
+    return std::nullopt;  // block_from_mesh names the defect
   }
-  for (const FaceLoop& face : faces) {
-    for (int index : face) {
-      if (index < 0 || index >= static_cast<int>(vertices.size())) return std::nullopt;
-    }
-  }
-  if (!std::isfinite(weld_tolerance) || weld_tolerance < 0.0) return std::nullopt;
-  Box3 box;
-  for (const Vec3& p : vertices) box.add(p);
-  const double size = box.diagonal();
-  std::vector<Vec3> points = vertices;
-  std::vector<FaceLoop> loops = reindex_faces(faces, weld(vertices, weld_tolerance));
-  loops = drop_flat_faces(points, std::move(loops), size);
-  loops = merge_coplanar_faces(points, loops, kPlaneTolerance * size);
-  remove_edge_midpoints(points, loops, kCollinear * size);
+  const auto [points, loops] = repair_mesh(vertices, faces, weld_tolerance, planarity);
   if (loops.size() != 1 || loops[0].size() < 3) return std::nullopt;
   std::vector<Vec3> outline;
   for (int index : loops[0]) outline.push_back(points[index]);
