@@ -55,9 +55,12 @@ struct JacobianEntry {
 // contact vertices and balance rows. Built once; IPOPT calls back.
 class CraProgram : public Ipopt::TNLP {
 public:
+  // start: the equilibrium method's forces (4 per group, scaled: c, s,
+  // f_u, f_v) to start from, or empty.
   CraProgram(const EquilibriumProblem& problem, const EquilibriumOptions& options, const CraSettings& settings,
-             bool penalty)
-      : problem_(problem), settings_(settings), layout_(penalty), friction_(friction_rows(options)) {
+             bool penalty, Eigen::VectorXd start)
+      : problem_(problem), settings_(settings), layout_(penalty), friction_(friction_rows(options)),
+        start_(std::move(start)) {
     vertices_ = problem.contact_vertex_count;
     rows_ = problem.block_rows;
     q_start_ = layout_.stride * vertices_;
@@ -118,15 +121,53 @@ public:
     return true;
   }
 
+  // Variables and rows in their own units: displacements (d, q) and the
+  // rows they fill (compatibility, f_n (d_n + eps)) in d_bnd, alpha (a
+  // force per displacement) in 1 / d_bnd, so that every scaled unknown and
+  // residual is O(1) and the fraction-to-the-boundary rule does not cut
+  // steps in d, whose range is 2 d_bnd, to a thousandth.
+  bool get_scaling_parameters(Number& objective_scaling, bool& use_x_scaling, Index n, Number* x_scaling,
+                              bool& use_g_scaling, Index m, Number* g_scaling) override {
+    const double bound = settings_.displacement_bound;
+    objective_scaling = 1.0;
+    use_x_scaling = use_g_scaling = true;
+    std::fill(x_scaling, x_scaling + n, 1.0);
+    std::fill(g_scaling, g_scaling + m, 1.0);
+    for (int k = 0; k < vertices_; ++k) {
+      Number* v = x_scaling + layout_.stride * k;
+      v[layout_.dn] = v[layout_.du] = v[layout_.dv] = 1.0 / bound;
+      v[layout_.alpha] = bound;
+      Number* r = g_scaling + problem_.row_count + per_vertex_rows_ * k;
+      r[0] = r[1] = r[2] = 1.0 / bound;
+      r[3 + friction_.rows()] = 1.0 / bound;
+    }
+    std::fill(x_scaling + q_start_, x_scaling + n, 1.0 / bound);
+    return true;
+  }
+
   bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool, Number*) override {
-    // As compas_cra's cra: forces at one mean weight, blocks at rest, no
-    // alignment. compas_cra starts its penalty form at zero forces, where
-    // both products f+ f- and f+ (d_n + eps) have zero gradients; from
-    // there IPOPT's restoration failed on a block past its support's edge.
+    // The equilibrium method's forces (balanced, within the friction rows)
+    // when it gave an answer, else (as compas_cra's cra) one mean weight
+    // each; blocks at rest. compas_cra starts its penalty form at zero
+    // forces, where both products f+ f- and f+ (d_n + eps) have zero
+    // gradients; from there IPOPT's restoration failed on a block past its
+    // support's edge.
     std::fill(x, x + n, 0.0);
+    const bool warm = start_.size() == 4 * static_cast<Eigen::Index>(vertices_);
     for (int k = 0; k < vertices_; ++k) {
       Number* v = x + layout_.stride * k;
-      v[layout_.normal] = v[layout_.fu] = v[layout_.fv] = 1.0;
+      if (!warm) {
+        v[layout_.normal] = v[layout_.fu] = v[layout_.fv] = 1.0;
+        continue;
+      }
+      const double normal = start_(4 * k) - start_(4 * k + 1);
+      v[layout_.normal] = std::max(normal, 0.0);
+      if (layout_.penalty) v[layout_.tension] = std::max(-normal, 0.0);
+      v[layout_.fu] = start_(4 * k + 2);
+      v[layout_.fv] = start_(4 * k + 3);
+      // alpha = 0 with d = 0 zeroes the alignment rows' derivatives in
+      // both: their only Newton step would cancel all friction at once.
+      v[layout_.alpha] = 1.0 / settings_.displacement_bound;
     }
     return true;
   }
@@ -315,6 +356,7 @@ private:
   CraSettings settings_;
   VertexLayout layout_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> friction_;
+  Eigen::VectorXd start_;
   int vertices_ = 0, rows_ = 6, q_start_ = 0, variables_ = 0, per_vertex_rows_ = 0, constraints_ = 0;
   // variable -2: a constant entry of a nonlinear row (eval_g computes those
   // rows whole, so it must not add it as a linear term).
@@ -400,7 +442,18 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
   if (problem.row_count == 0) {
     result.status = SolverStatus::converged;  // nothing to balance
   } else {
-    Ipopt::SmartPtr<CraProgram> program = new CraProgram(problem, options, settings.cra, penalty);
+    Eigen::VectorXd start;
+    {
+      AnalysisSettings equilibrium = settings;
+      equilibrium.method = AnalysisMethod::equilibrium;
+      equilibrium.problem = options;
+      EquilibriumAnalysis analysis(structure, equilibrium);
+      const EquilibriumResult first = analysis.solve();
+      if (!has_no_answer(first.status) && analysis.solution().x.size() >= 4 * vertices) {
+        start = analysis.solution().x.head(4 * vertices);
+      }
+    }
+    Ipopt::SmartPtr<CraProgram> program = new CraProgram(problem, options, settings.cra, penalty, std::move(start));
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
     app->Options()->SetIntegerValue("print_level", settings.cra.verbose ? 5 : 0);
     app->Options()->SetStringValue("sb", "yes");  // no banner
@@ -414,6 +467,11 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     // The adaptive barrier update: with the monotone one the penalty form
     // failed (restoration) on a block past its support's edge.
     app->Options()->SetStringValue("mu_strategy", "adaptive");
+    app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
+    // METIS's nested dissection: MUMPS's default (QAMD) ordering of the
+    // Armadillo vault's KKT system gave fronts whose dense factorisation
+    // took 2-20 s per iteration, METIS's 0.1-0.8 s.
+    app->Options()->SetIntegerValue("mumps_pivot_order", 5);
     if (app->Initialize() != Ipopt::Solve_Succeeded) {
       throw std::runtime_error("IPOPT failed to initialise");
     }
