@@ -472,7 +472,8 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     // Armadillo vault's KKT system gave fronts whose dense factorisation
     // took 2-20 s per iteration, METIS's 0.1-0.8 s.
     app->Options()->SetIntegerValue("mumps_pivot_order", 5);
-    if (app->Initialize() != Ipopt::Solve_Succeeded) {
+    // No options file: an ipopt.opt in the working directory would change the answer unseen.
+    if (app->Initialize("") != Ipopt::Solve_Succeeded) {
       throw std::runtime_error("IPOPT failed to initialise");
     }
     const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(program);
