@@ -96,15 +96,20 @@ describe("ashlar.suggest_tolerance", function()
     assert.are.equal(4, sweep.rows[4].new_pairs)
     assert.are.equal(0, sweep.rows[4].floating)
     assert.are.equal(1.1e-3, sweep.lo)
+    assert.are.equal(19, #ashlar.suggest_tolerance(s).rows)  -- the default candidates
     assert.are.equal(8e-2, sweep.hi)
     near(sweep.suggested, math.sqrt(1.1e-3 * 8e-2), 1e-15, "suggested")
     assert.is_true(ashlar.analyze(s, { contact_tolerance = sweep.suggested }).stable)
   end)
 
   it("suggests a range for the Armadillo vault that holds all its joints", function()
+    -- Five of the default candidates (scripts/suggest_tolerance.lua prints
+    -- all 19): the sweep costs a detection and an overlap check each.
     local s = ashlar.import("../data/compas_cra/armadillo_cra.json", { planarity = 0.05, interfaces = "detect" })
-    local sweep = ashlar.suggest_tolerance(s)
-    assert.are.equal(19, #sweep.rows)
+    local sweep = ashlar.suggest_tolerance(s, { tolerances = { 0.003003, 0.006988, 0.01066, 0.03784, 0.1343 } })
+    assert.are.equal(5, #sweep.rows)
+    assert.are.equal(1042, sweep.rows[2].pairs)
+    assert.are.equal(1043, sweep.rows[3].pairs)
     -- From about 1 cm (below, narrow joints are still being found) to over
     -- 10 cm the 1,043 joints are the same (scripts/suggest_tolerance.lua).
     assert.is_true(sweep.lo < 0.011 and sweep.hi > 0.1, ("suggested range %g to %g m"):format(sweep.lo, sweep.hi))
