@@ -115,9 +115,10 @@ case $mode in
     ;;
   quickstart)
     set_up_and_build
-    mkdir -p "$BUILD_DIR/out"
-    say "running scripts/quickstart.lua (output in $BUILD_DIR/out/)"
-    exec "$BUILD_DIR/bin/ashlar" scripts/quickstart.lua "${@:-$BUILD_DIR/out}"
+    out=${1:-$BUILD_DIR/out}
+    mkdir -p "$out"
+    say "running scripts/quickstart.lua (output in $out/)"
+    exec "$BUILD_DIR/bin/ashlar" scripts/quickstart.lua "$out"
     ;;
   test)
     set_up_and_build
