@@ -5,17 +5,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "analysis/verdict_notes.hpp"
 #include "core/clock.hpp"
 
 namespace ashlar {
-
-namespace {
-
-// The largest gap, as a fraction of the structure's size, reported as the
-// reason a block floats.
-constexpr double kNearMiss = 0.01;
-
-}  // namespace
 
 double fill_result_forces(const Structure& structure, const std::vector<Interface>& interfaces,
                           const EquilibriumProblem& problem, const Eigen::VectorXd& x, EquilibriumResult& result) {

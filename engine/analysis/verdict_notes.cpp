@@ -8,9 +8,6 @@ namespace ashlar {
 
 namespace {
 
-// Gaps beyond this fraction of the structure's size are not near misses
-// (as for floating blocks, equilibrium_analysis.cpp).
-constexpr double kNearMiss = 0.01;
 // An interface uses all its friction when its friction is within this
 // fraction of what mu times its compression allows.
 constexpr double kAtLimit = 1e-3;
@@ -61,7 +58,7 @@ void warn_of_friction_at_limit(const Structure& structure, const AnalysisSetting
   int free_blocks = 0;
   for (int i = 0; i < structure.size(); ++i) {
     if (structure.is_support(i)) continue;
-    weight += 9.81 * structure.block(i).mass();
+    weight += kGravity * structure.block(i).mass();
     ++free_blocks;
   }
   if (free_blocks == 0) return;

@@ -7,6 +7,10 @@
 
 namespace ashlar {
 
+// The largest gap, as a fraction of the structure's size, reported as the
+// contact a floating or failing block misses.
+constexpr double kNearMiss = 0.01;
+
 // How many failing blocks an unstable result names.
 constexpr int kFailingBlocksShown = 10;
 

@@ -61,7 +61,6 @@ Vec3 face_centre(const std::vector<Vec3>& vertices, const FaceLoop& face) {
   return centre / static_cast<double>(face.size());
 }
 
-
 MassProperties mass_properties(const std::vector<Vec3>& vertices,
                                const std::vector<FaceLoop>& faces) {
   MassProperties props;
