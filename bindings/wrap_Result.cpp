@@ -1,15 +1,13 @@
 #include "wrap_Result.hpp"
 
-#include "analysis/kinematic.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
 
+#include "analysis/compare_methods.hpp"
 #include "analysis/cra.hpp"
 #include "analysis/equilibrium.hpp"
-#include "analysis/kinematic.hpp"
 #include "analysis/qps_export.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"

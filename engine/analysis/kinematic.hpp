@@ -49,7 +49,6 @@
 
 #include "analysis/equilibrium.hpp"
 #include "analysis/load_factor.hpp"
-#include "dynamics/simulation.hpp"
 
 namespace ashlar {
 
@@ -57,27 +56,6 @@ namespace ashlar {
 // result's method is kinematic and `rounds` the equilibrium solves made;
 // its forces, tension and mechanism are the last round's.
 EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSettings& settings);
-
-// Both methods on one structure (settings.method is ignored), and where
-// they differ; with `dynamics`, also the simulation from rest (its friction
-// and contact options replaced by the settings'): the dynamic verdict,
-// moved or stayed.
-struct MethodComparison {
-  EquilibriumResult equilibrium, kinematic;
-  // Interfaces whose friction in the equilibrium method's forces exceeds mu
-  // times the compression the kinematic method finds there: friction that
-  // rests on normal force no load presses in (N), by how much it exceeds,
-  // largest first. Interfaces within 1e-6 of the total weight are left out.
-  struct Borrowed {
-    int interface = -1;              // index into structure.interfaces(contact)
-    double friction = 0.0;           // sum over its vertices of |friction|, equilibrium method
-    double available = 0.0;          // mu x the sum of its compressions, kinematic method
-  };
-  std::vector<Borrowed> borrowed;
-  std::optional<SimulationResult> dynamic;  // when asked for
-};
-MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings,
-                                 const SimulationOptions* dynamics = nullptr);
 
 // The load factor by the kinematic method: the largest lambda for which the
 // structure with the body force lambda x weight x direction on every free
