@@ -24,10 +24,22 @@ constexpr const char* kResultMeta = "ashlar.Result";
 // structure at analysis time (the structure may change afterwards).
 struct AnalysisRecord {
   EquilibriumResult result;
+  std::optional<Arbitration> check;  // method = "auto": the arbiter's answer (r.check)
   std::vector<Vec3> thrust;
   std::vector<std::vector<Vec3>> thrust_branches;
   int block_count = 0;
 };
+
+void push_result(lua_State* L, const Structure& structure, EquilibriumResult result,
+                 std::optional<Arbitration> check) {
+  auto record = std::make_shared<AnalysisRecord>();
+  record->result = std::move(result);
+  record->check = std::move(check);
+  record->thrust = thrust_line(structure, record->result);
+  record->thrust_branches = thrust_polylines(structure, record->result);
+  record->block_count = structure.size();
+  push_boxed(L, std::move(record), kResultMeta, 1);
+}
 
 }  // namespace
 
@@ -121,6 +133,58 @@ std::shared_ptr<AnalysisRecord> check_record(lua_State* L, int idx) {
   return check_boxed<AnalysisRecord>(L, idx, kResultMeta, "Result");
 }
 
+// The arbiter's answer as a Lua table (compare_methods' fields, r.check):
+// verdict, stable, decided_by, reason, methods = { equilibrium, kinematic,
+// dynamics, cra } (each one's verdict), displacement and displaced_block
+// (the dynamics'), friction_demand and margin (mu over it).
+void push_arbitration_fields(lua_State* L, const Arbitration& a) {
+  set_string(L, "verdict", kVerdictNames.name(a.verdict));
+  set_boolean(L, "stable", a.verdict == Verdict::stands);
+  if (!a.decided_by.empty()) set_string(L, "decided_by", a.decided_by.c_str());
+  push_string(L, a.reason);
+  lua_setfield(L, -2, "reason");
+  lua_createtable(L, 0, 4);
+  set_string(L, "equilibrium", kVerdictNames.name(a.equilibrium));
+  set_string(L, "kinematic", kVerdictNames.name(a.kinematic));
+  if (a.dynamics) set_string(L, "dynamics", kVerdictNames.name(*a.dynamics));
+  if (a.cra) set_string(L, "cra", kVerdictNames.name(*a.cra));
+  lua_setfield(L, -2, "methods");
+  if (a.dynamics) {
+    set_field(L, "displacement", a.displacement);
+    if (a.displaced_block >= 0) set_index_field(L, "displaced_block", a.displaced_block);
+  }
+  if (std::isfinite(a.friction_demand)) {
+    set_field(L, "friction_demand", a.friction_demand);
+    set_field(L, "margin", a.friction / a.friction_demand);
+  }
+}
+
+// Option `key` of compare_methods saying when a further opinion runs: nil
+// (where the static methods disagree), true (always) or false (never).
+OpinionWhen opinion_when(const OptionTable& options, const char* key, int type) {
+  if (type == LUA_TNIL) return OpinionWhen::on_disagreement;
+  if (type != LUA_TBOOLEAN) {
+    throw ArgError(options.arg(), std::string(key) + ": expected true or false, got " +
+                                      type_name(options.state(), -1));
+  }
+  return lua_toboolean(options.state(), -1) ? OpinionWhen::always : OpinionWhen::never;
+}
+
+// The Result that carries method = "auto"'s verdict: the method whose
+// answer agrees with it (its forces or its mechanism), marked as
+// interrupted, and not stable, when there is no verdict.
+EquilibriumResult adopted_result(MethodComparison& c) {
+  const Arbitration& a = c.arbitration;
+  const bool equilibrium_answers = a.verdict == Verdict::stands ? a.decided_by != "both"
+                                                                : a.decided_by == "equilibrium";
+  EquilibriumResult r = std::move(equilibrium_answers ? c.equilibrium : c.kinematic);
+  if (a.verdict == Verdict::no_verdict) {
+    r.stable = false;
+    if (a.interrupted) r.status = SolverStatus::interrupted;
+  }
+  return r;
+}
+
 int w_analyze(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
@@ -129,10 +193,28 @@ int w_analyze(lua_State* L) {
                                      "displacement_bound"});
     AnalysisSettings settings = analysis_settings(options);
     settings.verdict_only = options.boolean("verdict_only").value_or(false);
-    read_method(options, settings);
+    // method = "auto": both static methods, and the arbiter where they
+    // disagree (compare_methods); the Result of the method that agrees with
+    // its verdict, with the verdict in r.check.
+    const std::optional<std::string> method = options.string("method");
+    const bool automatic = method && *method == "auto";
+    if (method && !automatic && !kAnalysisMethodNames.parse(*method)) {
+      throw ArgError(2, "method: '" + *method + "' is not one of " + kAnalysisMethodNames.list() + ", auto");
+    }
+    if (!automatic) read_method(options, settings);
     read_cra_options(options, settings);
     lua_settop(L, 2);
     const bool warm_start = options.push("warm_start") != LUA_TNIL;
+    if (automatic && (warm_start || settings.verdict_only)) {
+      throw ArgError(2, std::string(warm_start ? "warm_start" : "verdict_only") +
+                            ": not with method = 'auto' (it runs every method from rest)");
+    }
+    if (automatic) {
+      MethodComparison c = compare_methods(s, settings);
+      EquilibriumResult adopted = adopted_result(c);
+      push_result(L, s, std::move(adopted), std::move(c.arbitration));
+      return 1;
+    }
     if (settings.method == AnalysisMethod::kinematic && warm_start) {
       throw ArgError(2, "warm_start: not with method = \"kinematic\" (its rounds start from no prestress)");
     }
@@ -164,38 +246,46 @@ int w_compare_methods(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "dynamics"});
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "dynamics", "cra", "margin"});
     const AnalysisSettings settings = analysis_settings(options);
-    // dynamics = true, or a table of simulation options: the dynamic verdict too.
-    std::optional<SimulationOptions> dynamics;
+    ComparisonSettings comparison;
+    // dynamics: nil (where the static methods disagree), true, false, or a
+    // table of simulation options (always, with those).
     std::shared_ptr<SimulationProgress> progress;
     const int type = options.push("dynamics");
     if (type == LUA_TTABLE) {
-      dynamics = simulation_options(OptionTable(L, lua_gettop(L), 2, "dynamics.", {ASHLAR_SIMULATION_OPTIONS}), s,
-                                    progress);
-    } else if (type == LUA_TBOOLEAN) {
-      if (lua_toboolean(L, -1)) dynamics = SimulationOptions{};
-    } else if (type != LUA_TNIL) {
-      throw ArgError(2, "dynamics: expected true or a table of ashlar.simulate options, got " + type_name(L, -1));
+      comparison.dynamics = OpinionWhen::always;
+      comparison.simulation = simulation_options(
+          OptionTable(L, lua_gettop(L), 2, "dynamics.", {ASHLAR_SIMULATION_OPTIONS}), s, progress);
+    } else {
+      comparison.dynamics = opinion_when(options, "dynamics", type);
     }
-    MethodComparison comparison = compare_methods(s, settings, dynamics ? &*dynamics : nullptr);
-    if (progress) progress->finish(*comparison.dynamic);
-    if (comparison.dynamic) luax_pushSimulation(L, s, std::move(*comparison.dynamic));
+    lua_pop(L, 1);
+    comparison.cra = opinion_when(options, "cra", options.push("cra"));
+    lua_pop(L, 1);
+    if (!options.boolean("margin").value_or(true)) comparison.margin_tolerance = 0.0;
+    MethodComparison c = compare_methods(s, settings, comparison);
+    if (progress && c.dynamic) progress->finish(*c.dynamic);
+    if (c.dynamic) luax_pushSimulation(L, s, std::move(*c.dynamic));
     else lua_pushnil(L);
-    luax_pushResult(L, s, std::move(comparison.equilibrium));
-    luax_pushResult(L, s, std::move(comparison.kinematic));
+    luax_pushResult(L, s, std::move(c.equilibrium));
+    luax_pushResult(L, s, std::move(c.kinematic));
+    if (c.cra) luax_pushResult(L, s, std::move(*c.cra));
+    else lua_pushnil(L);
     const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
-    return call_protected(L, 3, [&](lua_State* L) {
-      lua_createtable(L, 0, 5);
+    return call_protected(L, 4, [&](lua_State* L) {
+      lua_createtable(L, 0, 16);
       lua_pushvalue(L, 1);  // nil without the dynamic verdict
       lua_setfield(L, -2, "dynamic");
       lua_pushvalue(L, 2);
       lua_setfield(L, -2, "equilibrium");
       lua_pushvalue(L, 3);
       lua_setfield(L, -2, "kinematic");
-      lua_createtable(L, static_cast<int>(comparison.borrowed.size()), 0);
-      for (size_t k = 0; k < comparison.borrowed.size(); ++k) {
-        const MethodComparison::Borrowed& entry = comparison.borrowed[k];
+      lua_pushvalue(L, 4);  // nil without CRA
+      lua_setfield(L, -2, "cra");
+      lua_createtable(L, static_cast<int>(c.borrowed.size()), 0);
+      for (size_t k = 0; k < c.borrowed.size(); ++k) {
+        const MethodComparison::Borrowed& entry = c.borrowed[k];
         lua_createtable(L, 0, 5);
         set_field(L, "interface", entry.interface + 1);
         set_index_field(L, "a", interfaces[entry.interface].a);
@@ -205,6 +295,7 @@ int w_compare_methods(lua_State* L) {
         lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
       }
       lua_setfield(L, -2, "borrowed");
+      push_arbitration_fields(L, c.arbitration);
       return 1;
     });
   });
@@ -391,6 +482,10 @@ int w_Result_index(lua_State* L) {
         }
       } else if (is("method")) {
         lua_pushstring(L, kAnalysisMethodNames.name(r.method));
+      } else if (is("check")) {
+        if (!record->check) return 0;
+        lua_createtable(L, 0, 10);
+        push_arbitration_fields(L, *record->check);
       } else if (is("rounds")) {
         lua_pushinteger(L, r.rounds);
       } else if (is("mechanism")) {
@@ -442,6 +537,7 @@ int w_Result_tostring(lua_State* L) {
     }
     if (!r.warnings.empty()) text << "; " << r.warnings.size() << (r.warnings.size() == 1 ? " warning" : " warnings");
     text << ")";
+    if (record->check) text << "\nchecked: " << kVerdictNames.name(record->check->verdict) << ": " << record->check->reason;
     return push_string(L, text.str());
   });
 }
@@ -451,12 +547,7 @@ int w_Result_gc(lua_State* L) { return release_boxed<AnalysisRecord>(L, kResultM
 }  // namespace
 
 void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult result) {
-  auto record = std::make_shared<AnalysisRecord>();
-  record->result = std::move(result);
-  record->thrust = thrust_line(structure, record->result);
-  record->thrust_branches = thrust_polylines(structure, record->result);
-  record->block_count = structure.size();
-  push_boxed(L, std::move(record), kResultMeta, 1);
+  push_result(L, structure, std::move(result), std::nullopt);
 }
 
 void push_mechanism(lua_State* L, const std::vector<BlockMotion>& mechanism) {

@@ -98,7 +98,7 @@ end
 table.sort(names)
 for _, name in ipairs(names) do
   local s = models[name]{}
-  local c = ashlar.compare_methods(s, { friction = 0.7 })
+  local c = ashlar.compare_methods(s, { friction = 0.7, margin = false })
   local borrowed = ""
   if #c.borrowed > 0 then
     local total = 0

@@ -1,20 +1,88 @@
 // Where the methods disagree, and which verdict to believe.
+//
+// The two static methods bracket the truth of the rigid-block model with
+// Coulomb joints that slide without dilatancy:
+//   - the equilibrium method's "unstable" (converged) is certain: no
+//     compression-only equilibrium within the friction cones exists, so
+//     nothing holds the structure up;
+//   - the kinematic method's "stable" is certain too: forces within the
+//     cones of compressions the loads press in from no prestress exist.
+// Between them (equilibrium stands, kinematic falls or gives no verdict) the
+// static methods cannot decide: the kinematic answer is the fixed point its
+// rounds reach from no prestress, a local answer. There the arbiter is the
+// physics itself: rigid-block dynamics from rest under the same friction
+// and contacts (dynamics/simulation.hpp), with the coupled rigid-block
+// analysis (cra.hpp) as a further opinion that decides only when the
+// dynamics does not run or gives no verdict.
 #pragma once
 
+#include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "analysis/kinematic.hpp"
+#include "analysis/load_factor.hpp"
+#include "core/enum_names.hpp"
 #include "dynamics/simulation.hpp"
 
 namespace ashlar {
 
-// Both methods on one structure (settings.method is ignored), and where
-// they differ; with `dynamics`, also the simulation from rest (its friction
-// and contact options replaced by the settings'): the dynamic verdict,
-// moved or stayed.
+// When a further opinion (the dynamics, CRA) runs.
+enum class OpinionWhen { never, on_disagreement, always };
+
+// The arbiter's answer. `settles`: the dynamics moved some block further
+// than SimulationOptions::moved_fraction of its size before everything came
+// to rest (settle_speed): it stands, but not where it was drawn.
+enum class Verdict { stands, falls, settles, no_verdict };
+inline constexpr EnumNames<Verdict, 4> kVerdictNames{{{{Verdict::stands, "stands"},
+                                                       {Verdict::falls, "falls"},
+                                                       {Verdict::settles, "settles"},
+                                                       {Verdict::no_verdict, "no verdict"}}}};
+
+struct ComparisonSettings {
+  // The dynamics from rest: when it runs, and how (its friction and contact
+  // options are replaced by the analysis settings'). By default a quarter
+  // of a second: a block whose fall starts at 0.1 % of g (of its
+  // mechanism's acceleration) moves 0.3 mm, past moved_fraction of a 0.3 m
+  // block, within it.
+  OpinionWhen dynamics = OpinionWhen::on_disagreement;
+  SimulationOptions simulation = [] {
+    SimulationOptions options;
+    options.duration = 0.25;
+    return options;
+  }();
+  // CRA (method cra, with the analysis settings' cra settings).
+  OpinionWhen cra = OpinionWhen::on_disagreement;
+  // The margin: the least friction coefficient under which the equilibrium
+  // method finds the structure standing (friction_demand), to this relative
+  // tolerance; 0: not computed.
+  double margin_tolerance = 1e-2;
+};
+
+// The arbiter's answer: one verdict, which opinion decided it
+// ("equilibrium", "kinematic", "both" when the static methods agree on
+// standing, "dynamics", "cra"; empty without a verdict), and why with the
+// evidence (one sentence); each opinion's own verdict; the dynamics'
+// largest displacement and the equilibrium method's friction demand when
+// they ran (NaN otherwise).
+struct Arbitration {
+  Verdict verdict = Verdict::no_verdict;
+  bool interrupted = false;  // an opinion was stopped (Ctrl-C, a deadline): no verdict
+  std::string decided_by;
+  std::string reason;
+  Verdict equilibrium = Verdict::no_verdict, kinematic = Verdict::no_verdict;
+  std::optional<Verdict> dynamics, cra;   // when they ran
+  double displacement = std::numeric_limits<double>::quiet_NaN();  // m
+  int displaced_block = -1;                                        // 0-based, -1 when nothing moved
+  double friction = 0.0;                                           // the comparison's mu
+  double friction_demand = std::numeric_limits<double>::quiet_NaN();
+};
+
 struct MethodComparison {
   EquilibriumResult equilibrium, kinematic;
+  std::optional<EquilibriumResult> cra;      // when it ran
+  std::optional<SimulationResult> dynamic;   // when it ran
   // Interfaces whose friction in the equilibrium method's forces exceeds mu
   // times the compression the kinematic method finds there: friction that
   // rests on normal force no load presses in (N), by how much it exceeds,
@@ -25,9 +93,26 @@ struct MethodComparison {
     double available = 0.0;          // mu x the sum of its compressions, kinematic method
   };
   std::vector<Borrowed> borrowed;
-  std::optional<SimulationResult> dynamic;  // when asked for
+  // The equilibrium method's friction demand (when margin_tolerance > 0):
+  // mu / demand.friction is how far friction can fall before even that
+  // method finds no way to stand (the kinematic demand can be higher).
+  std::optional<FrictionDemand> margin;
+
+  Arbitration arbitration;
 };
+
+// What one analysis says: stands, falls (a converged unstable answer, or
+// floating blocks) or no verdict (not converged, interrupted).
+Verdict verdict_of(const EquilibriumResult& result);
+// What the dynamics says: stands (nothing moved, at rest at the end),
+// settles, falls (moved and still moving at the end), no verdict
+// (interrupted, or still moving without having moved: too short a run).
+Verdict verdict_of(const SimulationResult& result);
+
+// Both static methods (settings.method is ignored), the further opinions
+// `comparison` asks for, and the arbiter's verdict. Throws InvalidArgument
+// for bad settings, as analyze_equilibrium and simulate.
 MethodComparison compare_methods(const Structure& structure, const AnalysisSettings& settings,
-                                 const SimulationOptions* dynamics = nullptr);
+                                 const ComparisonSettings& comparison = {});
 
 }  // namespace ashlar
