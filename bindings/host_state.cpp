@@ -149,6 +149,8 @@ int call_with_traceback(lua_State* L, int argument_count, int result_count) {
   lua_insert(L, handler_index);
   // A sandboxed script run by ashlar.sandbox nests in the host's script.
   lua_State* const outer_state = g_running_state;
+  // A Ctrl-C stops the chunk it came in, not the ones typed after it.
+  if (!outer_state) ashlar::interrupt_requested() = false;
   g_running_state = L;
   const auto outer_handler = std::signal(SIGINT, on_interrupt);
   const int status = lua_pcall(L, argument_count, result_count, handler_index);

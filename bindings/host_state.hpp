@@ -39,7 +39,10 @@ void open_host_libraries(lua_State* L);
 // Lets a script `require` the modules beside it wherever it is run from.
 void prepend_script_folder_to_path(lua_State* L, const char* script);
 
-// lua_pcall with a traceback on errors and Ctrl-C turned into a Lua error.
+// lua_pcall with a traceback on errors and Ctrl-C turned into a Lua error
+// (and ashlar::interrupt_requested for the engine's loops). An outermost
+// call starts with no interrupt pending: a Ctrl-C stops the chunk it came
+// in, not those after it.
 // Expects the function and its arguments on the stack, like lua_pcall.
 int call_with_traceback(lua_State* L, int argument_count, int result_count);
 

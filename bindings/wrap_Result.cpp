@@ -513,6 +513,11 @@ int w_Result_tostring(lua_State* L) {
     const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
     const EquilibriumResult& r = record->result;
     std::ostringstream text;
+    if (r.status == SolverStatus::interrupted) {
+      // No verdict: what was computed when it stopped proves nothing.
+      text << "Result (no verdict: interrupted after " << r.iterations << " iterations)";
+      return push_string(L, text.str());
+    }
     text << "Result (" << (r.stable ? "stable" : "unstable") << ", infeasibility " << r.infeasibility << ", "
          << status_name(r.status) << " after " << r.iterations << " iterations";
     if (!r.floating_blocks.empty()) {

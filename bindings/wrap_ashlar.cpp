@@ -3,9 +3,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "ashlar_lua.hpp"
+#include "core/error.hpp"
 #include "core/process_stats.hpp"
+#include "core/text.hpp"
 #include "core/version.hpp"
 #include "io/color_map.hpp"
 #include "io/compas_assembly.hpp"
@@ -217,6 +220,45 @@ int w_import(lua_State* L) {
   });
 }
 
+// __index of a strict table (upvalue 1: its name for messages): reading a
+// name it does not have is an error naming it and the nearest it has.
+int strict_index(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return 0;  // only names are checked
+  return guard(L, [&]() -> int {
+    std::vector<std::string> names;
+    lua_pushnil(L);
+    while (lua_next(L, 1)) {
+      if (lua_type(L, -2) == LUA_TSTRING) names.emplace_back(lua_tostring(L, -2));
+      lua_pop(L, 1);
+    }
+    const std::string key = lua_tostring(L, 2);
+    const std::string nearest = closest_name(key, names);
+    throw Error(std::string(lua_tostring(L, lua_upvalueindex(1))) + " has no function '" + key + "'" +
+                (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)"));
+  });
+}
+
+// Makes table t (at idx) strict under `name`.
+void make_strict(lua_State* L, int idx, const char* name) {
+  idx = lua_absindex(L, idx);
+  lua_createtable(L, 0, 1);
+  lua_pushstring(L, name);
+  lua_pushcclosure(L, strict_index, 1);
+  lua_setfield(L, -2, "__index");
+  lua_setmetatable(L, idx);
+}
+
+// ashlar.strict(t, name): reading a name t does not have raises "name has
+// no function 'x' (did you mean 'y'?)"; returns t.
+int w_strict(lua_State* L) {
+  luaL_checktype(L, 1, LUA_TTABLE);
+  const char* name = luaL_checkstring(L, 2);
+  if (lua_getmetatable(L, 1)) return luaL_argerror(L, 1, "the table already has a metatable");
+  make_strict(L, 1, name);
+  lua_settop(L, 1);
+  return 1;
+}
+
 int w_clock(lua_State* L) {
   lua_pushnumber(L, monotonic_seconds());
   return 1;
@@ -270,8 +312,9 @@ int ashlar_open_library(lua_State* L) {
   set_sandbox_functions(L);
   static const luaL_Reg functions[] = {{"import", w_import}, {"export", w_export},
                                        {"clock", w_clock},   {"memory", w_memory},
-                                       {nullptr, nullptr}};
+                                       {"strict", w_strict}, {nullptr, nullptr}};
   luaL_setfuncs(L, functions, 0);
+  make_strict(L, -1, "ashlar");  // ashlar.analyse: "did you mean 'analyze'?"
   return 1;
 }
 

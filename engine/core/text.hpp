@@ -1,6 +1,7 @@
 // Small text helpers for messages and stored names.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <sstream>
 #include <string>
@@ -33,6 +34,40 @@ inline std::string shortest_number(double value) {
   char buffer[32];
   const std::to_chars_result end = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, end.ptr);
+}
+
+// The candidate a misspelt `name` most likely meant: the nearest by edits
+// (insertions, deletions, substitutions and swaps of neighbours, each 1),
+// if within a third of the name's length (at least 1); "" otherwise.
+// "analyse" -> "analyze", "arc" -> "arch".
+inline std::string closest_name(const std::string& name, const std::vector<std::string>& candidates) {
+  const std::size_t n = name.size();
+  std::size_t best = std::max<std::size_t>(1, n / 3) + 1;
+  std::string closest;
+  for (const std::string& candidate : candidates) {
+    const std::size_t m = candidate.size();
+    if ((m > n ? m - n : n - m) >= best) continue;
+    // Optimal string alignment distance, three rows.
+    std::vector<std::size_t> before(m + 1), previous(m + 1), current(m + 1);
+    for (std::size_t j = 0; j <= m; ++j) previous[j] = j;
+    for (std::size_t i = 1; i <= n; ++i) {
+      current[0] = i;
+      for (std::size_t j = 1; j <= m; ++j) {
+        const std::size_t cost = name[i - 1] == candidate[j - 1] ? 0 : 1;
+        current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
+        if (i > 1 && j > 1 && name[i - 1] == candidate[j - 2] && name[i - 2] == candidate[j - 1]) {
+          current[j] = std::min(current[j], before[j - 2] + 1);
+        }
+      }
+      before.swap(previous);
+      previous.swap(current);
+    }
+    if (previous[m] < best) {
+      best = previous[m];
+      closest = candidate;
+    }
+  }
+  return closest;
 }
 
 }  // namespace ashlar

@@ -114,7 +114,6 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
   StudyRunInfo info;
   std::set<int> workers_seen;
   const double start = monotonic_seconds();
-  interrupt_requested() = false;
 
   auto record = [&](std::vector<Outcome>& batch) {
     if (batch.empty()) return;

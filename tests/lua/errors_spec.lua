@@ -116,3 +116,25 @@ describe("argument errors", function()
     expect_error({ "attempt to use a closed Block" }, function() return b:volume() end)
   end)
 end)
+
+describe("misspelt names", function()
+  it("say which name is missing and the nearest there is", function()
+    expect_error({ "ashlar has no function 'analyse' (did you mean 'analyze'?)" }, function() return ashlar.analyse end)
+    expect_error({ "models has no function 'arc' (did you mean 'arch'?)" }, function() return models.arc end)
+    expect_error({ "ashlar has no function 'compare_method' (did you mean 'compare_methods'?)" },
+      function() return ashlar.compare_method end)
+    expect_error({ "models has no function 'barel_vualt' (did you mean 'barrel_vault'?)" },
+      function() return models.barel_vualt end)
+    -- Too far from every name: no guess.
+    local message = expect_error({ "ashlar has no function 'xyzzy'" }, function() return ashlar.xyzzy end)
+    assert.is_nil(message:find("did you mean", 1, true))
+    -- Fields that exist, and keys that are not names, read as always.
+    assert.equal("function", type(ashlar.analyze))
+    assert.is_nil(ashlar[1])
+    -- A user's own library can be strict too.
+    local mine = ashlar.strict({ span = 1 }, "mine")
+    expect_error({ "mine has no function 'spam' (did you mean 'span'?)" }, function() return mine.spam end)
+    expect_error({ "bad argument #1 to 'strict' (the table already has a metatable)" },
+      function() ashlar.strict(mine, "again") end)
+  end)
+end)

@@ -203,6 +203,25 @@ fail()
       assert.are.equal(1, code)
       assert.matches("^ashlar: .*interrupted!\nstack traceback:", output)
     end)
+
+    it("stops only the prompt's chunk that Ctrl-C came in: the next analysis runs", function()
+      local ready = folder .. "/ready_prompt"
+      os.remove(ready)
+      local busy = ("io.open(%q, 'w'):close() local t = os.clock() while os.clock() - t < 20 do end"):format(ready)
+      local after = "r = ashlar.analyze(models.arch{}) print(r.status, r.stable, " ..
+                    "ashlar.load_factor(models.arch{}, {}).status)"
+      -- The second line waits in the pipe until the first is interrupted.
+      local output, code = run(table.concat({
+        "{ printf '%s\\n' " .. quote(busy) .. "; while [ ! -e " .. quote(ready) .. " ]; do sleep 0.05; done;",
+        "  printf '%s\\n' " .. quote(after) .. "; } | " .. quote(ashlar_bin) .. " -i & pid=$!",
+        "while [ ! -e " .. quote(ready) .. " ]; do sleep 0.05; done",
+        "kill -INT $pid",
+        "wait $pid",
+      }, "\n"))
+      assert.are.equal(0, code, output)
+      assert.matches("interrupted!\nstack traceback:", output)
+      assert.matches("\n> converged\ttrue\toptimal\n", output)
+    end)
   end)
 
   describe("globals", function()

@@ -1,6 +1,7 @@
 -- The ashlar model library: each generator takes one option table and returns
 -- a Structure with its supports set. Read them, copy them, make your own.
-return {
+-- models.arc{} is an error that suggests models.arch.
+return require("ashlar").strict({
   arch = require "ashlar.models.arch",
   barrel_vault = require "ashlar.models.barrel_vault",
   groin_vault = require "ashlar.models.groin_vault",
@@ -15,4 +16,4 @@ return {
   arch_bridge = require "ashlar.models.arch_bridge",
   cable_stayed_bridge = require "ashlar.models.cable_stayed_bridge",
   perturbed = require "ashlar.models.perturbed",
-}
+}, "models")
