@@ -126,24 +126,28 @@ std::string lua_number_text(lua_State* L, int idx) {
   return text;
 }
 
-double check_number(lua_State* L, int arg, const char* what) {
+double check_number(lua_State* L, int idx, int arg, const char* what) {
   double value = 0.0;
-  if (!finite_number_at(L, arg, value)) {
-    throw ArgError(arg, std::string(what) + ": " + describe_number_problem(L, arg));
+  if (!finite_number_at(L, idx, value)) {
+    throw ArgError(arg, std::string(what) + ": " + describe_number_problem(L, idx));
   }
   return value;
 }
 
-lua_Integer check_integer(lua_State* L, int arg, const char* what) {
+double check_number(lua_State* L, int arg, const char* what) { return check_number(L, arg, arg, what); }
+
+lua_Integer check_integer(lua_State* L, int idx, int arg, const char* what) {
   int is_integer = 0;
-  const lua_Integer value = lua_tointegerx(L, arg, &is_integer);
-  if (!is_integer || lua_type(L, arg) != LUA_TNUMBER) {
+  const lua_Integer value = lua_tointegerx(L, idx, &is_integer);
+  if (!is_integer || lua_type(L, idx) != LUA_TNUMBER) {
     throw ArgError(arg, std::string(what) + ": expected an integer, got " +
-                            (lua_type(L, arg) == LUA_TNUMBER ? "a fractional number"
-                                                             : type_name(L, arg)));
+                            (lua_type(L, idx) == LUA_TNUMBER ? "a fractional number"
+                                                             : type_name(L, idx)));
   }
   return value;
 }
+
+lua_Integer check_integer(lua_State* L, int arg, const char* what) { return check_integer(L, arg, arg, what); }
 
 std::string check_string(lua_State* L, int arg, const char* what) {
   if (lua_type(L, arg) != LUA_TSTRING) {

@@ -136,7 +136,11 @@ std::string type_name(lua_State* L, int idx);
 
 // Scalars (finite numbers only: NaN and inf are rejected).
 double check_number(lua_State* L, int arg, const char* what);
+// The number at stack index idx (a value inside argument `arg`).
+double check_number(lua_State* L, int idx, int arg, const char* what);
 lua_Integer check_integer(lua_State* L, int arg, const char* what);
+// The integer at stack index idx (a value inside argument `arg`).
+lua_Integer check_integer(lua_State* L, int idx, int arg, const char* what);
 std::string check_string(lua_State* L, int arg, const char* what);
 
 // A table {x, y, z} of three finite numbers at stack index idx; `arg` and

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <sstream>
 
@@ -64,20 +65,16 @@ AnalysisSettings analysis_settings(const OptionTable& options) {
   AnalysisSettings settings;
   EquilibriumOptions& problem = settings.problem;
   problem.friction = friction_option(options, problem.friction);
-  if (options.push("friction_sides") != LUA_TNIL) {
-    problem.friction_sides = static_cast<int>(check_integer(L, -1, "friction_sides"));
-  }
-  lua_pop(L, 1);
+  problem.friction_sides = static_cast<int>(
+      options.whole("friction_sides", 3, 1024, "an integer from 3 to 1024").value_or(problem.friction_sides));
   problem.friction_model = options.choice("friction_model", kFrictionModelNames).value_or(problem.friction_model);
   problem.tension_weight = options.positive("tension_weight", problem.tension_weight, true);
   problem.force_weight = options.positive("force_weight", problem.force_weight);
   problem.contact = contact_options(options, "contact_tolerance", "contact_angle", "contact_min_width",
                                      "contact_min_area");
   settings.solver.tolerance = options.positive("tolerance", settings.solver.tolerance);
-  if (options.push("max_iterations") != LUA_TNIL) {
-    settings.solver.max_iterations = static_cast<int>(check_integer(L, -1, "max_iterations"));
-  }
-  lua_pop(L, 1);
+  settings.solver.max_iterations = static_cast<int>(
+      options.whole("max_iterations", 1, std::numeric_limits<int>::max(), "an integer from 1 to 2^31 - 1").value_or(settings.solver.max_iterations));
   settings.stable_tolerance = options.positive("stable_tolerance", settings.stable_tolerance);
   return settings;
 }

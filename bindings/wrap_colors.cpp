@@ -60,7 +60,7 @@ Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what) {
   const int count = static_cast<int>(lua_rawlen(L, idx));
   for (int k = 0; k < count; ++k) {
     lua_rawgeti(L, idx, k + 1);
-    c[k] = check_number(L, -1, (what + "[" + std::to_string(k + 1) + "]").c_str());
+    c[k] = check_number(L, -1, arg, (what + "[" + std::to_string(k + 1) + "]").c_str());
     lua_pop(L, 1);
     if (!(c[k] >= 0.0 && c[k] <= 1.0)) {
       throw ArgError(arg, what + ": colour components must lie in [0, 1], got " + number_text(c[k]) +
@@ -78,8 +78,8 @@ std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::st
   }
   lua_rawgeti(L, idx, 1);
   lua_rawgeti(L, idx, 2);
-  const double lo = check_number(L, -2, (what + "[1]").c_str());
-  const double hi = check_number(L, -1, (what + "[2]").c_str());
+  const double lo = check_number(L, -2, arg, (what + "[1]").c_str());
+  const double hi = check_number(L, -1, arg, (what + "[2]").c_str());
   lua_pop(L, 2);
   return {lo, hi};
 }

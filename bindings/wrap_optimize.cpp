@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -24,12 +25,8 @@ OptimizeSettings optimize_settings(const OptionTable& options) {
   OptimizeSettings settings;
   settings.method = options.choice("method", kOptimizeMethodNames).value_or(settings.method);
   lua_State* L = options.state();
-  if (options.push("max_iterations") != LUA_TNIL) {
-    const lua_Integer n = check_integer(L, -1, "max_iterations");
-    if (n < 0) throw ArgError(options.arg(), "max_iterations: expected an integer >= 0");
-    settings.max_iterations = static_cast<int>(n);
-  }
-  lua_pop(L, 1);
+  settings.max_iterations = static_cast<int>(
+      options.whole("max_iterations", 0, std::numeric_limits<int>::max(), "an integer from 0 to 2^31 - 1").value_or(settings.max_iterations));
   settings.gradient_tolerance = options.positive("gradient_tolerance", settings.gradient_tolerance);
   settings.value_tolerance = options.positive("value_tolerance", settings.value_tolerance);
   settings.initial_step = options.positive("initial_step", settings.initial_step, true);
@@ -131,7 +128,7 @@ PositionRef vertex_ref(lua_State* L, const Structure& s, int arg, const std::str
   const int block = check_block_index(L, s, -1, arg, (what + ".block").c_str());
   lua_pop(L, 1);
   ref.push("vertex");
-  const lua_Integer vertex = check_integer(L, -1, (what + ".vertex").c_str());
+  const lua_Integer vertex = check_integer(L, -1, arg, (what + ".vertex").c_str());
   lua_pop(L, 1);
   const int count = static_cast<int>(s.block(block).vertices().size());
   if (vertex < 1 || vertex > count) {
@@ -227,7 +224,7 @@ DesignConstraints design_constraints(lua_State* L, const Structure& s, const Opt
       const int block = check_block_index(L, s, -1, arg, (what + ".block").c_str());
       lua_pop(L, 1);
       ref.push("face");
-      const lua_Integer face = check_integer(L, -1, (what + ".face").c_str());
+      const lua_Integer face = check_integer(L, -1, arg, (what + ".face").c_str());
       lua_pop(L, 1);
       const int faces = static_cast<int>(s.block(block).faces().size());
       if (face < 1 || face > faces) {
@@ -319,7 +316,7 @@ int optimize_parameters_of(lua_State* L) {
   while (lua_next(L, -2) != 0) {
     if (lua_type(L, -2) != LUA_TSTRING) throw ArgError(2, "params: keys must be parameter names");
     const std::string name = lua_tostring(L, -2);
-    initial.push_back(check_number(L, -1, ("params." + name).c_str()));
+    initial.push_back(check_number(L, -1, 2, ("params." + name).c_str()));
     names.push_back(name);
     lua_pop(L, 1);
   }
@@ -343,7 +340,7 @@ int optimize_parameters_of(lua_State* L) {
     if (options.push(side) == LUA_TTABLE) {
       for (int j = 0; j < n; ++j) {
         if (get_field(L, -1, sorted_names[j].c_str()) != LUA_TNIL) {
-          bound(j) = check_number(L, -1, (std::string(side) + "." + sorted_names[j]).c_str());
+          bound(j) = check_number(L, -1, 2, (std::string(side) + "." + sorted_names[j]).c_str());
         }
         lua_pop(L, 1);
       }

@@ -138,3 +138,23 @@ describe("misspelt names", function()
       function() ashlar.strict(mine, "again") end)
   end)
 end)
+
+describe("integer options", function()
+  it("name the argument, the option, the range and the value, and refuse what does not fit", function()
+    local s = models.arch{ voussoirs = 6 }
+    expect_error({ "bad argument #2 to 'analyze' (friction_sides: expected an integer from 3 to 1024, got 2.5)" },
+      function() ashlar.analyze(s, { friction_sides = 2.5 }) end)
+    -- 2^32 + 4 used to wrap to 4.
+    expect_error({ "friction_sides: expected an integer from 3 to 1024, got 4294967300" },
+      function() ashlar.analyze(s, { friction_sides = (1 << 32) + 4 }) end)
+    expect_error({ "bad argument #2 to 'analyze' (max_iterations: expected an integer from 1 to 2^31 - 1, got 0)" },
+      function() ashlar.analyze(s, { max_iterations = 0 }) end)
+    expect_error({ "bad argument #2 to 'optimize' (max_iterations: expected an integer from 0 to 2^31 - 1, got 1.5)" },
+      function() ashlar.optimize(function() return s end, { params = { a = 1 }, max_iterations = 1.5 }) end)
+    expect_error({ "bad argument #2 to 'optimize' (params.a: expected a number, got string)" },
+      function() ashlar.optimize(function() return s end, { params = { a = "x" } }) end)
+    expect_error({ "bad argument #3 to 'export' (color[2]: expected a number, got string)" },
+      function() ashlar.export(s, os.tmpname() .. ".svg", { color = { 0.1, "a", 0.3 } }) end)
+    assert.is_true(ashlar.analyze(s, { friction_sides = 4.0 }).stable)  -- a float with an integer value is one
+  end)
+end)
