@@ -10,7 +10,6 @@
 #include <limits>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include "analysis/clp_barrier.hpp"
 #include "analysis/equilibrium_program.hpp"
@@ -239,32 +238,34 @@ struct Basis {
 // while the workers begin: on 3D structures most blocks never need its
 // basis (the equilibrium solver certifies them weightless), and its 4,432
 // pivots on the 16 x 18 dome took 1.0 s, a tenth of the whole run, before
-// any block could start. A worker that needs the basis waits for it.
+// any block could start. A worker that needs the basis waits for it (and
+// gets the solve's error, if it threw).
 class AsBuiltProgram {
 public:
   AsBuiltProgram() : solved_future_(solved_.get_future().share()) {}
-  ~AsBuiltProgram() { join(); }
   AsBuiltProgram(const AsBuiltProgram&) = delete;
   AsBuiltProgram& operator=(const AsBuiltProgram&) = delete;
 
   // Solves `capacity` in place, from scratch by the dual simplex (about
-  // half the primal's pivots on domes), on its own thread; the workers'
-  // copies of it must be made first.
-  void start(ClpSimplex& capacity, Clock::time_point deadline) {
+  // half the primal's pivots on domes); the workers' copies of it must be
+  // made first.
+  void solve(ClpSimplex& capacity) {
     program_ = &capacity;
-    solver_ = std::thread([this, &capacity, deadline] {
-      const DeadlineScope scope(deadline);
+    try {
       capacity.dual();
       status_ = capacity.status();
       pivots_ = capacity.numberIterations();
       if (status_ == 0) basis_ = std::make_unique<Basis>(capacity);
-      solved_.set_value();
-    });
+    } catch (...) {
+      solved_.set_exception(std::current_exception());
+      throw;
+    }
+    solved_.set_value();
   }
   // The optimal basis, or null when the program has none (infeasible: the
   // structure does not stand as built; or failed). Waits for it.
   const Basis* basis() const {
-    solved_future_.wait();
+    solved_future_.get();
     return basis_.get();
   }
   // `copy` becomes the solved program, as the simplex left it (its
@@ -272,14 +273,11 @@ public:
   // restored, a 16-course vault's least multiples took 22 % more pivots).
   // Waits for it; one copy at a time, the model only read.
   void copy_solved(ClpSimplex& copy) const {
-    solved_future_.wait();
+    solved_future_.get();
     const std::lock_guard<std::mutex> lock(copying_);
     copy = *program_;
   }
-  void join() {
-    if (solver_.joinable()) solver_.join();
-  }
-  // Clp's status and pivots, once joined.
+  // Clp's status and pivots, once solved.
   int status() const { return status_; }
   int pivots() const { return pivots_; }
 
@@ -290,7 +288,6 @@ private:
   std::unique_ptr<Basis> basis_;
   const ClpSimplex* program_ = nullptr;
   mutable std::mutex copying_;
-  std::thread solver_;
 };
 
 // The recession directions of the feasible set: forces d with A d = -g_j
@@ -532,10 +529,10 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
     interior = !has_no_answer(solver.solve(problem, settings.solver, as_built_forces).status);
   }
   const bool maximise = interior && InteriorCapacity::maximises(problem, settings.problem);
-  // The helpers answer to the caller's sandbox deadline too; no block is
-  // begun once a stop is asked for. Progress is told on the calling thread.
-  const Clock::time_point deadline = stop_deadline();
-  AsBuiltProgram as_built;  // started once the copies are made
+  // No block is begun once a stop is asked for (Ctrl-C, the caller's
+  // sandbox deadline, a worker's error). Progress is told on the calling
+  // thread.
+  AsBuiltProgram as_built;  // solved once the copies are made
   const SolverCores solver_cores = workers > 1 ? SolverCores::one : SolverCores::all;
   for (int w = 0; w < workers; ++w) {
     programs.emplace_back(capacity, rays, as_built, problem.block_rows == 3,
@@ -543,12 +540,10 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
                                                                         solver_cores)
                                    : nullptr);
   }
-  as_built.start(capacity, deadline);
   std::atomic<size_t> next{0};
   std::atomic<int> done{0};
   const int total = static_cast<int>(blocks.size());
   auto work = [&](BlockPrograms& mine, bool tells) {
-    const DeadlineScope scope(deadline);
     for (size_t k = next++; k < blocks.size() && !stop_requested(); k = next++) {
       const int j = blocks[k];
       bounds[k] = mine.solve(multiplier_column[j], problem.row_of_block[j],
@@ -558,11 +553,11 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
     }
   };
   if (progress) progress(0, total);
-  std::vector<std::thread> helpers;
-  for (int w = 1; w < workers; ++w) helpers.emplace_back(work, std::ref(programs[w]), false);
-  work(programs[0], true);
-  for (std::thread& thread : helpers) thread.join();
-  as_built.join();
+  // Worker 0 on this thread, the as-built program on a part of its own.
+  ParallelLoop(workers + 1, 1).run_parts(workers + 1, [&](int part) {
+    if (part == workers) as_built.solve(capacity);
+    else work(programs[part], part == 0);
+  });
   if (progress) progress(done, total);
 
   result.programs = 1;

@@ -5,7 +5,6 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "analysis/equilibrium_analysis.hpp"
 #include "analysis/problem_symmetry.hpp"
@@ -224,11 +223,9 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     bool interrupted = false;
   };
   std::vector<Share> shares(workers);
-  const Clock::time_point deadline = stop_deadline();  // a sandbox's, for the helpers too
   std::atomic<int> done{0};
   const int total = static_cast<int>(blocks.size());
   auto work = [&](int w) {
-    const DeadlineScope scope(deadline);
     Share& share = shares[w];
     share.per_weight.assign(structure.size(), 0.0);
     const std::unique_ptr<NecessaryWeightsProblem> own =
@@ -255,10 +252,7 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     }
   };
   if (progress) progress(0, total);
-  std::vector<std::thread> helpers;
-  for (int w = 1; w < workers; ++w) helpers.emplace_back(work, w);
-  work(0);
-  for (std::thread& helper : helpers) helper.join();
+  ParallelLoop(workers, 1).run_parts(workers, work);  // worker 0 on this thread
   if (progress) progress(done, total);
 
   ImportantWeights result;

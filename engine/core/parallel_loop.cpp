@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/interrupt.hpp"
+
 namespace ashlar {
 
 int worker_count(int requested, int items) {
@@ -19,8 +21,10 @@ int part_begin(int n, int parts, int part) {
 }  // namespace
 
 ParallelLoop::ParallelLoop(int threads, int grain) : grain_(std::max(grain, 1)) {
-  if (threads <= 0) threads = static_cast<int>(std::thread::hardware_concurrency());
-  parts_ = std::clamp(threads, 1, kMaxThreads);
+  // A count asked for is kept (workers sharing blocks); one per core stops
+  // at kMaxThreads (the solver's passes gain nothing beyond).
+  if (threads <= 0) threads = std::min(static_cast<int>(std::thread::hardware_concurrency()), kMaxThreads);
+  parts_ = std::max(threads, 1);
 }
 
 ParallelLoop::~ParallelLoop() {
@@ -63,14 +67,18 @@ void ParallelLoop::dispatch(int n, int parts, const Body& body) {
     parts_in_use_ = parts;
     pending_ = parts - 1;
     failure_ = nullptr;
+    deadline_ = stop_deadline();
+    failed_ = false;
     ++generation_;
   }
   work_ready_.notify_all();
   std::exception_ptr own_failure;
   try {
+    const StopFlagScope flag(&failed_);
     body(0, part_begin(n, parts, 1), 0);
   } catch (...) {
     own_failure = std::current_exception();
+    failed_ = true;
   }
   std::unique_lock<std::mutex> lock(mutex_);
   work_done_.wait(lock, [this] { return pending_ == 0; });
@@ -84,6 +92,7 @@ void ParallelLoop::helper(int part) {
   for (;;) {
     const Body* body;
     int n, parts;
+    Clock::time_point deadline;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       work_ready_.wait(lock, [&] { return stopping_ || generation_ != seen; });
@@ -92,13 +101,17 @@ void ParallelLoop::helper(int part) {
       body = body_;
       n = items_;
       parts = parts_in_use_;
+      deadline = deadline_;
     }
     if (part >= parts) continue;  // this call uses fewer parts
     std::exception_ptr failure;
     try {
+      const DeadlineScope scope(deadline);
+      const StopFlagScope flag(&failed_);
       (*body)(part_begin(n, parts, part), part_begin(n, parts, part + 1), part);
     } catch (...) {
       failure = std::current_exception();
+      failed_ = true;
     }
     {
       std::lock_guard<std::mutex> lock(mutex_);

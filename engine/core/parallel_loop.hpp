@@ -1,15 +1,22 @@
 // A loop split over a few threads, for the solver's passes over force
-// groups: the caller runs the first part, helper threads the others, and
-// the helpers sleep on a condition variable between calls (no thread spins
-// while another works). Small loops run on the caller alone.
+// groups and for analyses that share blocks among workers: the caller runs
+// the first part, helper threads the others, and the helpers sleep on a
+// condition variable between calls (no thread spins while another works).
+// Small loops run on the caller alone. Every part answers to the caller's
+// stop deadline (a sandbox's), and once a part throws, stop_requested() is
+// true in the others (core/interrupt.hpp) so that they end early; the
+// first error is rethrown on the caller after every part has returned.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "core/clock.hpp"
 
 namespace ashlar {
 
@@ -23,8 +30,9 @@ public:
   // body(begin, end, part): the items [begin, end) of part `part`.
   using Body = std::function<void(int begin, int end, int part)>;
 
-  // `threads` parts at most (0: one per core, at most kMaxThreads), used
-  // only for loops of at least `grain` items; helpers start on first use.
+  // `threads` parts at most (0 or less: one per core, at most kMaxThreads),
+  // used only for loops of at least `grain` items; helpers start on first
+  // use.
   explicit ParallelLoop(int threads = 0, int grain = 20000);
   ~ParallelLoop();
   ParallelLoop(const ParallelLoop&) = delete;
@@ -60,6 +68,8 @@ private:
   int pending_ = 0;
   bool stopping_ = false;
   std::exception_ptr failure_;
+  Clock::time_point deadline_ = Clock::time_point::max();  // the caller's, for the current call
+  std::atomic<bool> failed_{false};                         // a part of the current call threw
 };
 
 }  // namespace ashlar

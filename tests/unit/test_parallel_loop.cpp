@@ -9,6 +9,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/clock.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel_loop.hpp"
 
 using ashlar::ParallelLoop;
@@ -63,4 +65,37 @@ TEST(ParallelLoop, AnErrorInAHelperReachesTheCaller) {
   std::atomic<int> items{0};
   loop.run(10, [&](int begin, int end, int) { items += end - begin; });
   EXPECT_EQ(items.load(), 10);
+}
+
+TEST(ParallelLoop, AnErrorInOnePartStopsTheOthers) {
+  // Part 1 throws at once; part 0 runs until stop_requested() (or 10 s, a
+  // lost stop): it must see the stop, and the error reach the caller.
+  ParallelLoop loop(2, 1);
+  std::atomic<bool> saw_stop{false};
+  EXPECT_THROW(loop.run_parts(2, [&](int part) {
+    if (part == 1) throw std::runtime_error("worker failed");
+    const auto start = ashlar::Clock::now();
+    while (!ashlar::stop_requested() && ashlar::seconds_since(start) < 10.0) std::this_thread::yield();
+    saw_stop = ashlar::stop_requested();
+  }), std::runtime_error);
+  EXPECT_TRUE(saw_stop.load());
+  // The next call starts without the stop, and the caller never had it.
+  EXPECT_FALSE(ashlar::stop_requested());
+  std::atomic<int> stopped{0};
+  loop.run_parts(2, [&](int) { stopped += ashlar::stop_requested(); });
+  EXPECT_EQ(stopped.load(), 0);
+}
+
+TEST(ParallelLoop, EveryPartAnswersToTheCallersDeadline) {
+  ParallelLoop loop(3, 1);
+  std::atomic<int> stopped{0};
+  {
+    const ashlar::DeadlineScope passed(ashlar::Clock::now() - std::chrono::seconds(1));
+    loop.run_parts(3, [&](int) { stopped += ashlar::stop_requested(); });
+  }
+  EXPECT_EQ(stopped.load(), 3);
+  // A call without a deadline gives its parts none.
+  stopped = 0;
+  loop.run_parts(3, [&](int) { stopped += ashlar::stop_requested(); });
+  EXPECT_EQ(stopped.load(), 0);
 }

@@ -135,6 +135,19 @@ TEST(ImportantWeights, AnInterruptedComputationSaysSo) {
   EXPECT_EQ(done.solves, 5);
 }
 
+TEST(ImportantWeights, EveryWorkerAnswersToTheCallersDeadline) {
+  // Two workers under a sandbox deadline already passed: neither solves a
+  // block (the helper gets the caller's deadline from the parallel loop).
+  const Structure s = semicircular_arch(9, 0.8);
+  ImportantWeights important;
+  {
+    const DeadlineScope past(Clock::now());
+    important = important_weights(s, AnalysisSettings{}, 2);
+  }
+  EXPECT_TRUE(important.interrupted);
+  EXPECT_EQ(important.solves, 0);
+}
+
 TEST(ImportantWeights, WorkersShareTheBlocksAndAgreeWithOne) {
   // Two workers, each a contiguous half of the blocks warm-started along
   // its own chain, against one worker along the whole chain: the same sums
