@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <cstring>
 #include <sstream>
 
@@ -26,6 +27,8 @@ constexpr const char* kResultMeta = "ashlar.Result";
 struct AnalysisRecord {
   EquilibriumResult result;
   std::optional<Arbitration> check;  // method = "auto": the arbiter's answer (r.check)
+  // How tostring names the blocks it mentions (Structure::label), by index.
+  std::map<int, std::string> labels;
   std::vector<Vec3> thrust;
   std::vector<std::vector<Vec3>> thrust_branches;
   int block_count = 0;
@@ -36,6 +39,14 @@ void push_result(lua_State* L, const Structure& structure, EquilibriumResult res
   auto record = std::make_shared<AnalysisRecord>();
   record->result = std::move(result);
   record->check = std::move(check);
+  const EquilibriumResult& r = record->result;
+  auto keep_label = [&](int block) {
+    if (block >= 0 && block < structure.size()) record->labels.emplace(block, structure.label(block));
+  };
+  if (!r.floating_blocks.empty()) keep_label(r.floating_blocks[0]);
+  if (!r.floating_gaps.empty()) keep_label(r.floating_gaps[0].block);
+  for (int block : r.failing_blocks) keep_label(block);
+  for (const MissedContact& gap : r.failing_gaps) keep_label(gap.block);
   record->thrust = thrust_line(structure, record->result);
   record->thrust_branches = thrust_polylines(structure, record->result);
   record->block_count = structure.size();
@@ -517,12 +528,13 @@ int w_Result_tostring(lua_State* L) {
     }
     text << "Result (" << (r.stable ? "stable" : "unstable") << ", infeasibility " << r.infeasibility << ", "
          << status_name(r.status) << " after " << r.iterations << " iterations";
+    auto label = [&](int block) { return record->labels.at(block); };
     if (!r.floating_blocks.empty()) {
       // Why, for the first floating block: what a user must change.
       text << "; " << r.floating_blocks.size() << (r.floating_blocks.size() == 1 ? " block floats" : " blocks float")
-           << ": block " << r.floating_blocks[0] + 1;
+           << ": " << label(r.floating_blocks[0]);
       if (!r.floating_gaps.empty() && r.floating_gaps[0].block >= 0) {
-        text << " is " << r.floating_gaps[0].tolerance << " m from block " << r.floating_gaps[0].block + 1
+        text << " is " << r.floating_gaps[0].tolerance << " m from " << label(r.floating_gaps[0].block)
              << " (contact_tolerance = " << r.floating_gaps[0].tolerance << " closes it)";
       } else {
         text << " touches nothing within 1 % of the structure's size";
@@ -532,8 +544,8 @@ int w_Result_tostring(lua_State* L) {
     // turn on a joint the tolerance did not find.
     for (size_t k = 0; k < r.failing_gaps.size() && k < r.failing_blocks.size(); ++k) {
       if (r.failing_gaps[k].block < 0) continue;
-      text << "; failing block " << r.failing_blocks[k] + 1 << " is " << r.failing_gaps[k].tolerance
-           << " m from block " << r.failing_gaps[k].block + 1 << " (contact_tolerance = " << r.failing_gaps[k].tolerance
+      text << "; failing " << label(r.failing_blocks[k]) << " is " << r.failing_gaps[k].tolerance << " m from "
+           << label(r.failing_gaps[k].block) << " (contact_tolerance = " << r.failing_gaps[k].tolerance
            << " closes it)";
       break;
     }

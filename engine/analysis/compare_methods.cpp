@@ -67,13 +67,13 @@ std::string said(const EquilibriumResult& r) {
   return text;
 }
 
-std::string said(const SimulationResult& d) {
+std::string said(const SimulationResult& d, const Structure& structure) {
   if (d.status == SimulationStatus::interrupted) {
     return "no verdict (interrupted after " + message_number(d.time) + " s)";
   }
   const std::string moved = d.max_displacement_block < 0
                                 ? "no block moved"
-                                : "block " + std::to_string(d.max_displacement_block + 1) + " moved " +
+                                : structure.label(d.max_displacement_block) + " moved " +
                                       message_number(d.max_displacement) + " m";
   const Verdict v = verdict_of(d);
   const char* end = v == Verdict::falls         ? ", still moving"
@@ -140,7 +140,7 @@ MethodComparison compare_methods(const Structure& structure, const AnalysisSetti
 
   // The verdict, and the evidence behind it.
   std::string evidence = "equilibrium method: " + said(out.equilibrium) + "; kinematic method: " + said(out.kinematic);
-  if (out.dynamic) evidence += "; dynamics: " + said(*out.dynamic);
+  if (out.dynamic) evidence += "; dynamics: " + said(*out.dynamic, structure);
   else if (!dynamics_refused.empty()) evidence += "; the dynamics cannot run: " + dynamics_refused;
   if (out.cra) evidence += "; CRA: " + said(*out.cra);
   else if (!cra_refused.empty()) evidence += "; CRA cannot run: " + cra_refused;

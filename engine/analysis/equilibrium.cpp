@@ -49,16 +49,14 @@ void check_free_block(const Structure& structure, int block, const std::string& 
                           " blocks)");
   }
   if (structure.is_support(block)) {
-    throw InvalidArgument(prefix + "block " + std::to_string(block + 1) + " ('" + structure.name(block) +
-                          "') is a support: its weight goes straight to the ground");
+    throw InvalidArgument(prefix + structure.label(block) + " is a support: its weight goes straight to the ground");
   }
 }
 
 void check_analysed_block(const EquilibriumProblem& problem, const Structure& structure, int block,
                           const std::string& caller) {
   if (problem.row_of_block[block] < 0) {
-    throw InvalidArgument(message_prefix(caller) + "block " + std::to_string(block + 1) + " ('" +
-                          structure.name(block) + "') touches nothing that leads to a support");
+    throw InvalidArgument(message_prefix(caller) + structure.label(block) + " touches nothing that leads to a support");
   }
 }
 

@@ -116,6 +116,11 @@ void Structure::set_cable_points(int index, const Vec3& from, const Vec3& to) {
   cables_[index] = moved;
 }
 
+std::string Structure::label(int i) const {
+  const std::string number = "block " + std::to_string(i + 1);
+  return name(i) == number ? number : number + " ('" + name(i) + "')";
+}
+
 int Structure::find(const std::string& name) const {
   const auto it = index_by_name_.find(name);
   return it == index_by_name_.end() ? -1 : it->second;

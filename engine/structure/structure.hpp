@@ -66,8 +66,9 @@ public:
   const Block& block(int i) const { return *blocks_.at(i).block; }
   bool is_support(int i) const { return blocks_.at(i).support; }
   const std::string& name(int i) const { return blocks_.at(i).name; }
-  // "block 3 ('name')" (1-based), for messages.
-  std::string label(int i) const { return "block " + std::to_string(i + 1) + " ('" + name(i) + "')"; }
+  // How messages name block i: "block 3 ('C-11-1')" (1-based), or "block 3"
+  // when its name is the implicit one.
+  std::string label(int i) const;
   int find(const std::string& name) const;  // -1 if absent
   const std::vector<StructureBlock>& entries() const { return blocks_; }
   const std::vector<PointLoad>& loads() const { return loads_; }

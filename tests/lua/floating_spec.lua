@@ -28,6 +28,11 @@ describe("a floating block", function()
     end
     assert.matches("4 blocks float: block 2 is 0.0005%d* m from block 1 %(contact_tolerance = 0.0005%d* closes it%)",
       tostring(r))
+    -- Named blocks are named too.
+    local named = ashlar.structure()
+    named:add(s:block(1), { support = true, name = "plinth" })
+    named:add(s:block(2), { name = "drum" })
+    assert.matches("1 block floats: block 2 %('drum'%) is 0.0005%d* m from block 1 %('plinth'%)", tostring(ashlar.analyze(named)))
     local closed = ashlar.analyze(s, { contact_tolerance = r.blocks[2].gap })
     assert.is_true(closed.stable)
     assert.same({}, closed.floating)

@@ -40,7 +40,7 @@ describe("an unstable verdict", function()
     local upper = r.blocks[s:find("upper")]
     assert.are.equal(s:find("post"), upper.nearest)
     near(upper.gap, 0.002, 1e-3 * 0.002, "the gap to the post")
-    assert.truthy(tostring(r):find("failing block 3 is 0.002", 1, true), tostring(r))
+    assert.truthy(tostring(r):find("failing block 3 ('upper') is 0.002", 1, true), tostring(r))
     -- That tolerance closes it, and the upper block then rests on the post.
     assert.is_true(ashlar.analyze(s, { contact_tolerance = 1.01 * upper.gap }).stable)
     assert.is_false(support.independent_verdict(s, 0.7))

@@ -221,7 +221,7 @@ TEST(Fea, RejectsBlocksThatAreNotHexahedraCablesAndBadSettings) {
   Structure wedge;
   wedge.add(box({2, 2, 1}, {0, 0, -0.5}), true);
   wedge.add(std::make_shared<const Block>(make_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}})));
-  EXPECT_TRUE(contains(error_of([&] { FeaMesh(wedge, 1); }), "block 2 ('block 2') is not a hexahedron (4 vertices)"));
+  EXPECT_TRUE(contains(error_of([&] { FeaMesh(wedge, 1); }), "block 2 is not a hexahedron (4 vertices)"));
   const Structure s = column(1);
   EXPECT_TRUE(contains(error_of([&] { FeaMesh(s, 0); }), "refine: expected a whole number from 1 to 64"));
   FeaSettings settings;
