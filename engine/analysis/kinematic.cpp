@@ -16,8 +16,8 @@ namespace ashlar {
 namespace {
 
 // Damping of the rounds: the largest and smallest share of a round's
-// change of the joints' strengths taken; halved when the change turned
-// back, raised again while it keeps its direction.
+// change taken; halved when the change turned back, raised again while it
+// keeps its direction.
 constexpr double kFullStep = 1.0, kLeastStep = 1.0 / 256;
 constexpr double kStepGrowth = 1.25;
 // Compressions count from this fraction of the lighter free block's weight
@@ -52,17 +52,6 @@ Eigen::VectorXd least_compressions(const Structure& structure, const Equilibrium
     least(k) = kLeastCompression * std::min(weight(g.block_a), weight(g.block_b));
   }
   return least;
-}
-
-// Where each joint's contact vertices start in the problem's group order
-// (an interface's vertices are consecutive), and one more entry: the count.
-std::vector<int> joint_starts(const EquilibriumProblem& problem) {
-  std::vector<int> starts;
-  for (int k = 0; k < problem.contact_vertex_count; ++k) {
-    if (k == 0 || problem.groups[k].source != problem.groups[k - 1].source) starts.push_back(k);
-  }
-  starts.push_back(problem.contact_vertex_count);
-  return starts;
 }
 
 // Whether the friction at every contact vertex of x (scaled) is within the
@@ -106,21 +95,26 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
   // Extrapolating schemes (Anderson mixing) were tried: they amplify the
   // solver's noise in compressions that should be zero (a flat arch with
   // vertical joints) and never settle.
-  // The share is taken of each joint's total strength, which the round's
-  // compressions then spread over the joint's vertices. A block that still
-  // moves presses a different vertex of a joint from round to round (its
-  // least-constraint motion turns about the vertices that have no strength
-  // yet), so a strength left at the vertex that was pressed last is not
-  // where this round's sliding needs it: the Armadillo vault's voussoir
-  // C-11-1 lost its joints' strength that way, the course's thrust that
-  // would have squeezed it went round it, and it settled falling alone at
-  // mu 0.84. At a fixed point it is the same: every vertex mu times its own
-  // compression.
+  // The rounds first build the strengths up: each vertex keeps mu times the
+  // largest compression any round has pressed into it, until no strength
+  // grows; plain damped rounds (g = T(g)) then settle from there. A block
+  // that still moves presses a different vertex of a joint from round to
+  // round (its least-constraint motion turns about the vertices that have no
+  // strength yet, and friction at the vertices that have some moves its
+  // compression elsewhere), so a strength that follows only the last
+  // compression is never where this round's sliding needs it. The Armadillo
+  // vault's voussoir C-11-1 sits in a slot that diverges towards the free
+  // edge: the course's thrust squeezes it only while friction holds it
+  // (the squeeze also pushes it out), and with strengths from the last
+  // round alone, damped besides, its joints lost their strength vertex by
+  // vertex, the thrust went round it and it settled falling alone at
+  // mu 0.84. Built up, its joints keep every vertex's strength until the
+  // thrust squeezes it, and the plain rounds from there keep it standing.
+  // The verdict is unchanged in kind: a fixed point of the plain rounds, or
+  // a stable round whose friction is within its own compressions' cones.
+  bool building = true;
   double share = kFullStep;
-  Eigen::VectorXd strength = Eigen::VectorXd::Zero(vertices), next(vertices);
-  const std::vector<int> joints = joint_starts(analysis.problem());
-  const int joint_count = static_cast<int>(joints.size()) - 1;
-  Eigen::VectorXd joint_step(joint_count), last_joint_step = Eigen::VectorXd::Zero(joint_count);
+  Eigen::VectorXd strength = Eigen::VectorXd::Zero(vertices), next(vertices), last_step = Eigen::VectorXd::Zero(vertices);
   const Eigen::VectorXd least = least_compressions(structure, analysis.problem());
   EquilibriumResult result;
   int iterations = 0, factorizations = 0;
@@ -140,8 +134,9 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     const Eigen::VectorXd& x = analysis.solution().x;
     for (int k = 0; k < vertices; ++k) next(k) = mu * counted_compression(x(4 * k), least(k));
     // Scaled forces are in mean block weights: the tolerance is absolute.
-    const double change = (next - strength).lpNorm<Eigen::Infinity>();
-    if (change <= settings.round_tolerance) break;
+    // Once no strength grows, the plain rounds take over from this one.
+    building = building && (next - strength).maxCoeff() > settings.round_tolerance;
+    if (!building && (next - strength).lpNorm<Eigen::Infinity>() <= settings.round_tolerance) break;
     // A stable round whose friction at every vertex is within mu times the
     // compression that vertex has settles the verdict: those forces are an
     // equilibrium of the kind the fixed point is, without prestress (each
@@ -154,23 +149,13 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
       result.borderline = false;
       break;
     }
-    for (int j = 0; j < joint_count; ++j) {
-      const int first = joints[j], count = joints[j + 1] - joints[j];
-      joint_step(j) = next.segment(first, count).sum() - strength.segment(first, count).sum();
-    }
-    share = joint_step.dot(last_joint_step) < 0.0 ? std::max(kLeastStep, 0.5 * share)
-                                                  : std::min(kFullStep, kStepGrowth * share);
-    last_joint_step = joint_step;
-    for (int j = 0; j < joint_count; ++j) {
-      const int first = joints[j], count = joints[j + 1] - joints[j];
-      const double had = strength.segment(first, count).sum(), wanted = next.segment(first, count).sum();
-      const double total = had + share * joint_step(j);
-      // Spread as this round's compressions; with none, as before.
-      if (wanted > 0.0) {
-        strength.segment(first, count) = (total / wanted) * next.segment(first, count);
-      } else if (had > 0.0) {
-        strength.segment(first, count) *= total / had;
-      }
+    if (building) {
+      strength = strength.cwiseMax(next);
+    } else {
+      const Eigen::VectorXd step = next - strength;
+      share = step.dot(last_step) < 0.0 ? std::max(kLeastStep, 0.5 * share) : std::min(kFullStep, kStepGrowth * share);
+      last_step = step;
+      strength += share * step;
     }
     analysis.set_shear_strengths(std::vector<double>(strength.data(), strength.data() + vertices));
   }  // The infeasibility the equilibrium method measures in tension is here
