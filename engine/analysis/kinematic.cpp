@@ -97,21 +97,22 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
   // vertical joints) and never settle.
   // The rounds first build the strengths up: each vertex keeps mu times the
   // largest compression any round has pressed into it, until no strength
-  // grows; plain damped rounds (g = T(g)) then settle from there. A block
-  // that still moves presses a different vertex of a joint from round to
-  // round (its least-constraint motion turns about the vertices that have no
-  // strength yet, and friction at the vertices that have some moves its
-  // compression elsewhere), so a strength that follows only the last
-  // compression is never where this round's sliding needs it. The Armadillo
-  // vault's voussoir C-11-1 sits in a slot that diverges towards the free
-  // edge: the course's thrust squeezes it only while friction holds it
-  // (the squeeze also pushes it out), and with strengths from the last
-  // round alone, damped besides, its joints lost their strength vertex by
-  // vertex, the thrust went round it and it settled falling alone at
-  // mu 0.84. Built up, its joints keep every vertex's strength until the
-  // thrust squeezes it, and the plain rounds from there keep it standing.
-  // The verdict is unchanged in kind: a fixed point of the plain rounds, or
-  // a stable round whose friction is within its own compressions' cones.
+  // grows or a round stands; plain damped rounds (g = T(g)) then settle from
+  // there. A block that still moves presses a different vertex of a joint
+  // from round to round (its least-constraint motion turns about the
+  // vertices that have no strength yet, and friction at the vertices that
+  // have some moves its compression elsewhere), so a strength that follows
+  // only the last compression is never where this round's sliding needs it.
+  // The Armadillo vault's voussoir C-11-1 sits in a slot that diverges
+  // towards the free edge: the course's thrust squeezes it only while
+  // friction holds it (the squeeze also pushes it out), and with strengths
+  // from the last round alone, damped besides, its joints lost their
+  // strength vertex by vertex, the thrust went round it and it settled
+  // falling alone at mu 0.84. Built up, its joints keep every vertex's
+  // strength until the thrust squeezes it, and the plain rounds from there
+  // keep it standing. The verdict is unchanged in kind: a fixed point of the
+  // plain rounds, or a stable round whose friction is within its own
+  // compressions' cones.
   bool building = true;
   double share = kFullStep;
   Eigen::VectorXd strength = Eigen::VectorXd::Zero(vertices), next(vertices), last_step = Eigen::VectorXd::Zero(vertices);
@@ -134,8 +135,9 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     const Eigen::VectorXd& x = analysis.solution().x;
     for (int k = 0; k < vertices; ++k) next(k) = mu * counted_compression(x(4 * k), least(k));
     // Scaled forces are in mean block weights: the tolerance is absolute.
-    // Once no strength grows, the plain rounds take over from this one.
-    building = building && (next - strength).maxCoeff() > settings.round_tolerance;
+    // Once no strength grows, or a round stands (nothing moves, so nothing
+    // rocks from vertex to vertex), the plain rounds take over from this one.
+    building = building && !result.stable && (next - strength).maxCoeff() > settings.round_tolerance;
     if (!building && (next - strength).lpNorm<Eigen::Infinity>() <= settings.round_tolerance) break;
     // A stable round whose friction at every vertex is within mu times the
     // compression that vertex has settles the verdict: those forces are an
