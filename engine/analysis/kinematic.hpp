@@ -28,16 +28,16 @@
 // do not count (the solver's rounding, which friction could otherwise turn
 // into self-made arching). The rounds first build the strengths up: each
 // vertex keeps mu times the largest compression any round has pressed into
-// it, until no strength grows. A block that still moves presses different
-// vertices of its joints from round to round (it turns about those without
-// strength), so strengths that followed only the last round would never be
-// where its sliding needs them, and a squeeze that friction must hold while
-// it grows (a voussoir in a slot that widens outwards) would never build.
-// From there plain rounds set each strength to mu times the last round's
-// compression, damped where they turn back. The rounds end when no strength
-// changes (a fixed point: friction is within mu times the very compression
-// it rests on), or at a stable round whose friction is within mu times its
-// own compressions.
+// it, until no strength grows or a round stands. A block that still moves
+// presses different vertices of its joints from round to round (it turns
+// about those without strength), so strengths that followed only the last
+// round would never be where its sliding needs them, and a squeeze that
+// friction must hold while it grows (a voussoir in a slot that widens
+// outwards) would never build. From there plain rounds set each strength to
+// mu times the last round's compression, damped where they turn back. The
+// rounds end when no strength changes (a fixed point: friction is within mu
+// times the very compression it rests on), or at a stable round whose
+// friction is within mu times its own compressions.
 //
 // Verdict: stable when the rounds settled and the last QP's forces balance
 // every block without virtual loads or excess friction (as the equilibrium
