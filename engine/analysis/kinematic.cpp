@@ -95,6 +95,25 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
   // Extrapolating schemes (Anderson mixing) were tried: they amplify the
   // solver's noise in compressions that should be zero (a flat arch with
   // vertical joints) and never settle.
+  // The rounds first build the strengths up: each vertex keeps mu times the
+  // largest compression any round has pressed into it, until no strength
+  // grows or a round stands; plain damped rounds (g = T(g)) then settle from
+  // there. A block that still moves presses a different vertex of a joint
+  // from round to round (its least-constraint motion turns about the
+  // vertices that have no strength yet, and friction at the vertices that
+  // have some moves its compression elsewhere), so a strength that follows
+  // only the last compression is never where this round's sliding needs it.
+  // The Armadillo vault's voussoir C-11-1 sits in a slot that diverges
+  // towards the free edge: the course's thrust squeezes it only while
+  // friction holds it (the squeeze also pushes it out), and with strengths
+  // from the last round alone, damped besides, its joints lost their
+  // strength vertex by vertex, the thrust went round it and it settled
+  // falling alone at mu 0.84. Built up, its joints keep every vertex's
+  // strength until the thrust squeezes it, and the plain rounds from there
+  // keep it standing. The verdict is unchanged in kind: a fixed point of the
+  // plain rounds, or a stable round whose friction is within its own
+  // compressions' cones.
+  bool building = true;
   double share = kFullStep;
   Eigen::VectorXd strength = Eigen::VectorXd::Zero(vertices), next(vertices), last_step = Eigen::VectorXd::Zero(vertices);
   const Eigen::VectorXd least = least_compressions(structure, analysis.problem());
@@ -116,8 +135,10 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     const Eigen::VectorXd& x = analysis.solution().x;
     for (int k = 0; k < vertices; ++k) next(k) = mu * counted_compression(x(4 * k), least(k));
     // Scaled forces are in mean block weights: the tolerance is absolute.
-    const double change = (next - strength).lpNorm<Eigen::Infinity>();
-    if (change <= settings.round_tolerance) break;
+    // Once no strength grows, or a round stands (nothing moves, so nothing
+    // rocks from vertex to vertex), the plain rounds take over from this one.
+    building = building && !result.stable && (next - strength).maxCoeff() > settings.round_tolerance;
+    if (!building && (next - strength).lpNorm<Eigen::Infinity>() <= settings.round_tolerance) break;
     // A stable round whose friction at every vertex is within mu times the
     // compression that vertex has settles the verdict: those forces are an
     // equilibrium of the kind the fixed point is, without prestress (each
@@ -130,10 +151,14 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
       result.borderline = false;
       break;
     }
-    const Eigen::VectorXd step = next - strength;
-    share = step.dot(last_step) < 0.0 ? std::max(kLeastStep, 0.5 * share) : std::min(kFullStep, kStepGrowth * share);
-    last_step = step;
-    strength += share * step;
+    if (building) {
+      strength = strength.cwiseMax(next);
+    } else {
+      const Eigen::VectorXd step = next - strength;
+      share = step.dot(last_step) < 0.0 ? std::max(kLeastStep, 0.5 * share) : std::min(kFullStep, kStepGrowth * share);
+      last_step = step;
+      strength += share * step;
+    }
     analysis.set_shear_strengths(std::vector<double>(strength.data(), strength.data() + vertices));
   }  // The infeasibility the equilibrium method measures in tension is here
   // the virtual loads that the joints could not carry, over the weight.

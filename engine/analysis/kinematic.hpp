@@ -26,18 +26,27 @@
 // forces (contacts with equal springs). The first round has no strength at
 // all (no prestress); compressions under 1 % of the lighter block's weight
 // do not count (the solver's rounding, which friction could otherwise turn
-// into self-made arching). The rounds end when no strength changes (a fixed
-// point: friction is within mu times the very compression it rests on), or
-// at a stable round whose friction is within mu times its own compressions.
+// into self-made arching). The rounds first build the strengths up: each
+// vertex keeps mu times the largest compression any round has pressed into
+// it, until no strength grows or a round stands. A block that still moves
+// presses different vertices of its joints from round to round (it turns
+// about those without strength), so strengths that followed only the last
+// round would never be where its sliding needs them, and a squeeze that
+// friction must hold while it grows (a voussoir in a slot that widens
+// outwards) would never build. From there plain rounds set each strength to
+// mu times the last round's compression, damped where they turn back. The
+// rounds end when no strength changes (a fixed point: friction is within mu
+// times the very compression it rests on), or at a stable round whose
+// friction is within mu times its own compressions.
 //
 // Verdict: stable when the rounds settled and the last QP's forces balance
 // every block without virtual loads or excess friction (as the equilibrium
 // method decides). It is certain in that model: such forces exist and arise
-// from an unstressed state. "Unstable" is the fixed point the rounds reach
-// from no prestress, a local answer: an iteration from another starting
-// point, or another spring law, could find another. Rounds that do not
-// settle within max_rounds give status max_iterations and no verdict
-// (stable false).
+// from an unstressed state. "Unstable" is the fixed point the plain rounds
+// reach from the built-up strengths, a local answer: an iteration from
+// another starting point, or another spring law, could find another.
+// Rounds that do not settle within max_rounds give status max_iterations
+// and no verdict (stable false).
 //
 // Both methods agree where friction does not decide (mu infinite: no
 // sliding; or frictionless joints).
