@@ -129,7 +129,14 @@ public:
   bool get_scaling_parameters(Number& objective_scaling, bool& use_x_scaling, Index n, Number* x_scaling,
                               bool& use_g_scaling, Index m, Number* g_scaling) override {
     const double bound = settings_.displacement_bound;
-    objective_scaling = 1.0;
+    // alpha is a force per displacement, O(1 / d_bnd) wherever friction
+    // acts, so alpha^2 (and with the penalty w f-^2) outweigh f_n^2 by
+    // 1 / d_bnd^2 (w): unscaled, the objective's gradient is O(1e3-1e6)
+    // and IPOPT's dual infeasibility (an absolute test) could not reach its
+    // tolerance (a dome of 288 voussoirs stalled at 1e0, 1e6 times tol;
+    // cra_penalty on compas_cra's A.json diverged to "infeasible").
+    objective_scaling = bound * bound;
+    if (layout_.penalty) objective_scaling = std::min(objective_scaling, 1.0 / settings_.tension_weight);
     use_x_scaling = use_g_scaling = true;
     std::fill(x_scaling, x_scaling + n, 1.0);
     std::fill(g_scaling, g_scaling + m, 1.0);

@@ -110,6 +110,26 @@ describe("method = 'cra'", function()
     assert.equal(math.huge, r.infeasibility)
   end)
 
+  it("lets compas_cra's A fall, and holds it with cra_penalty by normal tension alone, 2 W", function()
+    -- A block narrower at the top between two posts leaning in (joint
+    -- normals 30 degrees below the horizontal): its joints push it down,
+    -- and any motion that closes them lifts it. The equilibrium method
+    -- clamps it by friction; CRA finds no motion. With the penalty no joint
+    -- is compressed, so there is no friction: the two joints' normal
+    -- tensions T carry W with T sin 30 each, T = W, 2 W in all.
+    local s = sample("A.json", { "node 0", "node 1" })
+    assert.is_true(ashlar.analyze(s, { friction = 0.84 }).stable)
+    local hard = ashlar.analyze(s, { method = "cra", friction = 0.84 })
+    assert.is_false(hard.stable)
+    assert.equal("infeasible", hard.status)
+    local r = ashlar.analyze(s, { method = "cra_penalty", friction = 0.84 })
+    assert.equal("converged", r.status)
+    assert.is_false(r.stable)
+    support.near(2, r.infeasibility, 1e-5)
+    local w = weight(s, 2)
+    for _, f in ipairs(r.interfaces) do support.near(w, f.tension, 1e-5 * w) end
+  end)
+
   it("names bad options and the functions that do not offer it", function()
     local s = sample("cubes.json", { "node 0" })
     support.expect_error({ "method", "'crab'" }, ashlar.analyze, s, { method = "crab" })
