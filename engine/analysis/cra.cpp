@@ -116,6 +116,8 @@ public:
       // three blocks at tolerance 1e-8).
       const int products = first + static_cast<int>(friction_.rows());
       g_l[products] = -inf;
+      // cra only: the penalty form diverged with it (H.json, A.json).
+      if (!layout_.penalty) g_u[products] = settings_.complementarity * settings_.overlap;
       if (layout_.penalty) g_l[products + 3] = -inf;
     }
     return true;
@@ -404,6 +406,10 @@ void check_cra_settings(const CraSettings& settings) {
     throw InvalidArgument("displacement_bound must be a finite number > overlap (" +
                           shortest_number(settings.overlap) + "), got " +
                           shortest_number(settings.displacement_bound));
+  }
+  if (!(settings.complementarity >= 0.0) || !std::isfinite(settings.complementarity)) {
+    throw InvalidArgument("complementarity must be a finite number >= 0, got " +
+                          shortest_number(settings.complementarity));
   }
   if (!(settings.tension_weight > 0.0) || !std::isfinite(settings.tension_weight)) {
     throw InvalidArgument("tension_weight must be a finite number > 0, got " +
