@@ -106,6 +106,11 @@ namespace {
 // defaults when absent. Their own keys with another method are errors.
 void read_cra_options(const OptionTable& options, AnalysisSettings& settings) {
   CraSettings& cra = settings.cra;
+  if (options.has("complementarity") && settings.method != AnalysisMethod::cra) {
+    throw ArgError(options.arg(), std::string("complementarity: only with method = 'cra' (cra_penalty keeps it exact), "
+                                              "got method = '") +
+                                      kAnalysisMethodNames.name(settings.method) + "'");
+  }
   if (!is_cra(settings.method)) {
     for (const char* key : {"overlap", "displacement_bound"}) {
       if (options.has(key)) {
@@ -117,6 +122,7 @@ void read_cra_options(const OptionTable& options, AnalysisSettings& settings) {
   }
   cra.overlap = options.positive("overlap", cra.overlap, true);
   cra.displacement_bound = options.positive("displacement_bound", cra.displacement_bound);
+  cra.complementarity = options.positive("complementarity", cra.complementarity, true);
   cra.tolerance = options.positive("tolerance", cra.tolerance);
   if (options.has("max_iterations")) cra.max_iterations = settings.solver.max_iterations;
   if (options.has("tension_weight")) {
@@ -198,7 +204,7 @@ int w_analyze(lua_State* L) {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "warm_start", "verdict_only", "method", "overlap",
-                                     "displacement_bound"});
+                                     "displacement_bound", "complementarity"});
     AnalysisSettings settings = analysis_settings(options);
     settings.verdict_only = options.boolean("verdict_only").value_or(false);
     // method = "auto": both static methods, and the arbiter where they

@@ -116,6 +116,8 @@ public:
       // three blocks at tolerance 1e-8).
       const int products = first + static_cast<int>(friction_.rows());
       g_l[products] = -inf;
+      // cra only: the penalty form diverged with it (H.json, A.json).
+      if (!layout_.penalty) g_u[products] = settings_.complementarity * settings_.overlap;
       if (layout_.penalty) g_l[products + 3] = -inf;
     }
     return true;
@@ -129,7 +131,14 @@ public:
   bool get_scaling_parameters(Number& objective_scaling, bool& use_x_scaling, Index n, Number* x_scaling,
                               bool& use_g_scaling, Index m, Number* g_scaling) override {
     const double bound = settings_.displacement_bound;
-    objective_scaling = 1.0;
+    // alpha is a force per displacement, O(1 / d_bnd) wherever friction
+    // acts, so alpha^2 (and with the penalty w f-^2) outweigh f_n^2 by
+    // 1 / d_bnd^2 (w): unscaled, the objective's gradient is O(1e3-1e6)
+    // and IPOPT's dual infeasibility (an absolute test) could not reach its
+    // tolerance (a dome of 288 voussoirs stalled at 1e0, 1e6 times tol;
+    // cra_penalty on compas_cra's A.json diverged to "infeasible").
+    objective_scaling = bound * bound;
+    if (layout_.penalty) objective_scaling = std::min(objective_scaling, 1.0 / settings_.tension_weight);
     use_x_scaling = use_g_scaling = true;
     std::fill(x_scaling, x_scaling + n, 1.0);
     std::fill(g_scaling, g_scaling + m, 1.0);
@@ -397,6 +406,10 @@ void check_cra_settings(const CraSettings& settings) {
     throw InvalidArgument("displacement_bound must be a finite number > overlap (" +
                           shortest_number(settings.overlap) + "), got " +
                           shortest_number(settings.displacement_bound));
+  }
+  if (!(settings.complementarity >= 0.0) || !std::isfinite(settings.complementarity)) {
+    throw InvalidArgument("complementarity must be a finite number >= 0, got " +
+                          shortest_number(settings.complementarity));
   }
   if (!(settings.tension_weight > 0.0) || !std::isfinite(settings.tension_weight)) {
     throw InvalidArgument("tension_weight must be a finite number > 0, got " +

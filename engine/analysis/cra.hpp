@@ -24,7 +24,9 @@
 //              -eps <= d_n,  |d_n|, |d_u|, |d_v| <= d_bnd   no penetration beyond eps
 //              f_n (d_n + eps) = 0      (cra_penalty: f+ (d_n + eps) = 0, f+ f- = 0),
 //                                       given to IPOPT as "<= 0" (the same set, as both
-//                                       factors are >= 0, but one-sided)
+//                                       factors are >= 0, but one-sided); cra relaxes it
+//                                       to <= kappa eps (CraSettings::complementarity, 0
+//                                       by default), which large hyperstatic assemblies need
 //              (f_u, f_v) = -alpha_k (d_u, d_v)   friction against the sliding
 // with eps = CraSettings::overlap and d_bnd = displacement_bound (both in L).
 // Friction is bounded by the equilibrium QP's rows: the pyramid of

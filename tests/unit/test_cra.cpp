@@ -210,6 +210,9 @@ TEST(Cra, BadSettingsAreInvalidArguments) {
   settings = cra_settings(AnalysisMethod::cra);
   settings.cra.displacement_bound = 1e-5;  // below the overlap
   EXPECT_NE(error_of([&] { analyze_equilibrium(s, settings); }).find("displacement_bound must be"), std::string::npos);
+  settings = cra_settings(AnalysisMethod::cra);
+  settings.cra.complementarity = -0.1;
+  EXPECT_NE(error_of([&] { analyze_equilibrium(s, settings); }).find("complementarity must be"), std::string::npos);
   settings = cra_settings(AnalysisMethod::cra_penalty);
   settings.cra.max_iterations = 0;
   EXPECT_NE(error_of([&] { analyze_equilibrium(s, settings); }).find("max_iterations"), std::string::npos);
