@@ -174,9 +174,9 @@ void push_arbitration_fields(lua_State* L, const Arbitration& a) {
 }
 
 // Option `key` of compare_methods saying when a further opinion runs: nil
-// (where the static methods disagree), true (always) or false (never).
-OpinionWhen opinion_when(const OptionTable& options, const char* key, int type) {
-  if (type == LUA_TNIL) return OpinionWhen::on_disagreement;
+// (`absent`), true (always) or false (never).
+OpinionWhen opinion_when(const OptionTable& options, const char* key, int type, OpinionWhen absent) {
+  if (type == LUA_TNIL) return absent;
   if (type != LUA_TBOOLEAN) {
     throw ArgError(options.arg(), std::string(key) + ": expected true or false, got " +
                                       type_name(options.state(), -1));
@@ -272,10 +272,10 @@ int w_compare_methods(lua_State* L) {
       comparison.simulation = simulation_options(
           OptionTable(L, lua_gettop(L), 2, "dynamics.", {ASHLAR_SIMULATION_OPTIONS}), s, progress);
     } else {
-      comparison.dynamics = opinion_when(options, "dynamics", type);
+      comparison.dynamics = opinion_when(options, "dynamics", type, comparison.dynamics);
     }
     lua_pop(L, 1);
-    comparison.cra = opinion_when(options, "cra", options.push("cra"));
+    comparison.cra = opinion_when(options, "cra", options.push("cra"), comparison.cra);
     lua_pop(L, 1);
     if (!options.boolean("margin").value_or(true)) comparison.margin_tolerance = 0.0;
     MethodComparison c = compare_methods(s, settings, comparison);

@@ -11,7 +11,7 @@ local g = 9.81
 
 describe("ashlar.compare_methods' verdict", function()
   it("lets the dynamics decide for a block clamped between walls: it falls freely", function()
-    local c = ashlar.compare_methods(cases.clamped(), { friction = 0.6 })
+    local c = ashlar.compare_methods(cases.clamped(), { friction = 0.6, cra = true })
     assert.equal("stands", c.methods.equilibrium)  -- squeezed by normal forces nothing creates
     assert.equal("falls", c.methods.kinematic)
     assert.equal("falls", c.methods.dynamics)
@@ -31,11 +31,12 @@ describe("ashlar.compare_methods' verdict", function()
   end)
 
   it("gives CRA's verdict when the dynamics is not asked for, and none without either", function()
-    local c = ashlar.compare_methods(cases.clamped(), { friction = 0.6, dynamics = false })
+    assert.is_nil(ashlar.compare_methods(cases.clamped(), { friction = 0.6 }).cra)  -- only when asked for
+    local c = ashlar.compare_methods(cases.clamped(), { friction = 0.6, dynamics = false, cra = true })
     assert.is_nil(c.dynamic)
     assert.equal("falls", c.verdict)
     assert.equal("cra", c.decided_by)
-    local none = ashlar.compare_methods(cases.clamped(), { friction = 0.6, dynamics = false, cra = false })
+    local none = ashlar.compare_methods(cases.clamped(), { friction = 0.6, dynamics = false })
     assert.equal("no verdict", none.verdict)
     assert.is_false(none.stable)
     assert.is_nil(none.decided_by)
@@ -112,7 +113,7 @@ describe("the arbiter on a built vault", function()
     -- the kinematic rounds let voussoir C-11-1 fall alone (its fixed point
     -- from no prestress); from rest under gravity no vertex moves.
     local s = ashlar.import("../data/compas_cra/armadillo_cra.json", { planarity = 0.05, interfaces = "detect" })
-    local c = ashlar.compare_methods(s, { friction = 0.5, contact_tolerance = 0.03, cra = false, margin = false,
+    local c = ashlar.compare_methods(s, { friction = 0.5, contact_tolerance = 0.03, margin = false,
                                           dynamics = { duration = 0.05 } })
     assert.equal("stands", c.verdict, c.reason)
     assert.equal("dynamics", c.decided_by)
