@@ -286,7 +286,8 @@ int w_compare_methods(lua_State* L) {
     luax_pushResult(L, s, std::move(c.kinematic));
     if (c.cra) luax_pushResult(L, s, std::move(*c.cra));
     else lua_pushnil(L);
-    const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
+    const std::shared_ptr<const std::vector<Interface>> interfaces_list = s.interfaces(settings.problem.contact);
+    const std::vector<Interface>& interfaces = *interfaces_list;
     return call_protected(L, 4, [&](lua_State* L) {
       lua_createtable(L, 0, 16);
       lua_pushvalue(L, 1);  // nil without the dynamic verdict

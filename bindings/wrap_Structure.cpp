@@ -299,7 +299,8 @@ int w_Structure_interfaces(lua_State* L) {
     const Structure& s = *structure;
     const OptionTable options(L, 2, {"tolerance", "angle", "min_width", "min_area"});
     const ContactOptions contact = contact_options(options, "tolerance", "angle", "min_width", "min_area");
-    const std::vector<Interface>& found = s.interfaces(contact);
+    const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces(contact);
+    const std::vector<Interface>& found = *found_list;
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, static_cast<int>(found.size()), 0);
       for (size_t k = 0; k < found.size(); ++k) {
@@ -336,7 +337,8 @@ int w_Structure_contact_report(lua_State* L) {
     if (range <= 1.0) throw ArgError(2, "range: expected a number > 1 (a multiple of the tolerance), got " + number_text(range));
     const double tolerance = s.contact_tolerance(contact);
     const std::vector<NearMiss> gaps = s.near_misses(range * tolerance, contact);
-    const std::vector<BlockOverlap>& overlaps = s.overlaps(contact);
+    const std::shared_ptr<const std::vector<BlockOverlap>> overlaps_list = s.overlaps(contact);
+    const std::vector<BlockOverlap>& overlaps = *overlaps_list;
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, 0, 3);
       set_field(L, "tolerance", tolerance);
@@ -355,7 +357,8 @@ int w_Structure_overlaps(lua_State* L) {
     const OptionTable options(L, 2, {"tolerance"});
     ContactOptions contact;
     contact.tolerance = options.positive("tolerance", 0.0, true);
-    const std::vector<BlockOverlap>& overlaps = s.overlaps(contact);
+    const std::shared_ptr<const std::vector<BlockOverlap>> overlaps_list = s.overlaps(contact);
+    const std::vector<BlockOverlap>& overlaps = *overlaps_list;
     return call_protected(L, 0, [&](lua_State* L) {
       push_block_pairs(L, overlaps, "depth", [](const BlockOverlap& overlap) { return overlap.depth; });
       return 1;

@@ -130,7 +130,8 @@ void push_released(lua_State* L, const FeaRecord& r) {
 
 void push_interfaces(lua_State* L, const FeaRecord& r) {
   // Cached in the structure since the analysis found them.
-  const std::vector<Interface>& interfaces = r.structure.interfaces(r.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = r.structure.interfaces(r.contact);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   lua_createtable(L, static_cast<int>(interfaces.size()), 0);
   for (size_t k = 0; k < interfaces.size(); ++k) {
     const FeaInterfaceForce& f = r.result.interfaces[k];
@@ -189,7 +190,7 @@ int w_FeaResult_export(lua_State* L) {
       for (const char* key : {"scale", "color", "map", "undeformed", "contacts"})
         if (options.has(key))
           throw ArgError(3, std::string(key) + ": applies to 3D files, not to .vtu, which holds every result");
-      export_fea_vtu(r.structure, *r.mesh, r.result, r.structure.interfaces(r.contact), path);
+      export_fea_vtu(r.structure, *r.mesh, r.result, *r.structure.interfaces(r.contact), path);
       return 0;
     }
     FeaMeshExportOptions settings;

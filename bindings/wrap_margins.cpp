@@ -69,7 +69,8 @@ int w_load_factor(lua_State* L) {
     ProgressLine line(options, "load_factor", std::to_string(s.size()) + " blocks", "iteration", 2.0);
     const LoadFactor factor = load_factor(s, settings, line.callback());
     line.finish(factor.status);
-    const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
+    const std::shared_ptr<const std::vector<Interface>> interfaces_list = s.interfaces(settings.problem.contact);
+    const std::vector<Interface>& interfaces = *interfaces_list;
     const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
       return std::array<int, 2>{interfaces[k].a, interfaces[k].b};
     };
@@ -108,7 +109,8 @@ int w_friction_demand(lua_State* L) {
     const FrictionDemand demand = kinematic ? kinematic_friction_demand(s, analysis, tolerance, line.callback())
                                             : friction_demand(s, problem, tolerance, line.callback());
     line.finish(demand.status);
-    const std::vector<Interface>& interfaces = s.interfaces(problem.contact);
+    const std::shared_ptr<const std::vector<Interface>> interfaces_list = s.interfaces(problem.contact);
+    const std::vector<Interface>& interfaces = *interfaces_list;
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, 0, 8);
       set_string(L, "method", kAnalysisMethodNames.name(analysis.method));

@@ -44,7 +44,8 @@ int w_weight_sensitivity(lua_State* L) {
     const int block = check_block_index(L, s, 2, 2, "block");
     const AnalysisSettings settings = analysis_settings(OptionTable(L, 3, {ASHLAR_ANALYSIS_OPTIONS}));
     const WeightSensitivity sensitivity = weight_sensitivity(s, block, settings);
-    const std::vector<Interface>& interfaces = s.interfaces(settings.problem.contact);
+    const std::shared_ptr<const std::vector<Interface>> interfaces_list = s.interfaces(settings.problem.contact);
+    const std::vector<Interface>& interfaces = *interfaces_list;
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, s.size(), 6);
       set_list(L, sensitivity.block_change);

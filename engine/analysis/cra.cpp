@@ -507,7 +507,9 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     }
   }
 
-  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(options.contact);
+
+  const std::vector<Interface>& interfaces = *interfaces_list;
   const bool answer = !has_no_answer(result.status) && result.status != SolverStatus::infeasible &&
                       result.status != SolverStatus::max_iterations;
   if (answer) {

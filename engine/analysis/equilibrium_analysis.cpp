@@ -122,7 +122,9 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   result.floating_blocks = problem_.floating_blocks;
   result.floating_gaps = floating_gaps_;
 
-  const std::vector<Interface>& interfaces = structure_->interfaces(settings_.problem.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure_->interfaces(settings_.problem.contact);
+
+  const std::vector<Interface>& interfaces = *interfaces_list;
   const Eigen::VectorXd& x = solution_.x;
   const double penalised = fill_result_forces(*structure_, interfaces, problem_, x, result);
   result.imbalance_without_tension = compression_only_imbalance(problem_, x);

@@ -289,7 +289,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   check_options(options);
   structure.require_free_block("analysis");
   structure.require_no_overlaps(options.contact, "analysis");
-  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(options.contact);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   const int n = structure.size();
   const std::vector<Cable>& cables = structure.cables();
   const double size = structure.bounds().diagonal();

@@ -31,7 +31,8 @@ EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
   const Eigen::VectorXd& x = optimum.x;
   const Eigen::VectorXd& y = optimum.y;
   const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
-  const std::vector<Interface>& interfaces = structure.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces();
+  const std::vector<Interface>& interfaces = *interfaces_list;
   const std::vector<Cable>& cables = structure.cables();
   const double wu = problem.weight_unit, lu = problem.length_unit;
   const int n = structure.size();

@@ -338,7 +338,9 @@ ForceFlow trace_loads(const Structure& structure, int block, const ForceFlowOpti
   }
   flow.valid = true;
 
-  const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(settings.problem.contact);
+
+  const std::vector<Interface>& interfaces = *interfaces_list;
   LoadTracer tracer(structure, problem, solver, interfaces);
   RandomDraws draws(options.seed);
   const int max_steps = options.max_steps > 0 ? options.max_steps : 4 * structure.size();

@@ -288,7 +288,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
       result.factor = simplex.primalColumnSolution()[factor_column];
       result.stable = result.stable && result.factor >= 0.0;  // exact: no multiple down to 0 stands
       result.mechanism = mechanism_of(structure, problem, simplex.dualRowSolution());
-      result.limit = limit_interfaces(structure, structure.interfaces(settings.problem.contact), result.mechanism);
+      result.limit = limit_interfaces(structure, *structure.interfaces(settings.problem.contact), result.mechanism);
       break;
     case 1:
       result.status = "infeasible";

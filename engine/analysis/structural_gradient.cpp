@@ -57,7 +57,8 @@ StructuralGradient structural_gradient(EquilibriumAnalysis& analysis, const Stru
       equilibrium_sensitivity(structure, problem, analysis.solution());
 
   // Contact polygons and frames.
-  const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(settings.problem.contact);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   std::vector<InterfaceAdjoint> adjoints(interfaces.size());
   std::vector<int> next_vertex(interfaces.size(), 0);
   for (int k = 0; k < problem.contact_vertex_count; ++k) {

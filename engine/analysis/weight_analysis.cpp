@@ -162,7 +162,9 @@ WeightSensitivity weight_sensitivity(const Structure& structure, int block,
   more_weight(problem.row_of_block[block] + problem.vertical_row()) = 1.0;
   const Eigen::VectorXd multipliers = solver.multiplier_response(more_weight);
 
-  const std::vector<Interface>& interfaces = structure.interfaces(settings.problem.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(settings.problem.contact);
+
+  const std::vector<Interface>& interfaces = *interfaces_list;
   result.interface_change.assign(interfaces.size(), 0.0);
   result.interface_resultant_change.assign(interfaces.size(), Vec3::Zero());
   result.block_change.assign(structure.size(), 0.0);

@@ -304,7 +304,8 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   structure.require_detected_interfaces("fea");
   structure.require_no_overlaps(settings.contact, "fea");
   FeaResult result;
-  const std::vector<Interface>& interfaces = structure.interfaces(settings.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(settings.contact);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   const double size = structure.bounds().diagonal();
   std::vector<const Block*> blocks;
   for (const StructureBlock& entry : structure.entries()) blocks.push_back(entry.block.get());

@@ -306,7 +306,8 @@ std::string compas_assembly_json(const Structure& structure, const CompasExportO
       throw InvalidArgument("export: the name of block " + std::to_string(i + 1) + " is not valid UTF-8 text");
     }
   }
-  const std::vector<Interface>& interfaces = structure.interfaces(options.contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(options.contact);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   // Each interface's vertex forces in the result, in its vertices' order.
   std::vector<std::vector<int>> forces_of(interfaces.size());
   if (options.result) {

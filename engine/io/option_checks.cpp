@@ -43,7 +43,8 @@ void check_result_of_structure(const Structure& structure, const EquilibriumResu
                           std::to_string(blocks) + " blocks, this one has " +
                           std::to_string(structure.size()));
   }
-  const std::vector<Interface>& interfaces = structure.interfaces(contact);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(contact);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   bool same = interfaces.size() == result->interfaces.size();
   for (size_t i = 0; same && i < interfaces.size(); ++i) {
     same = interfaces[i].a == result->interfaces[i].a && interfaces[i].b == result->interfaces[i].b;

@@ -99,7 +99,8 @@ std::vector<SceneObject> structure_scene(const Structure& structure, const Expor
   }
   if (options.interfaces) {
     std::map<std::string, int> uses;
-    const std::vector<Interface>& contacts = structure.interfaces(options.contact);
+    const std::shared_ptr<const std::vector<Interface>> contacts_list = structure.interfaces(options.contact);
+    const std::vector<Interface>& contacts = *contacts_list;
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       const Interface& contact = contacts[k];
       if (contact.vertices.size() < 3) continue;

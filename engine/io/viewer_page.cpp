@@ -60,7 +60,8 @@ Rows block_rows(const Structure& structure, int i, const ExportOptions& options)
 }
 
 Rows interface_rows(const Structure& structure, int k, const ExportOptions& options) {
-  const Interface& contact = structure.interfaces(options.contact).at(k);
+  const std::shared_ptr<const std::vector<Interface>> interfaces = structure.interfaces(options.contact);
+  const Interface& contact = interfaces->at(k);
   Rows rows{{"between", structure.name(contact.a) + " and " + structure.name(contact.b)},
             {"area", readout(contact.area) + " m²"}};
   if (const EquilibriumResult* result = options.result) {

@@ -83,7 +83,8 @@ void hold_faces_on_fixed_blocks(const Structure& s, DesignConstraints& constrain
   std::vector<bool> fixed(s.size(), false);
   for (int block : constraints.fixed_blocks) fixed[block] = true;
   const double tolerance = 1e-6 * s.bounds().diagonal();
-  for (const Interface& contact : s.interfaces()) {
+  const std::shared_ptr<const std::vector<Interface>> interfaces = s.interfaces();
+  for (const Interface& contact : *interfaces) {
     if (fixed[contact.a] == fixed[contact.b]) continue;
     const int free_block = fixed[contact.a] ? contact.b : contact.a;
     const std::vector<Vec3>& vertices = s.block(free_block).vertices();

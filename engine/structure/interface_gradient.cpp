@@ -429,7 +429,8 @@ void accumulate_mid_plane(const Structure& structure, const Interface& contact, 
 void accumulate_interface_gradient(const Structure& structure, const ContactOptions& options,
                                    const std::vector<InterfaceAdjoint>& adjoints,
                                    std::vector<std::vector<Vec3>>& gradient) {
-  const std::vector<Interface>& interfaces = structure.interfaces(options);
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(options);
+  const std::vector<Interface>& interfaces = *interfaces_list;
   if (adjoints.size() != interfaces.size()) {
     throw InvalidArgument("interface gradient: " + std::to_string(adjoints.size()) +
                           " adjoints for " + std::to_string(interfaces.size()) +

@@ -28,8 +28,8 @@ int Structure::add(BlockPtr block, bool support, std::string name) {
   }
   blocks_.push_back({std::move(block), support, name});
   index_by_name_.emplace(blocks_.back().name, index);
-  cache_.valid = false;
-  overlap_cache_.valid = false;
+  interface_cache_.clear();
+  overlap_cache_.clear();
   return index;
 }
 
@@ -250,8 +250,8 @@ int Structure::add_interface(int a, int b, const std::vector<std::vector<Vec3>>&
   }
   for (const Interface& contact : added) explicit_pairs_.insert({contact.a, contact.b});
   explicit_.insert(explicit_.end(), added.begin(), added.end());
-  cache_.valid = false;
-  overlap_cache_.valid = false;
+  interface_cache_.clear();
+  overlap_cache_.clear();
   return static_cast<int>(added.size());
 }
 
@@ -270,8 +270,20 @@ void Structure::require_detected_interfaces(const std::string& caller) const {
                         "file with interfaces = \"detect\")");
 }
 
-const std::vector<Interface>& Structure::interfaces(const ContactOptions& options) const {
-  if (!cache_.valid || !same_contacts(cache_.options, options)) {
+template <class Value>
+template <class Compute>
+std::shared_ptr<const Value> Structure::ContactCache<Value>::get(const ContactOptions& options,
+                                                                 Compute compute) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!value_ || !same_contacts(options_, options)) {
+    value_ = std::make_shared<const Value>(compute());
+    options_ = options;
+  }
+  return value_;
+}
+
+std::shared_ptr<const std::vector<Interface>> Structure::interfaces(const ContactOptions& options) const {
+  return interface_cache_.get(options, [&] {
     std::vector<Interface> found = detect_interfaces(block_pointers(), options);
     if (!explicit_.empty()) {
       found.erase(std::remove_if(found.begin(), found.end(),
@@ -283,26 +295,26 @@ const std::vector<Interface>& Structure::interfaces(const ContactOptions& option
       });
       found.shrink_to_fit();
     }
-    cache_.interfaces = std::move(found);
-    cache_.options = options;
-    cache_.valid = true;
-  }
-  return cache_.interfaces;
+    return found;
+  });
 }
 
-const std::vector<BlockOverlap>& Structure::overlaps(const ContactOptions& options) const {
-  if (!overlap_cache_.valid || !same_contacts(overlap_cache_.options, options)) {
+std::shared_ptr<const Structure::OverlapSet> Structure::overlap_set(const ContactOptions& options) const {
+  return overlap_cache_.get(options, [&] {
     const std::vector<const Block*> blocks = block_pointers();
-    overlap_cache_.tolerance = effective_tolerance(blocks, options);
-    overlap_cache_.overlaps = detect_overlaps(blocks, overlap_cache_.tolerance);
-    std::vector<BlockOverlap>& found = overlap_cache_.overlaps;
-    found.erase(std::remove_if(found.begin(), found.end(),
-                               [&](const BlockOverlap& pair) { return has_explicit_pair(pair.a, pair.b); }),
-                found.end());
-    overlap_cache_.options = options;
-    overlap_cache_.valid = true;
-  }
-  return overlap_cache_.overlaps;
+    OverlapSet set;
+    set.tolerance = effective_tolerance(blocks, options);
+    set.pairs = detect_overlaps(blocks, set.tolerance);
+    set.pairs.erase(std::remove_if(set.pairs.begin(), set.pairs.end(),
+                                   [&](const BlockOverlap& pair) { return has_explicit_pair(pair.a, pair.b); }),
+                    set.pairs.end());
+    return set;
+  });
+}
+
+std::shared_ptr<const std::vector<BlockOverlap>> Structure::overlaps(const ContactOptions& options) const {
+  const std::shared_ptr<const OverlapSet> set = overlap_set(options);
+  return {set, &set->pairs};  // shares the set's ownership
 }
 
 void Structure::require_free_block(const std::string& caller) const {
@@ -319,7 +331,8 @@ void Structure::require_free_block(const std::string& caller) const {
 }
 
 void Structure::require_no_overlaps(const ContactOptions& options, const std::string& caller) const {
-  const std::vector<BlockOverlap>& found = overlaps(options);
+  const std::shared_ptr<const OverlapSet> set = overlap_set(options);
+  const std::vector<BlockOverlap>& found = set->pairs;
   if (found.empty()) return;
   constexpr size_t kListed = 3;
   std::ostringstream message;
@@ -332,7 +345,7 @@ void Structure::require_no_overlaps(const ContactOptions& options, const std::st
   }
   if (found.size() > kListed) message << "; and " << found.size() - kListed << " more pairs";
   message << " (expected blocks that touch along faces, not interpenetrate; contact tolerance "
-          << overlap_cache_.tolerance << " m)";
+          << set->tolerance << " m)";
   throw GeometryError(message.str());
 }
 

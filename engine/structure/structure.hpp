@@ -3,6 +3,8 @@
 #pragma once
 
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -109,10 +111,12 @@ public:
   // Contact interfaces: the detected ones (recomputed only when blocks were
   // added or the options differ from the cached call) but between pairs
   // with explicit interfaces, and the explicit ones, sorted by (a, b).
-  const std::vector<Interface>& interfaces(const ContactOptions& options = {}) const;
+  // Shared: what a caller holds stays valid whatever is asked next, and
+  // calls from several threads are safe.
+  std::shared_ptr<const std::vector<Interface>> interfaces(const ContactOptions& options = {}) const;
   // Pairs of blocks that interpenetrate by more than the contact tolerance
-  // of `options`; cached like the interfaces.
-  const std::vector<BlockOverlap>& overlaps(const ContactOptions& options = {}) const;
+  // of `options`; cached and shared like the interfaces.
+  std::shared_ptr<const std::vector<BlockOverlap>> overlaps(const ContactOptions& options = {}) const;
   // Throws GeometryError naming the overlapping pairs (the first few) and
   // how deep they overlap: an analysis of interpenetrating blocks would miss
   // the contacts between them. `caller` starts the message.
@@ -146,20 +150,39 @@ private:
   std::unordered_map<std::string, int> index_by_name_;
   bool planar_ = false;
 
-  struct InterfaceCache {
-    bool valid = false;
-    ContactOptions options;
-    std::vector<Interface> interfaces;
-  };
-  mutable InterfaceCache cache_;
+  // One value computed for the last contact options asked: a new one
+  // replaces it, while callers keep theirs. Guarded for const use from
+  // several threads; a copied structure starts with none.
+  template <class Value>
+  class ContactCache {
+  public:
+    ContactCache() = default;
+    ContactCache(const ContactCache&) {}
+    ContactCache& operator=(const ContactCache&) {
+      clear();
+      return *this;
+    }
+    // The value for `options`, computed by compute() when not cached
+    // (structure.cpp, its only user).
+    template <class Compute>
+    std::shared_ptr<const Value> get(const ContactOptions& options, Compute compute) const;
+    void clear() {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      value_.reset();
+    }
 
-  struct OverlapCache {
-    bool valid = false;
-    ContactOptions options;
-    double tolerance = 0.0;  // m, the one options give for these blocks
-    std::vector<BlockOverlap> overlaps;
+  private:
+    mutable std::mutex mutex_;
+    mutable ContactOptions options_;
+    mutable std::shared_ptr<const Value> value_;
   };
-  mutable OverlapCache overlap_cache_;
+  struct OverlapSet {
+    double tolerance = 0.0;  // m, the one the options give for these blocks
+    std::vector<BlockOverlap> pairs;
+  };
+  std::shared_ptr<const OverlapSet> overlap_set(const ContactOptions& options) const;
+  ContactCache<std::vector<Interface>> interface_cache_;
+  ContactCache<OverlapSet> overlap_cache_;
 };
 
 }  // namespace ashlar

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     for (const char* name : {"sample.glb", "sample.gltf"}) {
       export_structure(structure, folder + "/" + name, options);
       std::printf("wrote %s/%s (%d blocks, %zu interfaces)\n", folder.c_str(), name,
-                  structure.size(), structure.interfaces(options.contact).size());
+                  structure.size(), structure.interfaces(options.contact)->size());
     }
     SimulationOptions run;
     run.duration = 0.3;

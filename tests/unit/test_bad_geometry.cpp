@@ -92,11 +92,11 @@ TEST(BadGeometryOverlaps, AnalysesRefuseOverlapsNamingThePairs) {
             "analysis: block 1 ('ground') and block 2 ('sunk') overlap by 0.1 m (expected blocks "
             "that touch along faces, not interpenetrate; contact tolerance 4.86e-06 m)");
   EXPECT_THROW(analyze_equilibrium(s, {}), GeometryError);
-  EXPECT_EQ(s.overlaps().size(), 1u);
+  EXPECT_EQ(s.overlaps()->size(), 1u);
 }
 
 TEST(BadGeometryOverlaps, ModelsBuildWithoutOverlaps) {
-  EXPECT_TRUE(semicircular_arch(24, 0.6).overlaps().empty());
+  EXPECT_TRUE(semicircular_arch(24, 0.6).overlaps()->empty());
 }
 
 // ---------------------------------------------------------------- nothing to analyse

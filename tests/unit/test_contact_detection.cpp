@@ -3,7 +3,10 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <atomic>
 #include <map>
+#include <thread>
+#include <vector>
 
 #include "geometry/block_builders.hpp"
 #include "test_support.hpp"
@@ -59,7 +62,8 @@ double total_area(const std::vector<Interface>& interfaces) {
 
 TEST(ContactDetection, ThreeBlockStackExact) {
   const Structure s = three_block_stack();
-  const std::vector<Interface>& found = s.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces();
+  const std::vector<Interface>& found = *found_list;
   ASSERT_EQ(found.size(), 3u);
   const double expected_area[] = {1.0, 0.9, 0.9};
   for (int k = 0; k < 3; ++k) {
@@ -82,7 +86,8 @@ TEST(ContactDetection, RunningBondWallCountsAndAreas) {
   const Wall w = running_bond_wall(bricks, courses);
   const double l = w.brick_length, h = w.brick_height, t = w.thickness;
   ASSERT_EQ(w.structure.size(), 1 + 5 * 20 + 5 * 21);
-  const std::vector<Interface>& found = w.structure.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> found_list = w.structure.interfaces();
+  const std::vector<Interface>& found = *found_list;
   // Head joints: 19 per even course, 20 per odd; bed joints: 40 pieces per
   // pair of courses (every half brick), and 20 on the ground.
   const int head = 5 * 19 + 5 * 20, bed = (courses - 1) * 2 * bricks, ground = bricks;
@@ -118,8 +123,10 @@ TEST(ContactDetection, RigidMotionLeavesContactsUnchanged) {
                   s.block(i).rotated(axis, 1.1, Vec3::Zero()).translated(offset)),
               s.is_support(i));
   }
-  const auto& a = s.interfaces();
-  const auto& b = moved.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> a_list = s.interfaces();
+  const std::vector<Interface>& a = *a_list;
+  const std::shared_ptr<const std::vector<Interface>> b_list = moved.interfaces();
+  const std::vector<Interface>& b = *b_list;
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); ++k) {
     EXPECT_NEAR(a[k].area, b[k].area, 1e-12);
@@ -135,7 +142,8 @@ TEST(ContactDetection, NonConvexFaceOnBox) {
   Structure s;
   s.add(box({2, 2, 1}, {1, 1, -0.5}), true);
   s.add(std::make_shared<const Block>(make_prism(l, {0, 0, 0.5})));
-  const auto& found = s.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces();
+  const std::vector<Interface>& found = *found_list;
   ASSERT_EQ(found.size(), 1u);
   EXPECT_NEAR(found[0].area, 3.0, 1e-12);
   EXPECT_EQ(found[0].vertices.size(), 6u);
@@ -152,7 +160,8 @@ TEST(ContactDetection, TwoFeetOnOnePlaneGiveTwoInterfaces) {
   const Block standing =
       make_prism(u, {0, 0, 1}).rotated(Vec3::UnitX(), M_PI / 2, Vec3::Zero()).translated({0, 1, 0});
   s.add(std::make_shared<const Block>(standing));
-  const auto& found = s.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces();
+  const std::vector<Interface>& found = *found_list;
   ASSERT_EQ(found.size(), 2u);
   EXPECT_NEAR(found[0].area, 1.0, 1e-12);
   EXPECT_NEAR(found[1].area, 1.0, 1e-12);
@@ -166,14 +175,14 @@ TEST(ContactDetection, NearCoplanarWithinAndOutsideTolerance) {
     Structure s;
     s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
     s.add(box({1, 1, 1}, {0.2, 0, 0.5 + gap}));
-    EXPECT_EQ(s.interfaces(options).size(), std::abs(gap) <= 1e-6 ? 1u : 0u) << "gap " << gap;
+    EXPECT_EQ(s.interfaces(options)->size(), std::abs(gap) <= 1e-6 ? 1u : 0u) << "gap " << gap;
   }
   for (double tilt : {1e-7, 1e-5}) {  // radians; gap at the far edge ~ tilt * 1 m
     Structure s;
     s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
     s.add(std::make_shared<const Block>(
         make_box({1, 1, 1}, {0, 0, 0.5}).rotated(Vec3::UnitY(), tilt, {0, 0, 0})));
-    EXPECT_EQ(s.interfaces(options).size(), tilt < 1e-6 ? 1u : 0u) << "tilt " << tilt;
+    EXPECT_EQ(s.interfaces(options)->size(), tilt < 1e-6 ? 1u : 0u) << "tilt " << tilt;
   }
 }
 
@@ -187,7 +196,8 @@ TEST(ContactDetection, TwoCopiesOfOneJointMeetOnTheirMidPlane) {
     Structure s;
     s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
     s.add(box({1, 1, 1}, {0.002, -0.001, 0.5006}));
-    const std::vector<Interface>& found = s.interfaces(options);
+    const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces(options);
+    const std::vector<Interface>& found = *found_list;
     ASSERT_EQ(found.size(), 1u);
     EXPECT_TRUE(found[0].on_mid_plane);
     EXPECT_NEAR(found[0].area, 1.0, 1e-12);
@@ -201,7 +211,8 @@ TEST(ContactDetection, TwoCopiesOfOneJointMeetOnTheirMidPlane) {
     Structure s;
     s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
     s.add(std::make_shared<const Block>(make_box({1, 1, 1}, {0, 0, 0.5}).rotated(Vec3::UnitX(), theta, {0, 0, 0})));
-    const std::vector<Interface>& found = s.interfaces(options);
+    const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces(options);
+    const std::vector<Interface>& found = *found_list;
     ASSERT_EQ(found.size(), 1u);
     EXPECT_TRUE(found[0].on_mid_plane);
     EXPECT_NEAR(found[0].area, std::cos(theta / 2), 1e-12);
@@ -211,7 +222,8 @@ TEST(ContactDetection, TwoCopiesOfOneJointMeetOnTheirMidPlane) {
     Structure s;
     s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
     s.add(box({1, 1, 1}, {0.006, 0, 0.5}));
-    const std::vector<Interface>& found = s.interfaces(options);
+    const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces(options);
+    const std::vector<Interface>& found = *found_list;
     ASSERT_EQ(found.size(), 1u);
     EXPECT_FALSE(found[0].on_mid_plane);
     EXPECT_NEAR(found[0].area, 0.994, 1e-12);
@@ -220,7 +232,8 @@ TEST(ContactDetection, TwoCopiesOfOneJointMeetOnTheirMidPlane) {
     Structure s;
     s.add(box({1, 1, 1}, {0, 0, -0.5}), true);
     s.add(box({1, 1, 1}, {0, 0, 0.5}));
-    const std::vector<Interface>& found = s.interfaces(options);
+    const std::shared_ptr<const std::vector<Interface>> found_list = s.interfaces(options);
+    const std::vector<Interface>& found = *found_list;
     ASSERT_EQ(found.size(), 1u);
     EXPECT_FALSE(found[0].on_mid_plane);
     EXPECT_NEAR(found[0].area, 1.0, 1e-12);
@@ -232,19 +245,56 @@ TEST(ContactDetection, EdgeAndCornerTouchesAreNotContacts) {
   s.add(box({1, 1, 1}, {0, 0, 0}));
   s.add(box({1, 1, 1}, {1, 0, 1}));  // shares only an edge with the first
   s.add(box({1, 1, 1}, {1, 1, -1}));  // shares only a corner with the first
-  EXPECT_TRUE(s.interfaces().empty());
+  EXPECT_TRUE(s.interfaces()->empty());
+}
+
+TEST(ContactDetection, ListsHeldStayValidWhenOtherOptionsAreAsked) {
+  // The cache holds one set of options; a list taken before another set is
+  // asked for is still whole (under the sanitizers, never freed memory).
+  const Structure s = three_block_stack();
+  ContactOptions strict;
+  strict.tolerance = 1e-9;
+  ContactOptions loose;
+  loose.tolerance = 1e-3;
+  const std::shared_ptr<const std::vector<Interface>> held = s.interfaces(strict);
+  const std::vector<Interface> copy = *held;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(s.interfaces(loose)->size(), 3u);
+  ASSERT_EQ(held->size(), copy.size());
+  for (size_t i = 0; i < copy.size(); ++i) {
+    EXPECT_EQ((*held)[i].a, copy[i].a);
+    EXPECT_EQ((*held)[i].area, copy[i].area);
+  }
+}
+
+TEST(ContactDetection, ConstUseFromSeveralThreadsIsSafe) {
+  // Four threads ask one structure for two sets of options in turn: every
+  // answer is whole (the sanitizer build checks the memory).
+  const Structure s = three_block_stack();
+  std::atomic<int> wrong{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int k = 0; k < 200; ++k) {
+        ContactOptions options;
+        options.tolerance = (k + t) % 2 ? 1e-3 : 1e-9;
+        if (s.interfaces(options)->size() != 3u) ++wrong;
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(wrong.load(), 0);
 }
 
 TEST(ContactDetection, CacheIsReusedUntilTheStructureChanges) {
   Structure s = three_block_stack();
-  const std::vector<Interface>* first = &s.interfaces();
-  EXPECT_EQ(first, &s.interfaces());
-  EXPECT_EQ(s.interfaces().size(), 3u);
+  const std::shared_ptr<const std::vector<Interface>> first = s.interfaces();
+  EXPECT_EQ(first, s.interfaces());  // the cached list itself
+  EXPECT_EQ(s.interfaces()->size(), 3u);
   s.add(box({1, 1, 0.5}, {0.4, 0, 1.75}));
-  EXPECT_EQ(s.interfaces().size(), 4u);
+  EXPECT_EQ(s.interfaces()->size(), 4u);
   ContactOptions loose;
   loose.tolerance = 1e-3;
-  EXPECT_EQ(s.interfaces(loose).size(), 4u);
+  EXPECT_EQ(s.interfaces(loose)->size(), 4u);
 }
 
 TEST(ContactDetection, RelativeToleranceScalesWithTheModel) {
@@ -252,8 +302,8 @@ TEST(ContactDetection, RelativeToleranceScalesWithTheModel) {
     Structure s;
     s.add(box(Vec3(1, 1, 1) * scale, Vec3(0, 0, -0.5) * scale), true);
     s.add(box(Vec3(1, 1, 1) * scale, Vec3(0.25, 0, 0.5 + 1e-8) * scale));
-    ASSERT_EQ(s.interfaces().size(), 1u) << "scale " << scale;
-    EXPECT_NEAR(s.interfaces()[0].area, 0.75 * scale * scale, 1e-12 * scale * scale);
+    ASSERT_EQ(s.interfaces()->size(), 1u) << "scale " << scale;
+    EXPECT_NEAR((*s.interfaces())[0].area, 0.75 * scale * scale, 1e-12 * scale * scale);
   }
 }
 
@@ -288,5 +338,5 @@ TEST(MissedContacts, AColumnWithGapsSaysWhichToleranceClosesEachGap) {
   // largest one finds all three.
   ContactOptions closing;
   closing.tolerance = missed[2].tolerance;
-  EXPECT_EQ(s.interfaces(closing).size(), 3u);
+  EXPECT_EQ(s.interfaces(closing)->size(), 3u);
 }

@@ -130,7 +130,7 @@ TEST(Cra, InclineBelowFrictionAngleStandsOnFrictionWSinTheta) {
     EXPECT_TRUE(r.stable);
     ASSERT_EQ(r.interfaces.size(), 1u);
     const InterfaceForces& f = r.interfaces[0];
-    const double friction = (f.resultant - f.normal_force * s.interfaces()[0].normal).norm();
+    const double friction = (f.resultant - f.normal_force * (*s.interfaces())[0].normal).norm();
     EXPECT_NEAR(std::abs(f.normal_force), w * std::cos(angle), 1e-6 * w);
     EXPECT_NEAR(friction, w * std::sin(angle), 1e-6 * w);
     // The force on the block balances its weight.

@@ -158,7 +158,7 @@ TEST(Equilibrium, BlockTouchingOnlyAtAnEdgeIsUnstable) {
       make_box({0.5, 0.5, 0.5}, {0, 0, 0}).rotated(Vec3::UnitY(), M_PI / 4, Vec3::Zero())
           .translated({0.2, 0, 0.5 + 0.25 * std::sqrt(2.0)})));
   const EquilibriumResult r = analyze_equilibrium(s, {});
-  EXPECT_EQ(s.interfaces().size(), 1u);
+  EXPECT_EQ(s.interfaces()->size(), 1u);
   EXPECT_FALSE(r.stable);
   ASSERT_EQ(r.floating_blocks.size(), 1u);
   EXPECT_EQ(r.floating_blocks[0], 2);

@@ -28,7 +28,7 @@ ProblemData data_of(const Structure& s, const EquilibriumProblem& p) {
   ProblemData d;
   for (int k = 0; k < p.contact_vertex_count; ++k) {
     const ForceGroup& v = p.groups[k];
-    const Interface& c = s.interfaces()[v.source];
+    const Interface& c = (*s.interfaces())[v.source];
     d.positions.push_back(v.position);
     d.frames.push_back({c.normal, c.u, c.v});
   }
@@ -46,7 +46,7 @@ EquilibriumProblem with_data(const Structure& s, EquilibriumProblem p, const Pro
   const std::array<int, 6>& rows = balance_rows(p.block_rows == 3);
   for (int k = 0; k < p.contact_vertex_count; ++k) {
     ForceGroup& v = p.groups[k];
-    Interface contact = s.interfaces()[v.source];
+    Interface contact = (*s.interfaces())[v.source];
     contact.normal = d.frames[k][0];
     contact.u = d.frames[k][1];
     contact.v = d.frames[k][2];

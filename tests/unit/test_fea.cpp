@@ -116,7 +116,8 @@ TEST(Fea, AxialBarUnderItsWeightMatchesClosedFormAtEveryNode) {
 TEST(Fea, ContactForcesBalanceTheWeight) {
   const Structure s = column(2);
   const FeaResult r = run_fea(s, 2);
-  const std::vector<Interface>& faces = s.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> faces_list = s.interfaces();
+  const std::vector<Interface>& faces = *faces_list;
   for (size_t k = 0; k < faces.size(); ++k) {
     // The weight above each bed joint.
     const double above = faces[k].a == 0 ? 2 * 0.25 * 2400 * 9.81 : 0.25 * 2400 * 9.81;

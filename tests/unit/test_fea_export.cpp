@@ -64,7 +64,8 @@ struct HandMade {
   int compressed = -1, tensile = -1, released = -1, cube_top = -1;
 
   HandMade() {
-    const auto& interfaces = structure.interfaces();
+    const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces();
+    const std::vector<Interface>& interfaces = *interfaces_list;
     EXPECT_EQ(interfaces.size(), 2u);  // ground-cube (a = 0, b = 1), cube-cap (a = 1, b = 2)
     for (const Vec3& x : mesh.nodes()) result.displacements.push_back(linear_field(x));
     for (size_t e = 0; e < mesh.elements().size(); ++e) {
@@ -187,7 +188,7 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
   const HandMade made;
   const FeaMesh& mesh = made.mesh;
   TempDir dir;
-  export_fea_vtu(made.structure, mesh, made.result, made.structure.interfaces(), dir.file("r.vtu"));
+  export_fea_vtu(made.structure, mesh, made.result, *made.structure.interfaces(), dir.file("r.vtu"));
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"r.vtu"});
   const std::string text = read_file(dir.file("r.vtu"));
 
@@ -284,7 +285,7 @@ TEST(FeaExportVtu, StressesOnlyWhenComputed) {
   HandMade made;
   made.result.stresses.clear();
   TempDir dir;
-  export_fea_vtu(made.structure, made.mesh, made.result, made.structure.interfaces(),
+  export_fea_vtu(made.structure, made.mesh, made.result, *made.structure.interfaces(),
                  dir.file("r.vtu"));
   const std::string text = read_file(dir.file("r.vtu"));
   EXPECT_FALSE(contains(text, "Name=\"stress\""));
@@ -295,7 +296,8 @@ TEST(FeaExportVtu, StressesOnlyWhenComputed) {
 TEST(FeaExportVtu, ResultsOfAnotherMeshOrBadPathsAreRefused) {
   const HandMade made;
   TempDir dir;
-  const auto& interfaces = made.structure.interfaces();
+  const std::shared_ptr<const std::vector<Interface>> interfaces_list = made.structure.interfaces();
+  const std::vector<Interface>& interfaces = *interfaces_list;
   auto vtu = [&](const FeaResult& result, const std::vector<Interface>& with,
                  const std::string& name) {
     return error_of(

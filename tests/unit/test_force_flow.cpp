@@ -32,7 +32,7 @@ constexpr int kBeam = 4;
 double share_under(const Structure& s, const ForceFlow& flow, double x) {
   double share = 0.0;
   for (const SupportShare& arrived : flow.shares) {
-    if (std::abs(s.interfaces()[arrived.interface].center.x() - x) < 0.3) share += arrived.share;
+    if (std::abs((*s.interfaces())[arrived.interface].center.x() - x) < 0.3) share += arrived.share;
   }
   return share;
 }
@@ -47,7 +47,7 @@ void expect_all_reach_the_ground(const Structure& s, const ForceFlow& flow) {
   for (size_t t = 0; t < flow.polylines.size(); ++t) {
     const int reached = flow.support_interface[t];
     ASSERT_GE(reached, 0) << "trace " << t;
-    const Interface& contact = s.interfaces()[reached];
+    const Interface& contact = (*s.interfaces())[reached];
     EXPECT_TRUE(s.is_support(contact.a) || s.is_support(contact.b));
     const Vec3 end = flow.polylines[t].back();
     EXPECT_LT(std::abs((end - contact.center).dot(contact.normal)), 1e-9) << "trace " << t;

@@ -58,7 +58,7 @@ TEST(WeightSensitivity, MatchesCentralDifferencesOnAnArch) {
       // The supports carry the added weight: vertical resultants add up to 1.
       double vertical = 0.0;
       for (size_t i = 0; i < plus.size(); ++i) {
-        const Interface& contact = s.interfaces()[i];
+        const Interface& contact = (*s.interfaces())[i];
         if (s.is_support(contact.a)) vertical += sensitivity.interface_resultant_change[i].z();
         if (s.is_support(contact.b)) vertical -= sensitivity.interface_resultant_change[i].z();
       }
@@ -73,7 +73,7 @@ TEST(WeightSensitivity, ColumnPassesTheWholeChangeDown) {
   for (int k = 0; k < 3; ++k) s.add(box({1, 1, 0.5}, {0, 0, 0.25 + 0.5 * k}));
   const WeightSensitivity top = weight_sensitivity(s, 3, precise(0.7));
   ASSERT_TRUE(top.valid);
-  for (size_t i = 0; i < s.interfaces().size(); ++i) {
+  for (size_t i = 0; i < s.interfaces()->size(); ++i) {
     EXPECT_NEAR(top.interface_resultant_change[i].norm(), 1.0, 1e-7);
   }
   const WeightSensitivity bottom = weight_sensitivity(s, 1, precise(0.7));
