@@ -152,7 +152,7 @@ MassPropertiesGradient mass_properties_gradient(const std::vector<Vec3>& vertice
 }
 
 Block::Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double density,
-             std::string name, double planarity)
+             std::string name, double planarity, const MeshNumbering& numbering)
     : vertices_(std::move(vertices)),
       faces_(std::move(faces)),
       density_(density),
@@ -160,7 +160,7 @@ Block::Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces, double den
       planarity_(planarity) {
   check_density(density_, name_);
   check_planarity(planarity_, name_);
-  validate_block(vertices_, faces_, block_label(name_), planarity_);
+  validate_block(vertices_, faces_, block_label(name_), planarity_, numbering);
   compute_derived();
 }
 

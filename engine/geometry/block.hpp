@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "geometry/block_validation.hpp"
 
 namespace ashlar {
 
@@ -44,10 +45,12 @@ public:
   // planarity: how far a face's vertices may lie off its best-fit plane, as
   // a fraction of the face's size (its bounding-box diagonal); 0 allows
   // rounding only (1e-6 of the block's size). Throws GeometryError (naming
-  // the defect and the block) unless the input is a valid block; see
-  // validate_block() for the checks.
+  // the defect and the block, its vertices and faces as `numbering` names
+  // them) unless the input is a valid block; see validate_block() for the
+  // checks.
   Block(std::vector<Vec3> vertices, std::vector<FaceLoop> faces,
-        double density = kDefaultDensity, std::string name = {}, double planarity = 0.0);
+        double density = kDefaultDensity, std::string name = {}, double planarity = 0.0,
+        const MeshNumbering& numbering = {});
 
   const std::vector<Vec3>& vertices() const { return vertices_; }
   const std::vector<FaceLoop>& faces() const { return faces_; }

@@ -45,9 +45,13 @@ SplitResult split_block(const Block& block, const Vec3& point, const Vec3& norma
 // Builds a Block from a polygon soup that describes a closed surface
 // (e.g. triangles from a mesh file): welds vertices closer than
 // `weld_tolerance`, drops degenerate faces and merges adjacent coplanar faces
-// into polygons, then validates. `what` names the source in messages.
+// into polygons, then validates. `what` names the source in messages, and
+// `numbering` how the source numbers `vertices` and `faces`: a defect is
+// named by the input vertices and faces it is made of (a merged face by all
+// of them), not by the repaired mesh's.
 Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                      double weld_tolerance, const BlockStyle& style, const std::string& what);
+                      double weld_tolerance, const BlockStyle& style, const std::string& what,
+                      const MeshNumbering& numbering = {});
 
 // The outline (m) of a polygon soup that is an open planar surface (a
 // ground plane or a bearing surface given as one polygon, or as facets on

@@ -32,12 +32,12 @@ constexpr double kLargestSize = 1e30;
   throw GeometryError(what + " is not a valid block: " + defect);
 }
 
-std::string edge_name(int i, int j) {
-  return "edge between vertices " + std::to_string(i + 1) + " and " + std::to_string(j + 1);
+std::string edge_name(int i, int j, const MeshNumbering& numbering) {
+  return "edge between " + numbering.vertices(i, j);
 }
 
-void check_counts_and_indices(const std::vector<Vec3>& vertices,
-                              const std::vector<FaceLoop>& faces, const std::string& what) {
+void check_counts_and_indices(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
+                              const std::string& what, const MeshNumbering& numbering) {
   if (vertices.size() < 4) {
     fail(what, "needs at least 4 vertices, got " + std::to_string(vertices.size()));
   }
@@ -45,7 +45,7 @@ void check_counts_and_indices(const std::vector<Vec3>& vertices,
   for (size_t i = 0; i < vertices.size(); ++i) {
     if (!vertices[i].allFinite()) {
       std::ostringstream message;
-      message << "vertex " << i + 1 << " is (" << vertices[i].x() << ", " << vertices[i].y() << ", "
+      message << numbering.vertex(static_cast<int>(i)) << " is (" << vertices[i].x() << ", " << vertices[i].y() << ", "
               << vertices[i].z() << "): expected finite coordinates, not NaN or infinity";
       fail(what, message.str());
     }
@@ -53,7 +53,7 @@ void check_counts_and_indices(const std::vector<Vec3>& vertices,
   const int count = static_cast<int>(vertices.size());
   for (size_t f = 0; f < faces.size(); ++f) {
     const FaceLoop& face = faces[f];
-    const std::string face_name = "face " + std::to_string(f + 1);
+    const std::string face_name = numbering.face(static_cast<int>(f));
     if (face.size() < 3) {
       fail(what, face_name + " has " + std::to_string(face.size()) +
                      " vertices: expected a polygon of at least 3");
@@ -68,14 +68,14 @@ void check_counts_and_indices(const std::vector<Vec3>& vertices,
     std::sort(sorted.begin(), sorted.end());
     const auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
     if (repeat != sorted.end()) {
-      fail(what, face_name + " uses vertex " + std::to_string(*repeat + 1) +
+      fail(what, face_name + " uses " + numbering.vertex(*repeat) +
                      " twice: expected each corner of a face once");
     }
   }
 }
 
-void check_coincident_vertices(const std::vector<Vec3>& vertices, double size,
-                               const std::string& what) {
+void check_coincident_vertices(const std::vector<Vec3>& vertices, double size, const std::string& what,
+                               const MeshNumbering& numbering) {
   const double eps = kCoincidentVertices * size;
   std::vector<int> order(vertices.size());
   std::iota(order.begin(), order.end(), 0);
@@ -86,7 +86,7 @@ void check_coincident_vertices(const std::vector<Vec3>& vertices, double size,
       if (vertices[order[j]].x() - vertices[order[i]].x() > eps) break;
       if ((vertices[order[j]] - vertices[order[i]]).norm() <= eps) {
         const int a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);
-        fail(what, "vertices " + std::to_string(a + 1) + " and " + std::to_string(b + 1) +
+        fail(what, numbering.vertices(a, b) +
                        " coincide: expected distinct points (faces that share a corner use "
                        "one vertex index for it)");
       }
@@ -94,7 +94,8 @@ void check_coincident_vertices(const std::vector<Vec3>& vertices, double size,
   }
 }
 
-void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::string& what) {
+void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::string& what,
+                               const MeshNumbering& numbering) {
   // (low, high, forward, face): forward when the face runs low -> high.
   std::vector<std::tuple<int, int, bool, int>> edges;
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -116,18 +117,18 @@ void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::st
     }
     const size_t uses = j - i;
     const int a = std::get<0>(edges[i]), b = std::get<1>(edges[i]);
-    const std::string first_face = "face " + std::to_string(std::get<3>(edges[i]) + 1);
+    const std::string first_face = numbering.face(std::get<3>(edges[i]));
     if (uses == 1) {
-      fail(what, "open surface: the " + edge_name(a, b) + " belongs to " + first_face +
+      fail(what, "open surface: the " + edge_name(a, b, numbering) + " belongs to " + first_face +
                      " only (expected a closed surface: every edge shared by two faces)");
     }
     if (uses > 2) {
-      fail(what, "non-manifold surface: the " + edge_name(a, b) + " belongs to " +
+      fail(what, "non-manifold surface: the " + edge_name(a, b, numbering) + " belongs to " +
                      std::to_string(uses) + " faces (expected two)");
     }
     if (forward != 1) {
-      fail(what, "inconsistent face orientation: " + first_face + " and face " +
-                     std::to_string(std::get<3>(edges[i + 1]) + 1) + " run the " + edge_name(a, b) +
+      fail(what, "inconsistent face orientation: " + first_face + " and " +
+                     numbering.face(std::get<3>(edges[i + 1])) + " run the " + edge_name(a, b, numbering) +
                      " in the same direction (expected every face counter-clockwise seen from "
                      "outside, so that neighbours run a shared edge in opposite directions)");
     }
@@ -138,8 +139,8 @@ void check_closed_and_oriented(const std::vector<FaceLoop>& faces, const std::st
   // readers merge, or a shell inside a shell) would move as one rigid body.
   for (size_t f = 1; f < faces.size(); ++f) {
     if (pieces.root(static_cast<int>(f)) != pieces.root(0)) {
-      fail(what, "its surface is in separate pieces (face 1 and face " + std::to_string(f + 1) +
-                     " are not joined by any path of shared edges): expected one connected solid; "
+      fail(what, "its surface is in separate pieces (" + numbering.face(0) + " and " +
+                     numbering.face(static_cast<int>(f)) + " are not joined by any path of shared edges): expected one connected solid; "
                      "make each piece a block of its own");
     }
   }
@@ -156,11 +157,11 @@ double warp_fraction(const std::vector<Vec3>& loop, const Vec3& normal, const Ve
   return std::ceil(fraction / unit) * unit;
 }
 
-void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                 double size, double planarity, const std::string& what) {
+void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces, double size,
+                 double planarity, const std::string& what, const MeshNumbering& numbering) {
   std::vector<Vec3> loop;
   for (size_t f = 0; f < faces.size(); ++f) {
-    const std::string face_name = "face " + std::to_string(f + 1);
+    const std::string face_name = numbering.face(static_cast<int>(f));
     loop.clear();
     for (int index : faces[f]) loop.push_back(vertices[index]);
     const Vec3 normal = newell_normal(loop);
@@ -183,13 +184,13 @@ void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
       if (off > allowed) {
         std::ostringstream message;
         if (planarity == 0.0) {
-          message << face_name << " is not planar: its vertex " << faces[f][k] + 1 << " is " << off
+          message << face_name << " is not planar: its " << numbering.vertex(faces[f][k]) << " is " << off
                   << " m off the face's plane (allowed: " << allowed
                   << " m); to accept warped faces pass planarity, a fraction of each face's size: "
                   << "this face needs at least " << warp_fraction(loop, frame.normal, mean, face_size);
         } else {
-          message << face_name << " is warped beyond planarity " << planarity << ": its vertex "
-                  << faces[f][k] + 1 << " is " << off << " m off the face's best-fit plane, "
+          message << face_name << " is warped beyond planarity " << planarity << ": its "
+                  << numbering.vertex(faces[f][k]) << " is " << off << " m off the face's best-fit plane, "
                   << off / face_size << " of the face's size " << face_size << " m (allowed: " << allowed
                   << " m); this face needs planarity " << warp_fraction(loop, frame.normal, mean, face_size);
         }
@@ -208,9 +209,27 @@ void check_faces(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
 
 }  // namespace
 
+std::string MeshNumbering::vertex(int index) const {
+  return vertex_name ? vertex_name(index) : "vertex " + std::to_string(index + 1);
+}
+
+std::string MeshNumbering::face(int index) const {
+  return face_name ? face_name(index) : "face " + std::to_string(index + 1);
+}
+
+std::string MeshNumbering::vertices(int a, int b) const {
+  if (vertex_name) return vertex_name(a) + " and " + vertex_name(b);
+  return "vertices " + std::to_string(a + 1) + " and " + std::to_string(b + 1);
+}
+
+std::string MeshNumbering::faces(int a, int b) const {
+  if (face_name) return face_name(a) + " and " + face_name(b);
+  return "faces " + std::to_string(a + 1) + " and " + std::to_string(b + 1);
+}
+
 void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                    const std::string& what, double planarity) {
-  check_counts_and_indices(vertices, faces, what);
+                    const std::string& what, double planarity, const MeshNumbering& numbering) {
+  check_counts_and_indices(vertices, faces, what, numbering);
   Box3 box;
   for (const Vec3& p : vertices) box.add(p);
   // stableNorm: the plain norm squares the extent, which overflows or
@@ -223,9 +242,9 @@ void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoo
             << " to " << kLargestSize << " m, where its volume and moments stay within double range";
     fail(what, message.str());
   }
-  check_coincident_vertices(vertices, size, what);
-  check_closed_and_oriented(faces, what);
-  check_faces(vertices, faces, size, planarity, what);
+  check_coincident_vertices(vertices, size, what, numbering);
+  check_closed_and_oriented(faces, what, numbering);
+  check_faces(vertices, faces, size, planarity, what, numbering);
   const double volume = mass_properties(vertices, faces).volume;
   if (std::abs(volume) <= kDegenerateVolume * size * size * size) {
     fail(what, "zero volume: its vertices are flat or collapsed (expected a solid with volume)");
@@ -242,7 +261,7 @@ void validate_block(const std::vector<Vec3>& vertices, const std::vector<FaceLoo
   const bool convex = is_convex_polyhedron(vertices, planes,
                                            std::max(kCoincidentVertices * size, largest_warp(vertices, faces, planes)));
   if (!convex) {
-    if (const std::optional<std::string> crossing = surface_self_intersection(vertices, faces)) {
+    if (const std::optional<std::string> crossing = surface_self_intersection(vertices, faces, numbering)) {
       fail(what, "self-intersecting: " + *crossing +
                      " (expected a surface that does not cross or touch itself)");
     }

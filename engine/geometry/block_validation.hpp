@@ -2,6 +2,7 @@
 // constructor; exposed so importers can report defects before building.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,21 @@
 #include "core/types.hpp"
 
 namespace ashlar {
+
+// How messages name a block's vertices and faces, given their 0-based
+// indices in the lists the block is built from. Without names they are
+// numbered from 1 in those lists ("vertex 3", "face 2"); an importer whose
+// repair renumbered a file's mesh names them as the file does.
+struct MeshNumbering {
+  std::function<std::string(int)> vertex_name;
+  std::function<std::string(int)> face_name;
+
+  std::string vertex(int index) const;
+  std::string face(int index) const;
+  // Two of them: "vertices 4 and 8" unnamed, else "<name> and <name>".
+  std::string vertices(int a, int b) const;
+  std::string faces(int a, int b) const;
+};
 
 // Throws GeometryError naming the first defect found, in this order:
 //  - fewer than 4 vertices or 4 faces, non-finite coordinates;
@@ -27,15 +43,18 @@ namespace ashlar {
 //  - zero volume, or negative volume (inverted: faces point inward);
 //  - faces that intersect each other (non-convex blocks only: a closed,
 //    outward-oriented convex polyhedron cannot self-intersect).
-// `what` names the block in messages, e.g. "block 'pier 2'".
+// `what` names the block in messages, e.g. "block 'pier 2'"; `numbering`
+// its vertices and faces.
 void validate_block(const std::vector<Vec3>& vertices,
                     const std::vector<FaceLoop>& faces, const std::string& what,
-                    double planarity = 0.0);
+                    double planarity = 0.0, const MeshNumbering& numbering = {});
 
 // The CGAL part of validation: where the (triangulated) surface crosses or
-// touches itself, e.g. "faces 2 and 7 cross each other" (1-based), or
-// nothing when it does not. Only called for non-convex blocks.
+// touches itself, e.g. "face 2 and face 7 cross each other" (faces named by
+// `numbering`), or nothing when it does not. Only called for non-convex
+// blocks.
 std::optional<std::string> surface_self_intersection(const std::vector<Vec3>& vertices,
-                                                     const std::vector<FaceLoop>& faces);
+                                                     const std::vector<FaceLoop>& faces,
+                                                     const MeshNumbering& numbering = {});
 
 }  // namespace ashlar

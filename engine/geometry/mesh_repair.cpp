@@ -32,9 +32,11 @@ constexpr double kPlaneTolerance = 1e-9;
 constexpr double kCollinear = 1e-9;
 
 using DirectedEdge = std::pair<int, int>;
+// The input faces (0-based, ascending) a repaired face was made of.
+using FaceSources = std::vector<int>;
 
 void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                 double weld_tolerance, const std::string& what) {
+                 double weld_tolerance, const std::string& what, const MeshNumbering& numbering) {
   if (!std::isfinite(weld_tolerance) || weld_tolerance < 0.0) {
     std::ostringstream message;
     message << what << ": the weld tolerance must be a finite number >= 0 (m), got "
@@ -44,9 +46,15 @@ void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
   for (size_t i = 0; i < vertices.size(); ++i) {
     if (!vertices[i].allFinite()) {
       std::ostringstream message;
-      message << what << ": vertex " << i + 1 << " is (" << vertices[i].x() << ", "
-              << vertices[i].y() << ", " << vertices[i].z()
-              << "): expected finite coordinates, not NaN or infinity";
+      message << what << ": ";
+      // Names by coordinates already show them.
+      if (numbering.vertex_name) {
+        message << numbering.vertex(static_cast<int>(i));
+      } else {
+        message << "vertex " << i + 1 << " is (" << vertices[i].x() << ", " << vertices[i].y() << ", "
+                << vertices[i].z() << ")";
+      }
+      message << ": expected finite coordinates, not NaN or infinity";
       throw GeometryError(message.str());
     }
   }
@@ -54,7 +62,7 @@ void check_input(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>&
   for (size_t f = 0; f < faces.size(); ++f) {
     for (int index : faces[f]) {
       if (index < 0 || index >= count) {
-        throw GeometryError(what + ": face " + std::to_string(f + 1) + " refers to vertex " +
+        throw GeometryError(what + ": " + numbering.face(static_cast<int>(f)) + " refers to vertex " +
                             std::to_string(index + 1) + " but there are " +
                             std::to_string(count) + " vertices");
       }
@@ -97,19 +105,23 @@ std::vector<Vec3> loop_points(const std::vector<Vec3>& points, const FaceLoop& f
 }
 
 // Re-indexes the faces through the weld and removes the repeats it created;
-// faces left with fewer than 3 vertices were edges or points.
-std::vector<FaceLoop> reindex_faces(const std::vector<FaceLoop>& faces,
-                                    const std::vector<int>& representative) {
+// faces left with fewer than 3 vertices were edges or points. `sources`
+// gets each kept face's input face.
+std::vector<FaceLoop> reindex_faces(const std::vector<FaceLoop>& faces, const std::vector<int>& representative,
+                                    std::vector<FaceSources>& sources) {
   std::vector<FaceLoop> result;
   result.reserve(faces.size());
-  for (const FaceLoop& face : faces) {
+  sources.clear();
+  for (size_t f = 0; f < faces.size(); ++f) {
     FaceLoop cleaned;
-    for (int index : face) {
+    for (int index : faces[f]) {
       const int welded = representative[index];
       if (cleaned.empty() || cleaned.back() != welded) cleaned.push_back(welded);
     }
     while (cleaned.size() > 1 && cleaned.front() == cleaned.back()) cleaned.pop_back();
-    if (cleaned.size() >= 3) result.push_back(std::move(cleaned));
+    if (cleaned.size() < 3) continue;
+    result.push_back(std::move(cleaned));
+    sources.push_back({static_cast<int>(f)});
   }
   return result;
 }
@@ -120,7 +132,7 @@ std::vector<FaceLoop> reindex_faces(const std::vector<FaceLoop>& faces,
 // neighbour across that edge by inserting m into the neighbour, so the
 // surface stays closed.
 std::vector<FaceLoop> drop_flat_faces(const std::vector<Vec3>& points, std::vector<FaceLoop> faces,
-                                      double size) {
+                                      double size, std::vector<FaceSources>& sources) {
   std::map<DirectedEdge, int> owner;
   for (size_t f = 0; f < faces.size(); ++f) {
     const FaceLoop& face = faces[f];
@@ -178,9 +190,13 @@ std::vector<FaceLoop> drop_flat_faces(const std::vector<Vec3>& points, std::vect
     owner[{m, next}] = g;
   }
   std::vector<FaceLoop> kept;
+  std::vector<FaceSources> kept_sources;
   for (size_t f = 0; f < faces.size(); ++f) {
-    if (!dropped[f]) kept.push_back(std::move(faces[f]));
+    if (dropped[f]) continue;
+    kept.push_back(std::move(faces[f]));
+    kept_sources.push_back(std::move(sources[f]));
   }
+  sources = std::move(kept_sources);
   return kept;
 }
 
@@ -225,7 +241,7 @@ std::optional<FaceLoop> patch_outline(const std::vector<FaceLoop>& faces,
 // the slivers a clip leaves behind are too noisy to compare.
 std::vector<FaceLoop> merge_coplanar_faces(const std::vector<Vec3>& points,
                                            const std::vector<FaceLoop>& faces,
-                                           double plane_tolerance) {
+                                           double plane_tolerance, std::vector<FaceSources>& sources) {
   std::map<DirectedEdge, std::vector<int>> users;  // undirected edge -> faces
   for (size_t f = 0; f < faces.size(); ++f) {
     const FaceLoop& face = faces[f];
@@ -254,6 +270,7 @@ std::vector<FaceLoop> merge_coplanar_faces(const std::vector<Vec3>& points,
 
   std::vector<bool> taken(faces.size(), false);
   std::vector<FaceLoop> merged;
+  std::vector<FaceSources> merged_sources;
   for (int seed : order) {
     if (taken[seed]) continue;
     taken[seed] = true;
@@ -283,10 +300,18 @@ std::vector<FaceLoop> merge_coplanar_faces(const std::vector<Vec3>& points,
         members.size() > 1 ? patch_outline(faces, members) : std::nullopt;
     if (outline) {
       merged.push_back(*outline);
+      FaceSources patch;
+      for (int f : members) patch.insert(patch.end(), sources[f].begin(), sources[f].end());
+      std::sort(patch.begin(), patch.end());
+      merged_sources.push_back(std::move(patch));
     } else {
-      for (int f : members) merged.push_back(faces[f]);
+      for (int f : members) {
+        merged.push_back(faces[f]);
+        merged_sources.push_back(sources[f]);
+      }
     }
   }
+  sources = std::move(merged_sources);
   return merged;
 }
 
@@ -297,7 +322,8 @@ std::vector<FaceLoop> merge_coplanar_faces(const std::vector<Vec3>& points,
 // starts at an end of the shared edge, so the fan that bounds a block's
 // solid (see Block) is the two triangles and the volume does not change.
 std::vector<FaceLoop> merge_warped_triangle_pairs(const std::vector<Vec3>& points,
-                                                  std::vector<FaceLoop> faces, double planarity) {
+                                                  std::vector<FaceLoop> faces, double planarity,
+                                                  std::vector<FaceSources>& sources) {
   std::map<DirectedEdge, std::vector<int>> users;  // undirected edge -> triangles
   for (size_t f = 0; f < faces.size(); ++f) {
     if (faces[f].size() != 3) continue;
@@ -355,12 +381,18 @@ std::vector<FaceLoop> merge_warped_triangle_pairs(const std::vector<Vec3>& point
     taken[candidate.first] = taken[candidate.second] = true;
     const auto [earlier, later] = std::minmax(candidate.first, candidate.second);
     faces[earlier] = candidate.quad;
+    sources[earlier].insert(sources[earlier].end(), sources[later].begin(), sources[later].end());
+    std::sort(sources[earlier].begin(), sources[earlier].end());
     dropped[later] = true;
   }
   std::vector<FaceLoop> merged;
+  std::vector<FaceSources> merged_sources;
   for (size_t f = 0; f < faces.size(); ++f) {
-    if (!dropped[f]) merged.push_back(std::move(faces[f]));
+    if (dropped[f]) continue;
+    merged.push_back(std::move(faces[f]));
+    merged_sources.push_back(std::move(sources[f]));
   }
+  sources = std::move(merged_sources);
   return merged;
 }
 
@@ -396,30 +428,36 @@ void remove_edge_midpoints(const std::vector<Vec3>& points, std::vector<FaceLoop
   }
 }
 
-// Keeps the vertices that faces use, in their original order.
-void drop_unused_vertices(std::vector<Vec3>& points, std::vector<FaceLoop>& faces) {
+// Keeps the vertices that faces use, in their original order; returns the
+// old index of each kept vertex.
+std::vector<int> drop_unused_vertices(std::vector<Vec3>& points, std::vector<FaceLoop>& faces) {
   std::vector<int> new_index(points.size(), -1);
   for (const FaceLoop& face : faces) {
     for (int index : face) new_index[index] = 0;
   }
   std::vector<Vec3> used;
+  std::vector<int> old_index;
   for (size_t i = 0; i < points.size(); ++i) {
     if (new_index[i] < 0) continue;
     new_index[i] = static_cast<int>(used.size());
     used.push_back(points[i]);
+    old_index.push_back(static_cast<int>(i));
   }
   for (FaceLoop& face : faces) {
     for (int& index : face) index = new_index[index];
   }
   points = std::move(used);
+  return old_index;
 }
 
 // The mesh welded, without what welding made degenerate, coplanar faces
 // merged (and, with a planarity, warped triangle pairs), edge midpoints and
-// unused vertices dropped.
+// unused vertices dropped; with where each point and loop came from.
 struct RepairedMesh {
   std::vector<Vec3> points;
   std::vector<FaceLoop> loops;
+  std::vector<int> source_vertex;            // per point, the input vertex it is (the first of its weld)
+  std::vector<FaceSources> source_faces;     // per loop, the input faces merged into it
 };
 
 RepairedMesh repair_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
@@ -427,32 +465,48 @@ RepairedMesh repair_mesh(const std::vector<Vec3>& vertices, const std::vector<Fa
   Box3 box;
   for (const Vec3& p : vertices) box.add(p);
   const double size = box.diagonal();
-  RepairedMesh mesh{vertices, reindex_faces(faces, weld(vertices, weld_tolerance))};
-  mesh.loops = drop_flat_faces(mesh.points, std::move(mesh.loops), size);
-  mesh.loops = merge_coplanar_faces(mesh.points, mesh.loops, kPlaneTolerance * size);
-  if (planarity > 0.0) mesh.loops = merge_warped_triangle_pairs(mesh.points, std::move(mesh.loops), planarity);
+  RepairedMesh mesh;
+  mesh.points = vertices;
+  mesh.loops = reindex_faces(faces, weld(vertices, weld_tolerance), mesh.source_faces);
+  mesh.loops = drop_flat_faces(mesh.points, std::move(mesh.loops), size, mesh.source_faces);
+  mesh.loops = merge_coplanar_faces(mesh.points, mesh.loops, kPlaneTolerance * size, mesh.source_faces);
+  if (planarity > 0.0) {
+    mesh.loops = merge_warped_triangle_pairs(mesh.points, std::move(mesh.loops), planarity, mesh.source_faces);
+  }
   remove_edge_midpoints(mesh.points, mesh.loops, kCollinear * size);
-  drop_unused_vertices(mesh.points, mesh.loops);
+  mesh.source_vertex = drop_unused_vertices(mesh.points, mesh.loops);
   return mesh;
 }
 
 }  // namespace
 
 Block block_from_mesh(const std::vector<Vec3>& vertices, const std::vector<FaceLoop>& faces,
-                      double weld_tolerance, const BlockStyle& style, const std::string& what) {
-  check_input(vertices, faces, weld_tolerance, what);
-  auto [points, loops] = repair_mesh(vertices, faces, weld_tolerance, style.planarity);
-  // The defect is reported in the repaired mesh's numbering, so say what
-  // the repair did when it changed the counts.
+                      double weld_tolerance, const BlockStyle& style, const std::string& what,
+                      const MeshNumbering& input_numbering) {
+  check_input(vertices, faces, weld_tolerance, what, input_numbering);
+  RepairedMesh mesh = repair_mesh(vertices, faces, weld_tolerance, style.planarity);
+  // Defects are found in the repaired mesh and named as the input numbers
+  // its vertices and faces; a merged face by the input faces it was made of.
+  MeshNumbering numbering;
+  numbering.vertex_name = [&](int index) { return input_numbering.vertex(mesh.source_vertex[index]); };
+  numbering.face_name = [&](int index) {
+    const FaceSources& sources = mesh.source_faces[index];
+    std::string name = input_numbering.face(sources[0]);
+    if (sources.size() == 1) return name;
+    name += " (merged with";
+    for (size_t k = 1; k < sources.size(); ++k) name += (k == 1 ? " " : ", ") + input_numbering.face(sources[k]);
+    return name + ")";
+  };
   std::ostringstream repair;
-  if (points.size() != vertices.size() || loops.size() != faces.size()) {
+  if (mesh.points.size() != vertices.size() || mesh.loops.size() != faces.size()) {
     repair << "; welding vertices closer than " << weld_tolerance
            << " m, dropping flat faces and merging coplanar ones made the mesh's "
            << faces.size() << " faces and " << vertices.size() << " vertices into "
-           << loops.size() << " faces and " << points.size() << " vertices";
+           << mesh.loops.size() << " faces and " << mesh.points.size() << " vertices";
   }
   try {
-    return Block(std::move(points), std::move(loops), style.density, style.name, style.planarity);
+    return Block(std::move(mesh.points), std::move(mesh.loops), style.density, style.name, style.planarity,
+                 numbering);
   } catch (const GeometryError& error) {
     throw GeometryError(what + ": " + error.what() + repair.str());
   }
@@ -462,11 +516,13 @@ std::optional<std::vector<Vec3>> open_planar_outline(const std::vector<Vec3>& ve
                                                      const std::vector<FaceLoop>& faces,
                                                      double weld_tolerance, double planarity) {
   try {
-    check_input(vertices, faces, weld_tolerance, "open surface");
+    check_input(vertices, faces, weld_tolerance, "open surface", {});
   } catch (const Error&) {
     return std::nullopt;  // block_from_mesh names the defect
   }
-  const auto [points, loops] = repair_mesh(vertices, faces, weld_tolerance, planarity);
+  const RepairedMesh mesh = repair_mesh(vertices, faces, weld_tolerance, planarity);
+  const std::vector<Vec3>& points = mesh.points;
+  const std::vector<FaceLoop>& loops = mesh.loops;
   if (loops.size() != 1 || loops[0].size() < 3) return std::nullopt;
   std::vector<Vec3> outline;
   for (int index : loops[0]) outline.push_back(points[index]);

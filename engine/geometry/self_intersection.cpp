@@ -32,14 +32,15 @@ private:
   int current_ = -1;
 };
 
-std::string face_pair(int a, int b) {
-  return "faces " + std::to_string(std::min(a, b) + 1) + " and " + std::to_string(std::max(a, b) + 1);
+std::string face_pair(int a, int b, const MeshNumbering& numbering) {
+  return numbering.faces(std::min(a, b), std::max(a, b));
 }
 
 }  // namespace
 
 std::optional<std::string> surface_self_intersection(const std::vector<Vec3>& vertices,
-                                                     const std::vector<FaceLoop>& faces) {
+                                                     const std::vector<FaceLoop>& faces,
+                                                     const MeshNumbering& numbering) {
   Mesh mesh;
   FaceSource source = mesh.add_property_map<Mesh::Face_index, int>("f:source", -1).first;
   std::vector<Mesh::Vertex_index> handles;
@@ -53,7 +54,7 @@ std::optional<std::string> surface_self_intersection(const std::vector<Vec3>& ve
     // sheets of the surface meet at that vertex, so the surface touches itself.
     const Mesh::Face_index added = mesh.add_face(loop);
     if (added == Mesh::null_face()) {
-      return "face " + std::to_string(f + 1) +
+      return numbering.face(static_cast<int>(f)) +
              " meets the rest of the surface at a vertex where two sheets of it touch";
     }
     source[added] = static_cast<int>(f);
@@ -62,16 +63,16 @@ std::optional<std::string> surface_self_intersection(const std::vector<Vec3>& ve
   const std::vector<Mesh::Face_index> polygons(mesh.faces().begin(), mesh.faces().end());
   for (const Mesh::Face_index face : polygons) {
     if (!PMP::triangulate_face(face, mesh, CGAL::parameters::visitor(KeepFaceSource(source)))) {
-      return "face " + std::to_string(source[face] + 1) + " folds over itself";
+      return numbering.face(source[face]) + " folds over itself";
     }
   }
   if (!PMP::does_self_intersect(mesh)) return std::nullopt;
   std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossings;
   PMP::self_intersections(mesh, std::back_inserter(crossings));
   for (const auto& [x, y] : crossings) {
-    if (source[x] != source[y]) return face_pair(source[x], source[y]) + " cross each other";
+    if (source[x] != source[y]) return face_pair(source[x], source[y], numbering) + " cross each other";
   }
-  return "face " + std::to_string(source[crossings.front().first] + 1) + " crosses itself";
+  return numbering.face(source[crossings.front().first]) + " crosses itself";
 }
 
 }  // namespace ashlar

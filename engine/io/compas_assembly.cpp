@@ -129,6 +129,7 @@ private:
       }
     }
     std::vector<Vec3> vertices;
+    std::vector<std::string> vertex_keys, face_keys;
     std::map<std::string, int> vertex_index;
     for (const auto& [vertex_key, attributes] : vertex.items()) {
       const std::string vertex_where = where + ".vertex." + vertex_key;
@@ -141,6 +142,7 @@ private:
         }
       }
       vertex_index[vertex_key] = static_cast<int>(vertices.size());
+      vertex_keys.push_back(vertex_key);
       vertices.push_back(p);
     }
     std::vector<FaceLoop> faces;
@@ -156,6 +158,7 @@ private:
         indices.push_back(found->second);
       }
       faces.push_back(std::move(indices));
+      face_keys.push_back(face_key);
     }
     std::string name = "node " + key;
     if (const auto attributes = mesh.find("attributes"); attributes != mesh.end() && attributes->is_object()) {
@@ -168,7 +171,16 @@ private:
     for (const Vec3& p : vertices) bounds.add(p);
     const double weld = bounds.empty() ? 0.0 : options_.relative_weld_tolerance * bounds.diagonal();
     const BlockStyle style{options_.density, name, options_.planarity};
-    out_.blocks.push_back(import_object(name, vertices, faces, weld, style, path_ + ": " + where + " ('" + name + "')"));
+    // Named by their keys, as the paths in messages are ("blocks.0.face.2").
+    MeshNumbering numbering;
+    numbering.vertex_name = [&vertex_keys](int index) { return "vertex " + vertex_keys[index]; };
+    numbering.face_name = [&face_keys](int index) { return "face " + face_keys[index]; };
+    try {
+      out_.blocks.push_back(import_object(name, vertices, faces, weld, style,
+                                          path_ + ": " + where + " ('" + name + "')", numbering));
+    } catch (const GeometryError& error) {
+      throw GeometryError(error.what() + std::string(" (vertices and faces by their keys in the file)"));
+    }
     out_.supports.push_back(support);
   }
 

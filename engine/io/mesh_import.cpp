@@ -33,7 +33,8 @@ namespace {
 // One node's meshes joined into a polygon soup in world coordinates.
 struct RawObject {
   std::string name;
-  std::vector<Vec3> vertices;
+  std::vector<Vec3> vertices;     // in ashlar's frame (m, z up)
+  std::vector<Vec3> file_points;  // the same, as the file gives them
   std::vector<FaceLoop> faces;
 };
 
@@ -81,7 +82,9 @@ private:
       if (object.name.empty()) object.name = meaningful_name(mesh.mName);
       const int offset = static_cast<int>(object.vertices.size());
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-        object.vertices.push_back(world_point(to_world, mesh.mVertices[v]));
+        const aiVector3D& p = mesh.mVertices[v];
+        object.vertices.push_back(world_point(to_world, p));
+        object.file_points.emplace_back(p.x, p.y, p.z);
       }
       for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const aiFace& face = mesh.mFaces[f];
@@ -233,10 +236,24 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
   for (const RawObject& object : objects) {
     const BlockStyle style{options.density, object.name, options.planarity};
     const std::string what = "object '" + object.name + "' in '" + path + "'";
+    // Formats like OBJ keep no vertex numbers through the reader (it gives
+    // each face corner a vertex of its own), so vertices are named by their
+    // coordinates in the file, and faces by their order in the object.
+    MeshNumbering numbering;
+    numbering.vertex_name = [&object](int index) {
+      std::ostringstream name;
+      const Vec3& p = object.file_points[index];
+      name << "vertex (" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+      return name.str();
+    };
+    numbering.face_name = [](int index) { return "face " + std::to_string(index + 1); };
     try {
-      blocks.push_back(import_object(object.name, object.vertices, object.faces, weld_tolerance, style, what));
+      blocks.push_back(
+          import_object(object.name, object.vertices, object.faces, weld_tolerance, style, what, numbering));
     } catch (const GeometryError& error) {
-      throw GeometryError(error.what() + single_precision_note(object.vertices));
+      throw GeometryError(error.what() + std::string(" (faces counted from 1 in the object's order in the file, "
+                                                     "vertices by their coordinates in the file)") +
+                          single_precision_note(object.vertices));
     }
   }
   face_plates_to_blocks(blocks);
@@ -245,9 +262,10 @@ std::vector<ImportedBlock> import_blocks(const std::string& path, const ImportOp
 
 ImportedBlock import_object(const std::string& name, const std::vector<Vec3>& vertices,
                             const std::vector<FaceLoop>& faces, double weld_tolerance,
-                            const BlockStyle& style, const std::string& what) {
+                            const BlockStyle& style, const std::string& what,
+                            const MeshNumbering& numbering) {
   try {
-    return {name, block_from_mesh(vertices, faces, weld_tolerance, style, what), {}};
+    return {name, block_from_mesh(vertices, faces, weld_tolerance, style, what, numbering), {}};
   } catch (const GeometryError&) {
     std::optional<std::vector<Vec3>> outline = open_planar_outline(vertices, faces, weld_tolerance, style.planarity);
     if (!outline) throw;

@@ -40,10 +40,12 @@ struct ImportedBlock {
 // The object's block (block_from_mesh), or, for an open planar surface, a
 // support plate facing the outline's own normal until
 // face_plates_to_blocks turns it. Throws block_from_mesh's GeometryError
-// for anything else.
+// for anything else, naming vertices and faces as `numbering` does (the
+// file's own numbering).
 ImportedBlock import_object(const std::string& name, const std::vector<Vec3>& vertices,
                             const std::vector<FaceLoop>& faces, double weld_tolerance,
-                            const BlockStyle& style, const std::string& what);
+                            const BlockStyle& style, const std::string& what,
+                            const MeshNumbering& numbering);
 
 // Turns every support plate of `blocks` to face the centroid of the blocks
 // that are not plates (by volume), where the blocks it bears are.

@@ -95,9 +95,14 @@ void read_block(const JsonReader& reader, const json& entry, int i, double plana
   }
 
   const std::string label = where + (name.empty() ? "" : " ('" + name + "')");
+  // Vertices and faces named as the file's paths name them (0-based).
+  MeshNumbering numbering;
+  numbering.vertex_name = [](int index) { return "vertices[" + std::to_string(index) + "]"; };
+  numbering.face_name = [](int index) { return "faces[" + std::to_string(index) + "]"; };
   BlockPtr block;
   try {
-    block = std::make_shared<const Block>(std::move(vertices), std::move(faces), density, name, planarity);
+    block = std::make_shared<const Block>(std::move(vertices), std::move(faces), density, name, planarity,
+                                          numbering);
   } catch (const InvalidArgument& e) {
     reader.fail(where + ".planarity", e.what());
   } catch (const GeometryError& e) {

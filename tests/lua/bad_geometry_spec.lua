@@ -279,11 +279,23 @@ local function expect_import_volume(solid, formats, volume, relative)
   end
 end
 
+-- A defect as a structure file names it: its vertices and faces by their
+-- 0-based places in the file, as the paths do ("blocks[0].faces[1]"), where
+-- ashlar.block counts them from 1 ("vertices 1 and 2", "face 2").
+local function in_file_terms(text)
+  local function pair(kind)
+    return function(a, b) return ("%s[%d] and %s[%d]"):format(kind, a - 1, kind, b - 1) end
+  end
+  text = text:gsub("vertices (%d+) and (%d+)", pair("vertices")):gsub("faces (%d+) and (%d+)", pair("faces"))
+  text = text:gsub("vertex (%d+)", function(i) return ("vertices[%d]"):format(i - 1) end)
+  return (text:gsub("face (%d+)", function(i) return ("faces[%d]"):format(i - 1) end))
+end
+
 local function expect_load_error(solid, fragments)
   local path = structure_file(folder .. "/structure.json",
     { { name = "keystone", vertices = solid.vertices, faces = solid.faces } })
   local wanted = { path .. ": " }
-  for _, fragment in ipairs(fragments) do wanted[#wanted + 1] = fragment end
+  for _, fragment in ipairs(fragments) do wanted[#wanted + 1] = in_file_terms(fragment) end
   expect_error(wanted, ashlar.load, path)
 end
 
@@ -311,6 +323,9 @@ describe("bad geometry", function()
       expect_block_error(solids.open, OPEN:format(1, 2, 2))
       expect_import_error(solids.open, FORMATS, "(expected a closed surface: every edge shared by two faces)")
       expect_load_error(solids.open, { "blocks[0] ('keystone'): ", invalid(OPEN:format(1, 2, 2)) })
+      expect_error({ "the edge between vertices[0] and vertices[1] belongs to faces[1] only" }, ashlar.load,
+        structure_file(folder .. "/open.json", { { name = "keystone", vertices = solids.open.vertices,
+                                                   faces = solids.open.faces } }))
     end)
 
     it("a block with every face inward is refused as inverted", function()
@@ -321,10 +336,18 @@ describe("bad geometry", function()
 
     it("one flipped face is refused, naming it and its neighbour", function()
       expect_block_error(solids.one_face_flipped, ORIENTATION:format(2, 3, 5, 6))
-      -- Numbers are the repaired mesh's: OBJ and STL files repeat vertices per
-      -- face and are welded, which may renumber.
+      -- Mesh files: faces in the file's order, vertices by their coordinates
+      -- (OBJ repeats vertices per face corner, so it finds another edge of
+      -- the flipped face first; STL faces are the writer's triangles).
+      local ORIENTATION_IN_FILE = "inconsistent face orientation: face %d and face %d run the edge between "
+        .. "vertex %s and vertex %s in the same direction"
       expect_import_error(solids.one_face_flipped, FORMATS, function(format)
-        return ORIENTATION:format(2, ({ obj = 4, off = 3, ply = 3, stl = 4 })[format], 5, 6)
+        return ({ obj = ORIENTATION_IN_FILE:format(2, 4, "(0, 1, 1)", "(1, 1, 1)"),
+                  off = ORIENTATION_IN_FILE:format(2, 3, "(0, 0, 1)", "(1, 0, 1)"),
+                  ply = ORIENTATION_IN_FILE:format(2, 3, "(0, 0, 1)", "(1, 0, 1)"),
+                  stl = "inconsistent face orientation: face 3 (merged with face 4) and face 7 (merged with "
+                    .. "face 8) run the edge between vertex (0, 1, 1) and vertex (1, 1, 1) in the same direction" })[format]
+          .. " (expected every face counter-clockwise"
       end)
       expect_load_error(solids.one_face_flipped, { invalid(ORIENTATION:format(2, 3, 5, 6)) })
     end)
@@ -363,7 +386,9 @@ describe("bad geometry", function()
         .. "(allowed: 1.85472e-06 m)"
       expect_block_error(solids.non_planar, defect)
       expect_load_error(solids.non_planar, { invalid(defect) })
-      expect_import_error(solids.non_planar, { "obj", "off", "ply" }, "is not a valid block: face 3 is not planar")
+      -- The face the file lists second; its vertex by its coordinates.
+      expect_import_error(solids.non_planar, { "obj", "off", "ply" },
+        "is not a valid block: face 2 is not planar: its vertex (0, 0, 1) is 0.0495074 m off the face's plane")
       -- The same points as triangles bound a valid solid: the quad's two
       -- triangles add the tetrahedron over the lifted corner.
       expect_import_volume(solids.non_planar, { "stl" }, 1 + 0.2 / 3, 1e-6)
@@ -374,7 +399,9 @@ describe("bad geometry", function()
         .. "or touch itself)"
       expect_block_error(solids.self_intersecting, defect)
       expect_load_error(solids.self_intersecting, { invalid(defect) })
-      expect_import_error(solids.self_intersecting, FORMATS, "is not a valid block: self-intersecting: faces ")
+      expect_import_error(solids.self_intersecting, { "obj", "off", "ply" },
+        "is not a valid block: self-intersecting: face 1 and face 2 cross each other")
+      expect_import_error(solids.self_intersecting, { "stl" }, "is not a valid block: self-intersecting: face 3 and face 1 (merged with face 2) cross each other")
     end)
 
     it("an edge of more than two faces is refused", function()
@@ -403,9 +430,7 @@ describe("bad geometry", function()
       expect_block_error(solids.crossed_outline, defect)
       expect_load_error(solids.crossed_outline, { invalid(defect) })
       expect_error({ defect }, ashlar.prism, { { 0, 0, 0 }, { 3, 1, 0 }, { 3, 0, 0 }, { 0, 2, 0 } }, { 0, 0, 1 })
-      -- (The face's number is the repaired mesh's: merging orders faces by area.)
-    expect_import_error(solids.crossed_outline, { "obj", "off", "ply" },
-      "has an outline that crosses itself: expected a simple polygon")
+      expect_import_error(solids.crossed_outline, { "obj", "off", "ply" }, "is not a valid block: " .. defect)
     end)
 
     it("NaN and infinite coordinates are refused, naming the vertex", function()
@@ -417,7 +442,8 @@ describe("bad geometry", function()
         expect_import_error(solid, FORMATS, NOT_FINITE)
         expect_load_error(solid, { "blocks[0].vertices[2]: expected 3 finite numbers, got array [", json })
       end
-      expect_import_error(solids.nan, { "obj" }, "vertex 2 is (nan, nan, nan): " .. NOT_FINITE)
+      expect_import_error(solids.nan, { "obj" }, "vertex (nan, 1, 0): " .. NOT_FINITE
+        .. " (faces counted from 1 in the object's order in the file, vertices by their coordinates in the file)")
       expect_error({ "bad argument #1 to ", "(points[4][3]: expected a finite number, got nan)" },
         ashlar.hull, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 0 / 0 } })
       expect_error({ "bad argument #2 to ", "(vector[3]: expected a finite number, got inf)" },

@@ -100,4 +100,22 @@ describe("a COMPAS assembly", function()
     s:save(other)  -- an ashlar structure file is not a COMPAS assembly
     support.expect_error({ "not a COMPAS Assembly", "got the fields format, version" }, ashlar.import, other)
   end)
+
+  it("names a bad block's vertices and faces by their keys, as its path does", function()
+    -- Node 1's top face is face key "1" = vertices 13, 21, 30, 31 (keys);
+    -- lifting vertex 30 by 0.2 m warps it, every corner about 0.2 / 4 m off
+    -- the best-fit plane (0.0495 m: the plane also tilts).
+    local file = assert(io.open(DATA .. "stack_compas2.json"))
+    local text = file:read("a")
+    file:close()
+    local warped, count = text:gsub('("30": {%s*"x": 0.7,%s*"y": 0.5,%s*"z": )1', "%11.2")
+    assert.equal(1, count)
+    local path = folder .. "/warped.json"
+    file = assert(io.open(path, "w"))
+    file:write(warped)
+    file:close()
+    support.expect_error({ path .. ": graph.node.1.block ('node 1'): block 'node 1' is not a valid block: face 1 is "
+      .. "not planar: its vertex 13 is 0.0495074 m off the face's plane", "(vertices and faces by their keys in the file)" },
+      ashlar.import, path)
+  end)
 end)

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <regex>
@@ -329,6 +330,35 @@ TEST(CgalMeshRepair, OpenMeshIsReportedWithItsSource) {
     EXPECT_NE(message.find("part 'lid' of box.stl"), std::string::npos) << message;
     EXPECT_NE(message.find("open"), std::string::npos) << message;
   }
+}
+
+TEST(CgalMeshRepair, DefectsAreNamedInTheInputsNumbering) {
+  // A cube as 12 triangles of 3 vertices each, the two triangles of its
+  // last face (the top: 10 and 11) both turned over. The repair welds the
+  // 36 vertices into 8 and merges each face's pair into a quad; the
+  // defect is named by the input: the quad by both its triangles, a corner
+  // by the first of the input vertices welded into it.
+  Mesh soup = triangle_soup(unit_cube());
+  ASSERT_EQ(soup.faces.size(), 12u);
+  for (int t : {10, 11}) std::reverse(soup.faces[t].begin(), soup.faces[t].end());
+  MeshNumbering input;
+  input.vertex_name = [](int index) { return "v" + std::to_string(index); };
+  input.face_name = [](int index) { return "t" + std::to_string(index); };
+  const std::string message = [&] {
+    try {
+      block_from_mesh(soup.vertices, soup.faces, 1e-9, {}, "top.stl", input);
+    } catch (const GeometryError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  }();
+  // The first edge in order of its welded corners that breaks: the side
+  // face 0's (triangles 0 = v0 v1 v2 and 1 = v3 v4 v5) top edge from
+  // (1, 0, 1), first seen as v2, to (0, 0, 1), first seen as v5.
+  EXPECT_NE(message.find("inconsistent face orientation: t0 (merged with t1) and t10 (merged with t11) run the "
+                         "edge between v2 and v5 in the same direction"),
+            std::string::npos)
+      << message;
 }
 
 TEST(CgalMeshRepair, RejectsBadIndicesAndTolerance) {
