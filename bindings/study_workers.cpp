@@ -1,7 +1,9 @@
 #include "study_workers.hpp"
 
 #include <algorithm>
+#include <new>
 #include <optional>
+#include <utility>
 
 #include "core/clock.hpp"
 #include "core/error.hpp"
@@ -192,7 +194,169 @@ std::unique_ptr<study::RowWorker> start_script_worker(const host::ScriptInvocati
   return std::make_unique<LuaRowWorker>(W, slot.run_ref, names, true);
 }
 
+// Under lua_pcall, with a RunModule as light userdata: require(module)
+// and its field. Returns the function, or nil and why there is none; a
+// failing require raises its own error.
+int require_run_function(lua_State* L) {
+  const auto& run = *static_cast<const RunModule*>(lua_touserdata(L, 1));
+  lua_settop(L, 0);
+  lua_getglobal(L, "require");
+  lua_pushlstring(L, run.module.data(), run.module.size());
+  lua_call(L, 1, 1);
+  if (!lua_istable(L, 1)) {
+    lua_pushnil(L);
+    lua_pushfstring(L, "require \"%s\" gave a %s value, not a table holding the function '%s'", run.module.c_str(),
+                    luaL_typename(L, 1), run.field.c_str());
+    return 2;
+  }
+  if (lua_getfield(L, 1, run.field.c_str()) == LUA_TFUNCTION) return 1;
+  lua_pushnil(L);
+  if (lua_isnil(L, 2))
+    lua_pushfstring(L, "module '%s' has no function '%s'", run.module.c_str(), run.field.c_str());
+  else
+    lua_pushfstring(L, "module '%s' has a %s value, not a function, at '%s'", run.module.c_str(), luaL_typename(L, 2),
+                    run.field.c_str());
+  return 2;
+}
+
+// What a module worker state copies from the script's state.
+struct ModuleWorkerSetup {
+  RunModule run;
+  std::optional<std::string> path, cpath;  // package.path and package.cpath
+  bool has_arg = false;
+  std::vector<std::pair<lua_Integer, std::string>> arg;  // the strings of global `arg`
+  WorkerSandbox sandbox;
+};
+
+struct ModuleWorkerStart {
+  const ModuleWorkerSetup* setup;
+  int run_ref = LUA_NOREF;
+};
+
+// Body of a module worker state's set-up, under lua_pcall: the libraries as
+// in the host, the script state's package paths and `arg`, then the
+// module's function, kept in the registry.
+int open_module_worker(lua_State* W) {
+  auto& start = *static_cast<ModuleWorkerStart*>(lua_touserdata(W, 1));
+  const ModuleWorkerSetup& setup = *start.setup;
+  lua_settop(W, 0);
+  const bool sandboxed = sandbox::settings_of(W) != nullptr;
+  if (!sandboxed) host::open_host_libraries(W);  // else they are open, restricted
+  lua_getglobal(W, "package");
+  if (setup.path) {
+    lua_pushlstring(W, setup.path->data(), setup.path->size());
+    lua_setfield(W, -2, "path");
+  }
+  if (setup.cpath && !sandboxed) {  // a sandbox loads no C modules
+    lua_pushlstring(W, setup.cpath->data(), setup.cpath->size());
+    lua_setfield(W, -2, "cpath");
+  }
+  lua_pop(W, 1);
+  if (setup.has_arg) {
+    lua_createtable(W, static_cast<int>(setup.arg.size()), 1);
+    for (const auto& [index, text] : setup.arg) {
+      lua_pushlstring(W, text.data(), text.size());
+      lua_rawseti(W, -2, index);
+    }
+    lua_setglobal(W, "arg");
+  }
+  lua_pushcfunction(W, do_nothing);  // as in script worker states
+  lua_setglobal(W, "print");
+  lua_pushcfunction(W, require_run_function);
+  lua_pushlightuserdata(W, const_cast<RunModule*>(&setup.run));
+  lua_call(W, 1, 2);
+  if (lua_isnil(W, -2)) return lua_error(W);  // why, on top
+  lua_pop(W, 1);
+  start.run_ref = luaL_ref(W, LUA_REGISTRYINDEX);
+  return 0;
+}
+
+std::unique_ptr<study::RowWorker> start_module_worker(const ModuleWorkerSetup& setup,
+                                                     const std::vector<std::string>& names) {
+  lua_State* W = setup.sandbox.settings ? sandbox::new_state(*setup.sandbox.settings, setup.sandbox.deadline)
+                                        : luaL_newstate();
+  if (W == nullptr) throw Error("not enough memory for a Lua state");
+  ModuleWorkerStart start{&setup};
+  lua_pushcfunction(W, open_module_worker);
+  lua_pushlightuserdata(W, &start);
+  if (lua_pcall(W, 1, 0, 0) != LUA_OK) {
+    const std::string problem =
+        "run = \"" + setup.run.text + "\": " +
+        (lua_type(W, -1) == LUA_TSTRING ? lua_tostring(W, -1) : "(error object is a " + type_name(W, -1) + " value)");
+    sandbox::close_state(W);
+    throw Error(problem);
+  }
+  return std::make_unique<LuaRowWorker>(W, start.run_ref, names, true);
+}
+
 }  // namespace
+
+RunModule parse_run_module(const std::string& text) {
+  const std::size_t dot = text.rfind('.');
+  RunModule run{text, dot == std::string::npos ? "" : text.substr(0, dot),
+                dot == std::string::npos ? "" : text.substr(dot + 1)};
+  const bool empty_part = run.module.empty() || run.field.empty() || run.module.front() == '.' ||
+                          run.module.back() == '.' || run.module.find("..") != std::string::npos;
+  if (empty_part || text.find('\0') != std::string::npos)
+    throw ArgError(1, "run: expected a function or a string \"module.function\" (the function of a module that "
+                      "require finds), got \"" + text + "\"");
+  return run;
+}
+
+void resolve_run_module(lua_State* L, const RunModule& run, int run_index) {
+  if (!lua_checkstack(L, 4)) throw std::bad_alloc();
+  lua_pushcfunction(L, require_run_function);
+  lua_pushlightuserdata(L, const_cast<RunModule*>(&run));
+  const int status = lua_pcall(L, 1, 2, 0);
+  if (status != LUA_OK) {
+    // Not the module's fault: raised as it is.
+    if (status == LUA_ERRMEM || sandbox::budget_exhausted(L) || interrupt_requested()) throw LuaError();
+    const std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)
+                                                              : "(error object is a " + type_name(L, -1) + " value)";
+    lua_pop(L, 1);
+    throw ArgError(1, "run: \"" + run.text + "\": require \"" + run.module + "\" failed: " + message);
+  }
+  if (lua_isnil(L, -2)) {
+    const std::string message = lua_tostring(L, -1);
+    lua_pop(L, 2);
+    throw ArgError(1, "run: \"" + run.text + "\": " + message);
+  }
+  lua_pop(L, 1);
+  lua_replace(L, run_index);
+}
+
+study::WorkerFactory module_worker_factory(lua_State* L, RunModule run, std::vector<std::string> parameter_names) {
+  ModuleWorkerSetup setup;
+  setup.run = std::move(run);
+  if (const sandbox::Settings* settings = sandbox::settings_of(L)) {
+    setup.sandbox.settings = *settings;
+    setup.sandbox.deadline = sandbox::deadline_of(L);
+  }
+  call_protected(L, 0, [&setup](lua_State* S) {
+    lua_getfield(S, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);
+    if (lua_getfield(S, -1, "package") == LUA_TTABLE) {
+      if (lua_getfield(S, -1, "path") == LUA_TSTRING) setup.path = std::string(lua_tostring(S, -1));
+      lua_pop(S, 1);
+      if (lua_getfield(S, -1, "cpath") == LUA_TSTRING) setup.cpath = std::string(lua_tostring(S, -1));
+      lua_pop(S, 1);
+    }
+    lua_settop(S, 0);
+    if (lua_getglobal(S, "arg") == LUA_TTABLE) {
+      setup.has_arg = true;
+      lua_pushnil(S);
+      while (lua_next(S, 1)) {
+        if (lua_isinteger(S, -2) && lua_type(S, -1) == LUA_TSTRING)
+          setup.arg.emplace_back(lua_tointeger(S, -2), std::string(lua_tostring(S, -1)));
+        lua_pop(S, 1);
+      }
+    }
+    lua_settop(S, 0);
+    return 0;
+  });
+  return [setup = std::move(setup), parameter_names = std::move(parameter_names)](int) {
+    return start_module_worker(setup, parameter_names);
+  };
+}
 
 Value to_value(lua_State* L, int idx, std::string& problem) {
   switch (lua_type(L, idx)) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -130,8 +131,18 @@ int w_study(lua_State* L) {
     if (options.push("params") == LUA_TNIL) throw ArgError(1, "params: missing");
     job.rows = read_params(L, lua_gettop(L));
     lua_pop(L, 1);
-    if (options.push("run") != LUA_TFUNCTION) throw ArgError(1, "run: expected a function, got " + type_name(L, -1));
+    // run: a function, or "module.function" that workers require instead
+    // of running the script again.
+    const int run_type = options.push("run");
+    if (run_type != LUA_TFUNCTION && run_type != LUA_TSTRING)
+      throw ArgError(1, "run: expected a function or a string \"module.function\", got " + type_name(L, -1));
     run_index = lua_gettop(L);
+    std::optional<RunModule> run_module;
+    if (run_type == LUA_TSTRING) {
+      std::size_t size = 0;
+      const char* text = lua_tolstring(L, run_index, &size);
+      run_module = parse_run_module(std::string(text, size));
+    }
     job.db = options.string("db").value_or("");
     if (!job.db.empty()) sandbox::require_access(L, 1, "db", job.db, sandbox::Access::write);
     job.workers = static_cast<int>(options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(0));
@@ -143,22 +154,33 @@ int w_study(lua_State* L) {
     study.name = job.name;
     study.db = job.db;
     if (is_worker_state(L)) {
-      if (works_for(L, job.name)) return -1;  // keep the run, outside this guard
+      if (works_for(L, job.name)) {
+        if (run_module) resolve_run_module(L, *run_module, run_index);
+        return -1;  // keep the run, outside this guard
+      }
       // Another study of the script: its results, as the coordinator stored them.
       if (!study.db.empty()) study.table = study::StudyStore(study.db, true).read_study(study.name);
       push_study(L, std::move(study));
       return 1;
     }
 
-    // Worker threads run the host's script again: none without one.
-    const host::ScriptInvocation* script = host::remembered_script(L);
-    if (script == nullptr && cluster::size() > 1)
-      throw ArgError(1, "under MPI, a study needs the ashlar host running a script file");
-    if (script == nullptr && job.workers > 1)
-      throw ArgError(1, "workers: more than 1 needs the ashlar host running a script file (worker threads run "
-                        "the script again; the C module, stdin and -e chunks cannot be)");
-    const study::WorkerFactory thread_workers =
-        script ? worker_state_factory(L, *script, job.name, job.rows.names) : study::WorkerFactory();
+    study::WorkerFactory thread_workers;
+    if (run_module) {
+      // Required here first: a bad module or function is this call's error,
+      // before the store opens or a worker starts.
+      resolve_run_module(L, *run_module, run_index);
+      thread_workers = module_worker_factory(L, *run_module, job.rows.names);
+    } else {
+      // Worker threads run the host's script again: none without one.
+      const host::ScriptInvocation* script = host::remembered_script(L);
+      if (script == nullptr && cluster::size() > 1)
+        throw ArgError(1, "under MPI, a study needs the ashlar host running a script file");
+      if (script == nullptr && job.workers > 1)
+        throw ArgError(1, "workers: more than 1 needs the ashlar host running a script file (worker threads run "
+                          "the script again; the C module, stdin and -e chunks cannot be), or run = "
+                          "\"module.function\"");
+      if (script) thread_workers = worker_state_factory(L, *script, job.name, job.rows.names);
+    }
     const std::unique_ptr<study::RowWorker> script_worker = script_state_worker(L, run_index, job.rows.names);
     study::StudyResult result = study::run_study_job(job, *script_worker, thread_workers);
     study.table = std::move(result.table);

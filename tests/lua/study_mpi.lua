@@ -43,5 +43,30 @@ for i = 1, #expected do
 end
 -- Rank 0's worker thread is worker 1; ranks 1 and 2 are 1001 and 2001.
 assert(workers["1001"] and workers["2001"], "ranks 1 and 2 ran no rows")
+
+-- run = "module.function" (fixtures/study_run): every rank runs the script
+-- once, as its main program, and requires the module in its state; rank 0's
+-- worker thread requires it too and does not run the script again.
+local ashlar = require "ashlar"
+local box_study = quote(support.script_folder(1) .. "/fixtures/study_run/box_study.lua")
+run("ASHLAR_STUDY_LOG=boxes.log ASHLAR_STUDY_ROW_SECONDS=0.02 " .. quote(mpiexec) ..
+    " --oversubscribe -x ASHLAR_STUDY_LOG -x ASHLAR_STUDY_ROW_SECONDS -np 3 " .. quote(ashlar_bin) .. " " .. box_study ..
+    " boxes.sqlite 1 module")
+local log = support.read_file(folder .. "/boxes.log")
+local _, scripts = log:gsub("script\n", "")
+local _, modules = log:gsub("module\n", "")
+assert(scripts == 3, "the script ran " .. scripts .. " times on 3 ranks, expected once per rank")
+assert(modules == 4, "the module was loaded " .. modules .. " times, expected once per rank and once in rank 0's thread")
+local box_workers = {}
+local boxes = ashlar.load_study{ db = folder .. "/boxes.sqlite", name = "boxes" }:rows()
+assert(#boxes == 24, "expected 24 box rows, got " .. #boxes)
+for _, row in ipairs(boxes) do
+  assert(row.run_status == "ok", row.run_error)
+  local volume = row.a * row.b * row.c
+  assert(math.abs(row.mass - 2400 * volume) <= 1e-12 * 2400 * volume, "mass " .. row.mass .. " of a box of " .. volume .. " m3")
+  assert(row.rank == row.run_worker // 1000, "row of worker " .. row.run_worker .. " ran on rank " .. row.rank)
+  box_workers[row.run_worker] = true
+end
+assert(box_workers[1001] or box_workers[2001], "ranks 1 and 2 ran no box rows")
 support.remove_folder(folder)
-print("MPI study with 3 ranks: " .. ROWS .. " rows, identical to the local run")
+print("MPI study with 3 ranks: " .. ROWS .. " rows, identical to the local run; the module form ran the script once per rank")
