@@ -1,6 +1,6 @@
 // The assets of web_assets.hpp, assembled into read-only data with
 // .incbin: the files are taken as they are, without a conversion step.
-// ASHLAR_WEB_DIR and ASHLAR_THREE_DIR come from engine/CMakeLists.txt,
+// ASHLAR_WEB_DIR and ASHLAR_THREE_DIR come from engine/io/CMakeLists.txt,
 // which also rebuilds this file when an asset changes.
 #include "io/web_assets.hpp"
 
