@@ -5,11 +5,15 @@
 // destructor is alive.
 #include "host_state.hpp"
 
+#include <pthread.h>
+
+#include <atomic>
 #include <csignal>
 #include <filesystem>
 #include <new>
 #include <string>
 #include <system_error>
+#include <thread>
 
 #include "ashlar_lua.hpp"
 #include "core/interrupt.hpp"
@@ -20,24 +24,59 @@ namespace ashlar::host {
 
 namespace {
 
-// The state running a chunk, for the SIGINT handler; chunks run one at a time.
-lua_State* g_running_state = nullptr;
+// The state running a chunk, for the signal handlers; chunks run one at a
+// time, on the main thread. Atomic: the SIGTERM thread reads it.
+std::atomic<lua_State*> g_running_state{nullptr};
 volatile std::sig_atomic_t g_interrupted = 0;
+std::atomic<bool> g_terminated{false};
+pthread_t g_main_thread;
+// The SIGTERM thread hands a termination to the main thread with this
+// signal, whose handler (on_termination) nothing else installs.
+constexpr int kTerminationSignal = SIGUSR1;
 
 void stop_at_hook(lua_State* L, lua_Debug*) {
   lua_sethook(L, nullptr, 0, 0);
   sandbox::restore_hook(L);
-  luaL_error(L, "interrupted!");
+  luaL_error(L, g_terminated ? "terminated (SIGTERM)" : "interrupted!");
 }
 
 // A signal handler may not touch the Lua state except to set a hook, so the
 // error is raised from the hook at the next instruction Lua runs.
+void stop_running_chunk() {
+  ashlar::interrupt_requested() = true;  // for C++ loops that run no Lua, e.g. a study's coordinator
+  if (lua_State* L = g_running_state.load()) {
+    lua_sethook(L, stop_at_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+  }
+}
+
 void on_interrupt(int signal_number) {
   std::signal(signal_number, SIG_DFL);  // a second Ctrl-C kills a script stuck in C code
   g_interrupted = 1;
-  ashlar::interrupt_requested() = true;  // for C++ loops that run no Lua, e.g. a study's coordinator
-  lua_sethook(g_running_state, stop_at_hook,
-              LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+  stop_running_chunk();
+}
+
+void on_termination(int) { stop_running_chunk(); }
+
+// Ends the process by SIGTERM, as if nothing had caught it.
+[[noreturn]] void die_by_sigterm() {
+  std::signal(SIGTERM, SIG_DFL);
+  sigset_t terminate;
+  sigemptyset(&terminate);
+  sigaddset(&terminate, SIGTERM);
+  pthread_sigmask(SIG_UNBLOCK, &terminate, nullptr);
+  std::raise(SIGTERM);
+  std::_Exit(128 + SIGTERM);  // not reached
+}
+
+void wait_for_sigterm(sigset_t terminate) {
+  for (;;) {
+    int signal_number = 0;
+    if (sigwait(&terminate, &signal_number) != 0) continue;
+    // A chunk to stop, the first time: the main thread stops it and ends
+    // the process when it is done. Else nothing is left to save.
+    if (g_terminated.exchange(true) || g_running_state.load() == nullptr) die_by_sigterm();
+    pthread_kill(g_main_thread, kTerminationSignal);
+  }
 }
 
 int add_traceback(lua_State* L) {
@@ -148,9 +187,10 @@ int call_with_traceback(lua_State* L, int argument_count, int result_count) {
   lua_pushcfunction(L, add_traceback);
   lua_insert(L, handler_index);
   // A sandboxed script run by ashlar.sandbox nests in the host's script.
-  lua_State* const outer_state = g_running_state;
-  // A Ctrl-C stops the chunk it came in, not the ones typed after it.
-  if (!outer_state) ashlar::interrupt_requested() = false;
+  lua_State* const outer_state = g_running_state.load();
+  // A Ctrl-C stops the chunk it came in, not the ones typed after it; a
+  // SIGTERM stops every chunk after it too.
+  if (!outer_state && !g_terminated) ashlar::interrupt_requested() = false;
   g_running_state = L;
   const auto outer_handler = std::signal(SIGINT, on_interrupt);
   const int status = lua_pcall(L, argument_count, result_count, handler_index);
@@ -160,6 +200,25 @@ int call_with_traceback(lua_State* L, int argument_count, int result_count) {
   return status;
 }
 
-bool interrupted() { return g_interrupted != 0; }
+bool interrupted() { return g_interrupted != 0 || g_terminated; }
+
+void watch_for_termination() {
+  g_main_thread = pthread_self();
+  struct sigaction handler {};
+  handler.sa_handler = on_termination;
+  sigemptyset(&handler.sa_mask);
+  sigaction(kTerminationSignal, &handler, nullptr);
+  sigset_t terminate;
+  sigemptyset(&terminate);
+  sigaddset(&terminate, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &terminate, nullptr);  // every thread started later inherits it
+  std::thread(wait_for_sigterm, terminate).detach();
+}
+
+bool terminated() { return g_terminated.load(); }
+
+void end_if_terminated() {
+  if (terminated()) die_by_sigterm();
+}
 
 }  // namespace ashlar::host

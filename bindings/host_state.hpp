@@ -50,4 +50,19 @@ int call_with_traceback(lua_State* L, int argument_count, int result_count);
 // started: a runner of many scripts stops instead of going on to the next.
 bool interrupted();
 
+// SIGTERM (what Slurm sends on scancel and at a job's time limit; kill's
+// default) stops the running chunk at a safe point as Ctrl-C does, with the
+// error "terminated (SIGTERM)"; with no chunk running, or at a second
+// SIGTERM, the process ends at once. Call first thing in main, before any
+// thread starts: SIGTERM is blocked in every thread and taken by a thread of
+// its own, so that no library's handler (METIS swaps SIGTERM's handler
+// process-wide while it orders a matrix, and leaves its own behind when two
+// threads order at once) ever runs for it.
+void watch_for_termination();
+// Whether SIGTERM stopped the program: it then ends by SIGTERM itself
+// (end_if_terminated), so its parent sees the conventional status.
+bool terminated();
+// Ends the process by SIGTERM when terminated(); returns otherwise.
+void end_if_terminated();
+
 }  // namespace ashlar::host

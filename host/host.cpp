@@ -307,6 +307,7 @@ void run_interactive(lua_State* L) {
     else
       report(L, status, "");
     lua_settop(L, base);
+    if (ashlar::host::terminated()) return;
   }
   std::fputs("\n", stdout);
   std::fflush(stdout);
@@ -379,11 +380,15 @@ lua_State* sandboxed_state(CommandLine& command_line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ashlar::host::watch_for_termination();  // before MPI, CHOLMOD or a study starts a thread
   const std::string cluster_warning = ashlar::cluster::join_if_launched(&argc, &argv);
   if (!cluster_warning.empty()) std::fprintf(stderr, "%s%s\n", kErrorPrefix, cluster_warning.c_str());
   // Exactly "test": `ashlar ./test` and `ashlar -- test` still run a script.
-  if (argc >= 2 && std::strcmp(argv[1], "test") == 0)
-    return ashlar::regression::run_regression_command(argc, argv);
+  if (argc >= 2 && std::strcmp(argv[1], "test") == 0) {
+    const int status = ashlar::regression::run_regression_command(argc, argv);
+    ashlar::host::end_if_terminated();
+    return status;
+  }
   CommandLine command_line = parse_command_line(argc, argv);
   if (!command_line.error.empty()) {
     std::fprintf(stderr, "%s%s\n", kErrorPrefix, command_line.error.c_str());
@@ -411,6 +416,9 @@ int main(int argc, char** argv) {
   const bool succeeded = status == LUA_OK && lua_toboolean(L, -1);
   report(L, status);
   ashlar::sandbox::close_state(L);
+  // A terminated job ends as SIGTERM ends a process; mpirun and Slurm
+  // stop the other ranks.
+  ashlar::host::end_if_terminated();
   // One rank failing alone would leave the others waiting for it.
   if (!succeeded) ashlar::cluster::abort_job(EXIT_FAILURE);
   ashlar::cluster::leave();

@@ -204,6 +204,70 @@ fail()
       assert.matches("^ashlar: .*interrupted!\nstack traceback:", output)
     end)
 
+    -- SIGTERM (Slurm's scancel and time limit) during each kind of
+    -- computation: it stops at a safe point with "terminated (SIGTERM)", no
+    -- verdict, and the process ends by SIGTERM (the shell's 143). The
+    -- analysis is big enough (2,500 blocks) that its factorisation is
+    -- split over two cores, where METIS once left a handler of its own
+    -- for SIGTERM behind, and a SIGTERM crashed the process.
+    local function terminate_during(computation)
+      local ready = folder .. "/ready_term"
+      os.remove(ready)
+      -- If the computation ends before the signal, the script says what it
+      -- returned and waits (up to 20 s) to be terminated.
+      local path = script("terminated.lua", ("local function ready() io.open(%q, 'w'):close() end\n"):format(ready)
+        .. computation .. "\nlocal t = os.clock() while os.clock() - t < 20 do end")
+      local output, code = run(table.concat({
+        quote(ashlar_bin) .. " " .. quote(path) .. " & pid=$!",
+        "while [ ! -e " .. quote(ready) .. " ]; do sleep 0.05; done",
+        "sleep 0.2",
+        "kill -TERM $pid",
+        "wait $pid",
+      }, "\n"))
+      assert.are.equal(128 + 15, code, output)
+      assert.matches("terminated %(SIGTERM%)", output)
+      return output
+    end
+
+    it("ends an analysis on SIGTERM, cleanly and with no verdict", function()
+      local output = terminate_during([[
+        local s = models.wall{ length = 12, height = 3.5 }
+        s:set_planar(false)
+        ready()
+        local r = ashlar.analyze(s)
+        print("returned", r.status, r.stable)]])
+      -- Stopped inside the solve (the status says so) or at the next Lua
+      -- instruction after it; never a verdict.
+      assert.is_nil(output:match("returned\t[^\n]*true"), output)
+    end)
+
+    it("ends an FEA, a simulation and a study on SIGTERM", function()
+      terminate_during([[
+        local s = models.arch{ voussoirs = 40 }
+        ready()
+        print("returned", ashlar.fea(s, { refine = 6 }).status)]])
+      terminate_during([[
+        local s = models.arch{ voussoirs = 40, thickness = 0.1 }
+        ready()
+        print("returned", ashlar.simulate(s, { duration = 60 }).status)]])
+      -- A study keeps every row it finished; the next run runs only the rest.
+      local db = folder .. "/terminated.sqlite"
+      local study = ("local st = ashlar.study{ name = 'busy', db = %q, params = { a = ashlar.range(1, 60, 60) }, "
+        .. "workers = 2, progress = false, run = function(p) local t = os.clock() "
+        .. "while os.clock() - t < 0.05 do end return { twice = 2 * p.a } end }\n"):format(db)
+      terminate_during("ready()\n" .. study)
+      local output, code = ashlar(quote(script("resumed.lua", study .. [[
+        local info = st:info()
+        local right = 0
+        for _, row in ipairs(st:rows()) do if row.twice == 2 * row.a then right = right + 1 end end
+        print(info.rows, info.ok, info.errors, info.ran, right)]])))
+      assert.are.equal(0, code, output)
+      local rows, ok, errors, ran, right = output:match("(%d+)\t(%d+)\t(%d+)\t(%d+)\t(%d+)")
+      assert.are.same({ "60", "60", "0", "60" }, { rows, ok, errors, right }, output)
+      -- Some rows were kept from the terminated run, so fewer ran again.
+      assert.is_true(tonumber(ran) < 60, output)
+    end)
+
     it("stops only the prompt's chunk that Ctrl-C came in: the next analysis runs", function()
       local ready = folder .. "/ready_prompt"
       os.remove(ready)
