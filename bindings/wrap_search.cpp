@@ -145,7 +145,7 @@ int w_geometric_factor(lua_State* L) {
                             number_text(search.ceiling));
     }
     search.max_evaluations = static_cast<int>(
-        options.whole("max_analyses", 1, INT_MAX, "a whole number >= 1").value_or(200));
+        options.whole("max_analyses", 1, INT_MAX, "a whole number >= 1").value_or(search.max_evaluations));
     int criterion = 0;  // stack index of `stands`, 0 for the default
     if (options.push("stands") != LUA_TNIL) {
       if (lua_type(L, -1) != LUA_TFUNCTION) {
