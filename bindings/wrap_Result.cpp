@@ -98,6 +98,20 @@ void read_method(const OptionTable& options, AnalysisSettings& settings, const c
   }
 }
 
+double bracket_tolerance(const OptionTable& options, double fallback) {
+  if (options.has("bracket_tolerance") && options.has("tolerance")) {
+    throw ArgError(options.arg(), "bracket_tolerance, tolerance: give one of them (tolerance is bracket_tolerance's "
+                                  "older name here)");
+  }
+  const char* key = options.has("tolerance") ? "tolerance" : "bracket_tolerance";
+  const double value = options.positive(key, fallback);
+  if (value >= 1.0) {
+    throw ArgError(options.arg(), std::string(key) + ": expected a number in (0, 1) (relative width of the final "
+                                                     "bracket), got " + number_text(value));
+  }
+  return value;
+}
+
 namespace {
 
 // The options of methods cra and cra_penalty: their own keys, and the
@@ -154,7 +168,7 @@ std::shared_ptr<AnalysisRecord> check_record(lua_State* L, int idx) {
 void push_arbitration_fields(lua_State* L, const Arbitration& a) {
   set_string(L, "verdict", kVerdictNames.name(a.verdict));
   set_boolean(L, "stable", a.verdict == Verdict::stands);
-  if (!a.decided_by.empty()) set_string(L, "decided_by", a.decided_by.c_str());
+  if (a.decided_by) set_string(L, "decided_by", kDecidedByNames.name(*a.decided_by));
   push_string(L, a.reason);
   lua_setfield(L, -2, "reason");
   lua_createtable(L, 0, 4);
@@ -189,8 +203,8 @@ OpinionWhen opinion_when(const OptionTable& options, const char* key, int type, 
 // interrupted, and not stable, when there is no verdict.
 EquilibriumResult adopted_result(MethodComparison& c) {
   const Arbitration& a = c.arbitration;
-  const bool equilibrium_answers = a.verdict == Verdict::stands ? a.decided_by != "both"
-                                                                : a.decided_by == "equilibrium";
+  const bool equilibrium_answers = a.verdict == Verdict::stands ? a.decided_by != DecidedBy::both
+                                                                : a.decided_by == DecidedBy::equilibrium;
   EquilibriumResult r = std::move(equilibrium_answers ? c.equilibrium : c.kinematic);
   if (a.verdict == Verdict::no_verdict) {
     r.stable = false;

@@ -39,6 +39,13 @@ void luax_pushResult(lua_State* L, const Structure& structure, EquilibriumResult
 // two), "cra" and "cra_penalty" are errors naming the caller.
 void read_method(const OptionTable& options, AnalysisSettings& settings, const char* caller = nullptr);
 
+// The relative width of a search's final bracket (load_factor and
+// friction_demand with method = "kinematic", friction_demand,
+// geometric_factor): option `bracket_tolerance`, or `tolerance`, its older
+// name in these functions (an error when both are given); a number in
+// (0, 1), `fallback` when neither is given. Errors name the key given.
+double bracket_tolerance(const OptionTable& options, double fallback);
+
 // A collapse mechanism as Lua tables (ashlar.analyze's and
 // ashlar.load_factor's): per block { velocity, rotation }, and the moving
 // interfaces { interface, a, b, mode, pivot, opening, slip }, their blocks

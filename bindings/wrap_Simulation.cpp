@@ -258,8 +258,9 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
   o.theta = options.number("theta", o.theta);
   o.restitution = options.number("restitution", o.restitution);
   if (const std::optional<Vec3> gravity = options.vec3("gravity")) o.gravity = *gravity;
-  o.record_every = static_cast<int>(options.whole("record_every", 0, 1 << 30, "a number of steps >= 0 (0: automatic)").value_or(0));
-  o.search_distance = options.positive("search_distance", 0.0, true);
+  o.record_every = static_cast<int>(
+      options.whole("record_every", 0, 1 << 30, "a number of steps >= 0 (0: automatic)").value_or(o.record_every));
+  o.search_distance = options.positive("search_distance", o.search_distance, true);
   o.moved_fraction = options.positive("moved_fraction", o.moved_fraction);
   o.settle_speed = options.positive("settle_speed", o.settle_speed);
   o.max_sweeps = static_cast<int>(options.whole("max_sweeps", 1, 1 << 30, "a whole number >= 1").value_or(o.max_sweeps));

@@ -21,9 +21,10 @@ int w_load_factor(lua_State* L) {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
     const OptionTable options(L, 2,
-                              {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load", "method", "tolerance", "progress"});
+                              {"friction", ASHLAR_PROGRAM_OPTIONS, "direction", "load", "method", "bracket_tolerance",
+                               "tolerance", "progress"});
     AnalysisSettings analysis = analysis_settings(options);
-    analysis.solver = InteriorPointSettings{};  // "tolerance" is the factor's here, as for friction_demand
+    analysis.solver = InteriorPointSettings{};  // "tolerance" is the bracket's here (bracket_tolerance), as for friction_demand
     read_method(options, analysis, "load_factor");
     LoadFactorSettings settings;
     settings.problem = analysis.problem;
@@ -35,11 +36,14 @@ int w_load_factor(lua_State* L) {
       settings.direction = *direction;
     }
     if (analysis.method == AnalysisMethod::kinematic) {
+      KinematicLoadFactorSettings kinematic;
+      kinematic.load = settings;
+      kinematic.analysis = analysis;
+      kinematic.bracket_tolerance = bracket_tolerance(options, kinematic.bracket_tolerance);
       // A bisection of kinematic analyses: a line of its bracket's digits once it has taken 2 s.
       ProgressLine line(options, "load_factor", std::to_string(s.size()) + " blocks", "digit", 2.0);
-      const KinematicLoadFactor factor =
-          kinematic_load_factor(s, settings, analysis, options.positive("tolerance", 1e-3), line.callback());
-      line.finish(factor.status);
+      const KinematicLoadFactor factor = kinematic_load_factor(s, kinematic, line.callback());
+      line.finish(kMarginStatusNames.name(factor.status));
       const EquilibriumResult& failure = factor.failure;
       const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
         return std::array<int, 2>{failure.interfaces[k].a, failure.interfaces[k].b};
@@ -48,8 +52,8 @@ int w_load_factor(lua_State* L) {
         lua_createtable(L, 0, 8);
         set_string(L, "method", kAnalysisMethodNames.name(AnalysisMethod::kinematic));
         set_field(L, "factor", factor.factor);
-        set_string(L, "status", factor.status.c_str());
-        set_boolean(L, "stable", factor.status == "optimal" ? factor.factor >= 0.0 : factor.status == "unbounded");
+        set_string(L, "status", kMarginStatusNames.name(factor.status));
+        set_boolean(L, "stable", factor.stable);
         set_field(L, "equilibrium_factor", factor.equilibrium_factor);
         lua_pushinteger(L, factor.analyses);
         lua_setfield(L, -2, "analyses");
@@ -63,12 +67,14 @@ int w_load_factor(lua_State* L) {
         return 1;
       });
     }
-    if (options.has("tolerance")) throw ArgError(2, "tolerance: only with method = \"kinematic\" (a bisection)");
+    for (const char* key : {"bracket_tolerance", "tolerance"}) {
+      if (options.has(key)) throw ArgError(2, std::string(key) + ": only with method = \"kinematic\" (a bisection)");
+    }
     // A line of Clp's iterations once the program has taken 2 s (a
     // 1,008-voussoir vault's takes 15 s and more); most answer sooner.
     ProgressLine line(options, "load_factor", std::to_string(s.size()) + " blocks", "iteration", 2.0);
     const LoadFactor factor = load_factor(s, settings, line.callback());
-    line.finish(factor.status);
+    line.finish(kMarginStatusNames.name(factor.status));
     const std::shared_ptr<const std::vector<Interface>> interfaces_list = s.interfaces(settings.problem.contact);
     const std::vector<Interface>& interfaces = *interfaces_list;
     const std::function<std::array<int, 2>(int)> ends_of = [&](int k) {
@@ -77,7 +83,7 @@ int w_load_factor(lua_State* L) {
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, 0, 8);
       set_field(L, "factor", factor.factor);
-      set_string(L, "status", factor.status.c_str());
+      set_string(L, "status", kMarginStatusNames.name(factor.status));
       set_boolean(L, "stable", factor.stable);
       set_field(L, "iterations", factor.iterations);
       set_field(L, "seconds", factor.seconds);
@@ -96,19 +102,23 @@ int w_friction_demand(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "tolerance", "method", "progress"});
+    const OptionTable options(L, 2, {ASHLAR_PROGRAM_OPTIONS, "bracket_tolerance", "tolerance", "method", "progress"});
     AnalysisSettings analysis = analysis_settings(options);
-    analysis.solver = InteriorPointSettings{};  // "tolerance" is the demand's
+    analysis.solver = InteriorPointSettings{};  // "tolerance" is the bracket's (bracket_tolerance)
     read_method(options, analysis, "friction_demand");
     const EquilibriumOptions& problem = analysis.problem;
     const bool kinematic = analysis.method == AnalysisMethod::kinematic;
-    const double tolerance = options.positive("tolerance", kinematic ? 1e-3 : 1e-6);
-    if (tolerance >= 1.0) throw ArgError(2, "tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+    KinematicFrictionDemandSettings kinematic_settings;
+    kinematic_settings.analysis = analysis;
+    FrictionDemandSettings settings;
+    settings.problem = problem;
+    double& tolerance = kinematic ? kinematic_settings.bracket_tolerance : settings.bracket_tolerance;
+    tolerance = bracket_tolerance(options, tolerance);
     // A line once the search has taken 2 s: most answer sooner.
     ProgressLine line(options, "friction_demand", std::to_string(s.size()) + " blocks", "digit", 2.0);
-    const FrictionDemand demand = kinematic ? kinematic_friction_demand(s, analysis, tolerance, line.callback())
-                                            : friction_demand(s, problem, tolerance, line.callback());
-    line.finish(demand.status);
+    const FrictionDemand demand = kinematic ? kinematic_friction_demand(s, kinematic_settings, line.callback())
+                                            : friction_demand(s, settings, line.callback());
+    line.finish(kMarginStatusNames.name(demand.status));
     const std::shared_ptr<const std::vector<Interface>> interfaces_list = s.interfaces(problem.contact);
     const std::vector<Interface>& interfaces = *interfaces_list;
     return call_protected(L, 0, [&](lua_State* L) {
@@ -116,7 +126,7 @@ int w_friction_demand(lua_State* L) {
       set_string(L, "method", kAnalysisMethodNames.name(analysis.method));
       set_field(L, "friction", demand.friction);
       set_field(L, "lower", demand.lower);
-      set_string(L, "status", demand.status.c_str());
+      set_string(L, "status", kMarginStatusNames.name(demand.status));
       set_field(L, "programs", demand.programs);
       set_field(L, "iterations", demand.iterations);
       set_field(L, "seconds", demand.seconds);

@@ -103,12 +103,6 @@ int w_tilt(lua_State* L) {
 // ----------------------------------------------------------------------------
 // ashlar.geometric_factor
 
-// Without a positive `lower` the search goes no lower than this fraction of
-// the current value: a model that still stands there has a geometric factor
-// of a million or more, as good as unbounded, and no generator is asked for
-// a zero or negative value.
-constexpr double kFloorFraction = 1e-6;
-
 // The history entry of one value, pushed as a table.
 void push_probe(lua_State* L, const ThresholdProbe& probe) {
   lua_createtable(L, 0, 6);
@@ -132,29 +126,26 @@ int w_geometric_factor(lua_State* L) {
                             number_text(value));
     }
     const OptionTable options(
-        L, 3, {ASHLAR_ANALYSIS_OPTIONS, "lower", "upper", "max_analyses", "stands"});
+        L, 3, {ASHLAR_ANALYSIS_OPTIONS, "bracket_tolerance", "lower", "upper", "max_analyses", "stands"});
     AnalysisSettings settings = analysis_settings(options);
-    // `tolerance` is the bracket's here; the analyses keep the solver's own.
+    // `tolerance` is the bracket's here (bracket_tolerance's older name);
+    // the analyses keep the solver's own.
     settings.solver.tolerance = InteriorPointSettings{}.tolerance;
     ThresholdSettings search;
-    search.tolerance = options.positive("tolerance", search.tolerance);
-    if (search.tolerance >= 1.0) {
-      throw ArgError(3, "tolerance: expected a number in (0, 1) (relative width of the final "
-                        "bracket), got " + number_text(search.tolerance));
-    }
+    search.bracket_tolerance = bracket_tolerance(options, search.bracket_tolerance);
     const double lower = options.positive("lower", 0.0, true);
     if (lower >= value) {
       throw ArgError(3, "lower: expected a number >= 0 and < value (" + number_text(value) +
                             "), got " + number_text(lower));
     }
-    search.floor = lower > 0.0 ? lower : kFloorFraction * value;
-    search.ceiling = options.number("upper", 1e3 * value);
+    search.floor = lower > 0.0 ? lower : kThresholdFloorFraction * value;
+    search.ceiling = options.number("upper", kThresholdCeilingMultiple * value);
     if (search.ceiling <= value) {
       throw ArgError(3, "upper: expected a number > value (" + number_text(value) + "), got " +
                             number_text(search.ceiling));
     }
     search.max_evaluations = static_cast<int>(
-        options.whole("max_analyses", 1, INT_MAX, "a whole number >= 1").value_or(200));
+        options.whole("max_analyses", 1, INT_MAX, "a whole number >= 1").value_or(search.max_evaluations));
     int criterion = 0;  // stack index of `stands`, 0 for the default
     if (options.push("stands") != LUA_TNIL) {
       if (lua_type(L, -1) != LUA_TFUNCTION) {
@@ -163,7 +154,7 @@ int w_geometric_factor(lua_State* L) {
       }
       criterion = lua_gettop(L);
       for (const char* key : {ASHLAR_ANALYSIS_OPTIONS}) {
-        if (std::string(key) != "tolerance" && options.has(key)) {
+        if (std::string(key) != "tolerance" && options.has(key)) {  // tolerance: the bracket's
           throw ArgError(3, std::string(key) + ": analysis options apply to the default "
                                                "criterion; with stands, analyse in that function");
         }

@@ -145,10 +145,11 @@ int w_study(lua_State* L) {
     }
     job.db = options.string("db").value_or("");
     if (!job.db.empty()) sandbox::require_access(L, 1, "db", job.db, sandbox::Access::write);
-    job.workers = static_cast<int>(options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(0));
-    job.progress = options.boolean("progress").value_or(true);
-    job.log_interval = options.positive("log_interval", 10.0);
-    job.rerun_errors = options.boolean("rerun_errors").value_or(false);
+    job.workers = static_cast<int>(
+        options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(job.workers));
+    job.progress = options.boolean("progress").value_or(job.progress);
+    job.log_interval = options.positive("log_interval", job.log_interval);
+    job.rerun_errors = options.boolean("rerun_errors").value_or(job.rerun_errors);
 
     StudyObject study;
     study.name = job.name;

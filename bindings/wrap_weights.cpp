@@ -25,16 +25,17 @@ void set_list(lua_State* L, const std::vector<double>& values) {
   }
 }
 
-// The `threads` option of the per-block analyses: 0 (default) for one per core.
-int threads_option(const OptionTable& options) {
-  return static_cast<int>(
-      options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(0));
-}
-
-// The `symmetry` option of the per-block analyses: solve one block per
-// orbit of the problem's symmetries (default true).
-bool symmetry_option(const OptionTable& options) {
-  return options.boolean("symmetry").value_or(true);
+// The options of the per-block analyses (load_capacity, important_weights)
+// into their settings: `threads` (0 for one per core) and `symmetry`
+// (solve one block per orbit of the problem's symmetries).
+template <class Settings>
+Settings per_block_settings(const OptionTable& options) {
+  Settings settings;
+  settings.analysis = analysis_settings(options);
+  settings.threads = static_cast<int>(
+      options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(settings.threads));
+  settings.use_symmetry = options.boolean("symmetry").value_or(settings.use_symmetry);
+  return settings;
 }
 
 int w_weight_sensitivity(lua_State* L) {
@@ -74,11 +75,10 @@ int w_load_capacity(lua_State* L) {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry"});
-    const AnalysisSettings settings = analysis_settings(options);
-    const int threads = threads_option(options);
+    const LoadCapacitySettings settings = per_block_settings<LoadCapacitySettings>(options);
     ProgressLine line(options, "load_capacity", std::to_string(s.size()) + " blocks", "block");
-    const LoadCapacity capacity = load_capacity(s, settings, threads, line.callback(), symmetry_option(options));
-    line.finish(capacity.status);
+    const LoadCapacity capacity = load_capacity(s, settings, line.callback());
+    line.finish(kMarginStatusNames.name(capacity.status));
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, s.size(), 5);
       for (int i = 0; i < s.size(); ++i) {
@@ -92,7 +92,7 @@ int w_load_capacity(lua_State* L) {
         lua_rawseti(L, -2, i + 1);
       }
       set_boolean(L, "stable", capacity.stable);
-      set_string(L, "status", capacity.status.c_str());
+      set_string(L, "status", kMarginStatusNames.name(capacity.status));
       set_field(L, "programs", capacity.programs);
       set_field(L, "symmetries", capacity.symmetries);
       set_field(L, "iterations", capacity.simplex_iterations);
@@ -127,12 +127,10 @@ int w_important_weights(lua_State* L) {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry"});
-    const AnalysisSettings settings = analysis_settings(options);
-    const int threads = threads_option(options);
+    const ImportantWeightsSettings settings = per_block_settings<ImportantWeightsSettings>(options);
     ProgressLine line(options, "important_weights", std::to_string(s.size()) + " blocks", "block");
-    const ImportantWeights important =
-        important_weights(s, settings, threads, line.callback(), symmetry_option(options));
-    const char* status = important.interrupted ? "interrupted" : "done";
+    const ImportantWeights important = important_weights(s, settings, line.callback());
+    const char* status = kImportantWeightsStatusNames.name(important.status);
     line.finish(status);
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, s.size(), 3);

@@ -86,19 +86,6 @@ std::string said(const SimulationResult& d, const Structure& structure) {
 
 }  // namespace
 
-Verdict verdict_of(const EquilibriumResult& result) {
-  if (result.stable) return Verdict::stands;
-  if (!result.floating_blocks.empty()) return Verdict::falls;
-  switch (result.status) {
-    case SolverStatus::converged:
-    case SolverStatus::certified:
-    case SolverStatus::infeasible:
-      return Verdict::falls;
-    default:
-      return Verdict::no_verdict;
-  }
-}
-
 Verdict verdict_of(const SimulationResult& result) {
   if (result.status != SimulationStatus::completed) return Verdict::no_verdict;
   // Still moving at the end without having moved far: too short a run to tell.
@@ -145,7 +132,7 @@ MethodComparison compare_methods(const Structure& structure, const AnalysisSetti
   if (out.cra) evidence += "; CRA: " + said(*out.cra);
   else if (!cra_refused.empty()) evidence += "; CRA cannot run: " + cra_refused;
   Arbitration& a = out.arbitration;
-  auto decide = [&](Verdict verdict, const char* by, const std::string& why) {
+  auto decide = [&](Verdict verdict, std::optional<DecidedBy> by, const std::string& why) {
     a.verdict = verdict;
     a.decided_by = by;
     a.reason = why + " (" + evidence + ")";
@@ -155,21 +142,21 @@ MethodComparison compare_methods(const Structure& structure, const AnalysisSetti
   if (interrupted || (out.dynamic && out.dynamic->status == SimulationStatus::interrupted) ||
       (out.cra && out.cra->status == SolverStatus::interrupted)) {
     a.interrupted = true;
-    decide(Verdict::no_verdict, "", "interrupted");
+    decide(Verdict::no_verdict, std::nullopt, "interrupted");
   } else if (static_verdict == Verdict::falls) {
-    decide(Verdict::falls, "equilibrium",
+    decide(Verdict::falls, DecidedBy::equilibrium,
            out.equilibrium.floating_blocks.empty()
                ? "no compression-only equilibrium within the friction cones exists"
                : "a block touches nothing that leads to a support");
   } else if (kinematic_verdict == Verdict::stands) {
-    decide(Verdict::stands, "both",
+    decide(Verdict::stands, DecidedBy::both,
            "forces within the cones of the compressions the loads press in, from no prestress, balance every block");
   } else if (dynamic_verdict != Verdict::no_verdict) {
-    decide(dynamic_verdict, "dynamics", "the static methods do not decide; the dynamics from rest does");
+    decide(dynamic_verdict, DecidedBy::dynamics, "the static methods do not decide; the dynamics from rest does");
   } else if (cra_verdict != Verdict::no_verdict) {
-    decide(cra_verdict, "cra", "the static methods do not decide and the dynamics gives no verdict; CRA does");
+    decide(cra_verdict, DecidedBy::cra, "the static methods do not decide and the dynamics gives no verdict; CRA does");
   } else {
-    decide(Verdict::no_verdict, "",
+    decide(Verdict::no_verdict, std::nullopt,
            out.dynamic || !dynamics_refused.empty() ? "the static methods do not decide, and neither the dynamics nor CRA gives a verdict"
                                                     : "the static methods do not decide, and no further opinion was asked for");
   }
@@ -184,13 +171,16 @@ MethodComparison compare_methods(const Structure& structure, const AnalysisSetti
   a.friction = settings.problem.friction;
   // The margin of a structure that stands.
   if (a.verdict == Verdict::stands && comparison.margin_tolerance > 0.0) {
-    out.margin = friction_demand(structure, settings.problem, comparison.margin_tolerance);
-    if (out.margin->status == "interrupted") {
+    FrictionDemandSettings margin;
+    margin.problem = settings.problem;
+    margin.bracket_tolerance = comparison.margin_tolerance;
+    out.margin = friction_demand(structure, margin);
+    if (out.margin->status == MarginStatus::interrupted) {
       a.interrupted = true;
-      decide(Verdict::no_verdict, "", "interrupted");
+      decide(Verdict::no_verdict, std::nullopt, "interrupted");
     }
   }
-  if (out.margin && out.margin->status == "optimal") {
+  if (out.margin && out.margin->status == MarginStatus::optimal) {
     a.friction_demand = out.margin->friction;
     a.reason += "; friction demand by the equilibrium method " + message_number(out.margin->friction) +
                   " against mu " + message_number(settings.problem.friction);

@@ -31,15 +31,6 @@ namespace ashlar {
 // When a further opinion (the dynamics, CRA) runs.
 enum class OpinionWhen { never, on_disagreement, always };
 
-// The arbiter's answer. `settles`: the dynamics moved some block further
-// than SimulationOptions::moved_fraction of its size before everything came
-// to rest (settle_speed): it stands, but not where it was drawn.
-enum class Verdict { stands, falls, settles, no_verdict };
-inline constexpr EnumNames<Verdict, 4> kVerdictNames{{{{Verdict::stands, "stands"},
-                                                       {Verdict::falls, "falls"},
-                                                       {Verdict::settles, "settles"},
-                                                       {Verdict::no_verdict, "no verdict"}}}};
-
 struct ComparisonSettings {
   // The dynamics from rest: when it runs, and how (its friction and contact
   // options are replaced by the analysis settings'). By default a quarter
@@ -62,16 +53,23 @@ struct ComparisonSettings {
   double margin_tolerance = 1e-2;
 };
 
-// The arbiter's answer: one verdict, which opinion decided it
-// ("equilibrium", "kinematic", "both" when the static methods agree on
-// standing, "dynamics", "cra"; empty without a verdict), and why with the
-// evidence (one sentence); each opinion's own verdict; the dynamics'
-// largest displacement and the equilibrium method's friction demand when
-// they ran (NaN otherwise).
+// Which opinion decided the arbiter's verdict: the equilibrium method (a
+// fall it proves), both static methods (when they agree on standing), the
+// dynamics, or CRA.
+enum class DecidedBy { equilibrium, both, dynamics, cra };
+inline constexpr EnumNames<DecidedBy, 4> kDecidedByNames{{{{DecidedBy::equilibrium, "equilibrium"},
+                                                           {DecidedBy::both, "both"},
+                                                           {DecidedBy::dynamics, "dynamics"},
+                                                           {DecidedBy::cra, "cra"}}}};
+
+// The arbiter's answer: one verdict, which opinion decided it (none
+// without a verdict), and why with the evidence (one sentence); each
+// opinion's own verdict; the dynamics' largest displacement and the
+// equilibrium method's friction demand when they ran (NaN otherwise).
 struct Arbitration {
   Verdict verdict = Verdict::no_verdict;
   bool interrupted = false;  // an opinion was stopped (Ctrl-C, a deadline): no verdict
-  std::string decided_by;
+  std::optional<DecidedBy> decided_by;
   std::string reason;
   Verdict equilibrium = Verdict::no_verdict, kinematic = Verdict::no_verdict;
   std::optional<Verdict> dynamics, cra;   // when they ran
@@ -103,9 +101,6 @@ struct MethodComparison {
   Arbitration arbitration;
 };
 
-// What one analysis says: stands, falls (a converged unstable answer, or
-// floating blocks) or no verdict (not converged, interrupted).
-Verdict verdict_of(const EquilibriumResult& result);
 // What the dynamics says: stands (nothing moved, at rest at the end),
 // settles, falls (moved and still moving at the end), no verdict
 // (interrupted, or still moving without having moved: too short a run).

@@ -87,6 +87,19 @@ EquilibriumResult analyze_by_method(const Structure& structure, const AnalysisSe
 
 }  // namespace
 
+Verdict verdict_of(const EquilibriumResult& result) {
+  if (result.stable) return Verdict::stands;
+  if (!result.floating_blocks.empty()) return Verdict::falls;
+  switch (result.status) {
+    case SolverStatus::converged:
+    case SolverStatus::certified:
+    case SolverStatus::infeasible:
+      return Verdict::falls;
+    default:
+      return Verdict::no_verdict;
+  }
+}
+
 EquilibriumResult analyze_equilibrium(const Structure& structure, const AnalysisSettings& settings,
                                       const EquilibriumResult* warm_start,
                                       EquilibriumProblem* problem_out) {

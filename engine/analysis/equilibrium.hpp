@@ -176,6 +176,20 @@ inline constexpr EnumNames<AnalysisMethod, 4> kAnalysisMethodNames{{{{AnalysisMe
                                                                     {AnalysisMethod::cra, "cra"},
                                                                     {AnalysisMethod::cra_penalty, "cra_penalty"}}}};
 
+// What a method says about a structure. `settles` is the dynamics'
+// (compare_methods.hpp): some block moved further than
+// SimulationOptions::moved_fraction of its size before everything came to
+// rest (settle_speed): it stands, but not where it was drawn.
+enum class Verdict { stands, falls, settles, no_verdict };
+inline constexpr EnumNames<Verdict, 4> kVerdictNames{{{{Verdict::stands, "stands"},
+                                                       {Verdict::falls, "falls"},
+                                                       {Verdict::settles, "settles"},
+                                                       {Verdict::no_verdict, "no verdict"}}}};
+
+// What one analysis says: stands, falls (a converged unstable answer, or
+// floating blocks) or no verdict (not converged, interrupted).
+Verdict verdict_of(const EquilibriumResult& result);
+
 // Whether `method` is one of the coupled rigid-block analyses.
 inline bool is_cra(AnalysisMethod method) {
   return method == AnalysisMethod::cra || method == AnalysisMethod::cra_penalty;

@@ -146,16 +146,16 @@ void stop_on_request(ClpSimplex& simplex, IterationTally* tally) {
   simplex.passInEventHandler(&handler);  // Clp keeps a clone
 }
 
-const char* clp_failure(int status) {
+MarginStatus clp_failure(int status) {
   switch (status) {
     case 3:
-      return "stopped";
+      return MarginStatus::stopped;
     case 4:
-      return "numerical difficulties";
+      return MarginStatus::numerical_difficulties;
     case kClpInterrupted:
-      return "interrupted";
+      return MarginStatus::interrupted;
     default:
-      return "unexpected simplex status";
+      return MarginStatus::unexpected;
   }
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/equilibrium_problem.hpp"
+#include "analysis/margin_status.hpp"
 #include "core/progress.hpp"
 
 class ClpSimplex;
@@ -84,9 +85,8 @@ void load_program(ClpSimplex& simplex, const EquilibriumProgram& program, Iterat
 void stop_on_request(ClpSimplex& simplex, IterationTally* tally = nullptr);
 constexpr int kClpInterrupted = 5;  // Clp's "stopped by event handler"
 
-// The status name of a Clp status that is no answer: "stopped" (3, the
-// iteration limit), "numerical difficulties" (4), "interrupted" (5), else
-// "unexpected simplex status".
-const char* clp_failure(int status);
+// The outcome of a Clp status that is no answer: stopped (3, the iteration
+// limit), numerical_difficulties (4), interrupted (5), else unexpected.
+MarginStatus clp_failure(int status);
 
 }  // namespace ashlar

@@ -205,73 +205,78 @@ Structure loaded(const Structure& structure, const LoadFactorSettings& load, dou
 
 }  // namespace
 
-KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
-                                          const AnalysisSettings& settings, double tolerance,
+KinematicLoadFactor kinematic_load_factor(const Structure& structure, const KinematicLoadFactorSettings& settings,
                                           const ProgressCount& progress) {
+  const double tolerance = settings.bracket_tolerance;
   if (!(tolerance > 0.0 && tolerance < 1.0)) {
-    throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+    throw InvalidArgument("bracket_tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
   }
+  const LoadFactorSettings& load = settings.load;
+  const AnalysisSettings& analysis = settings.analysis;
   const auto start = Clock::now();
   const BracketProgress bracket(tolerance, progress);
   bracket.tell(0.0, std::numeric_limits<double>::infinity());
   KinematicLoadFactor out;
   LoadFactorSettings bound = load;
-  bound.problem = settings.problem;
+  bound.problem = analysis.problem;
   const LoadFactor upper = load_factor(structure, bound);
   out.equilibrium_factor = upper.factor;
-  auto finish = [&](const std::string& status, double factor) {
+  auto finish = [&](MarginStatus status, double factor) {
     out.status = status;
     out.factor = factor;
+    out.stable = (status == MarginStatus::optimal && factor >= 0.0) || status == MarginStatus::unbounded;
     out.seconds = seconds_since(start);
     return out;
   };
-  if (upper.status != "optimal" && upper.status != "unbounded") return finish(upper.status, upper.factor);
-  // Each analysis: stands (1), falls (0), or no verdict (-1: not
-  // converged, or interrupted, which then ends the search as such).
+  if (upper.status != MarginStatus::optimal && upper.status != MarginStatus::unbounded) {
+    return finish(upper.status, upper.factor);
+  }
+  // Each analysis's verdict; no verdict (not converged, or interrupted,
+  // which then ends the search as such) ends the search.
   bool interrupted = false;
-  auto stands = [&](double lambda, EquilibriumResult* keep) {
+  auto verdict_at = [&](double lambda, EquilibriumResult* keep) {
     ++out.analyses;
-    EquilibriumResult r = analyze_kinematic(loaded(structure, load, lambda), settings);
+    EquilibriumResult r = analyze_kinematic(loaded(structure, load, lambda), analysis);
     interrupted = r.status == SolverStatus::interrupted;
-    const int verdict = r.stable ? 1 : (r.status == SolverStatus::converged ? 0 : -1);
+    const Verdict verdict = verdict_of(r);
     if (keep) *keep = std::move(r);
     return verdict;
   };
   const double kNaN = std::numeric_limits<double>::quiet_NaN();
-  auto no_verdict = [&] { return finish(interrupted ? "interrupted" : "no verdict", kNaN); };
+  auto no_verdict = [&] { return finish(interrupted ? MarginStatus::interrupted : MarginStatus::no_verdict, kNaN); };
   EquilibriumResult at_zero;
-  const int zero = stands(0.0, &at_zero);
-  if (zero < 0) return no_verdict();
-  if (zero == 0) {
+  const Verdict zero = verdict_at(0.0, &at_zero);
+  if (zero == Verdict::no_verdict) return no_verdict();
+  if (zero == Verdict::falls) {
     out.failure = std::move(at_zero);
-    return finish("unstable", kNaN);
+    return finish(MarginStatus::unstable, kNaN);
   }
   double low = 0.0, high = upper.factor;
   if (!std::isfinite(high)) {  // find a multiple that fails, doubling from the weight itself
     constexpr double kLargestFactor = 1e6;
     high = 1.0;
     for (;; high *= 2.0) {
-      const int verdict = stands(high, &out.failure);
-      if (verdict < 0) return no_verdict();
-      if (verdict == 0) break;
+      const Verdict verdict = verdict_at(high, &out.failure);
+      if (verdict == Verdict::no_verdict) return no_verdict();
+      if (verdict == Verdict::falls) break;
       low = high;
-      if (high >= kLargestFactor) return finish("unbounded", std::numeric_limits<double>::infinity());
+      if (high >= kLargestFactor) return finish(MarginStatus::unbounded, std::numeric_limits<double>::infinity());
     }
   } else {
-    const int verdict = stands(high, &out.failure);
-    if (verdict < 0) return no_verdict();
-    if (verdict == 1) {  // the upper bound itself stands
+    const Verdict verdict = verdict_at(high, &out.failure);
+    if (verdict == Verdict::no_verdict) return no_verdict();
+    if (verdict == Verdict::stands) {  // the upper bound itself stands
       bracket.tell(high, high);
-      return finish("optimal", high);
+      return finish(MarginStatus::optimal, high);
     }
   }
   while (high - low > tolerance * std::max(high, 1e-12)) {
     bracket.tell(low, high);
     const double middle = 0.5 * (low + high);
     EquilibriumResult r;
-    const int verdict = stands(middle, &r);
-    if (verdict < 0) return no_verdict();
-    if (verdict == 1) {
+    const Verdict verdict = verdict_at(middle, &r);
+    if (verdict == Verdict::no_verdict) return no_verdict();
+    if (verdict == Verdict::stands) {
       low = middle;
     } else {
       high = middle;
@@ -279,68 +284,74 @@ KinematicLoadFactor kinematic_load_factor(const Structure& structure, const Load
     }
   }
   bracket.tell(low, high);
-  return finish("optimal", low);
+  return finish(MarginStatus::optimal, low);
 }
 
-FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
-                                         double tolerance, const ProgressCount& progress) {
+FrictionDemand kinematic_friction_demand(const Structure& structure, const KinematicFrictionDemandSettings& settings,
+                                         const ProgressCount& progress) {
+  const double tolerance = settings.bracket_tolerance;
   if (!(tolerance > 0.0 && tolerance < 1.0)) {
-    throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+    throw InvalidArgument("bracket_tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
   }
   const auto start = Clock::now();
   const BracketProgress bracket(tolerance, progress);
   bracket.tell(0.0, std::numeric_limits<double>::infinity());
-  FrictionDemand out = friction_demand(structure, settings.problem, tolerance);
-  if (out.status != "optimal") return out;  // it falls even without sliding, or Clp failed
+  FrictionDemandSettings equilibrium;
+  equilibrium.problem = settings.analysis.problem;
+  equilibrium.bracket_tolerance = tolerance;
+  FrictionDemand out = friction_demand(structure, equilibrium);
+  if (out.status != MarginStatus::optimal) return out;  // it falls even without sliding, or Clp failed
   out.programs = 0;
   out.iterations = 0;
   out.critical.clear();
-  auto finish = [&](const std::string& status, double friction) {
+  auto finish = [&](MarginStatus status, double friction) {
     out.status = status;
     out.friction = friction;
     out.seconds = seconds_since(start);
     return out;
   };
-  // Each analysis: stands (1), falls (0), or no verdict (-1); a fall keeps
-  // its moving interfaces as the critical ones.
+  // Each analysis's verdict; a fall keeps its moving interfaces as the
+  // critical ones.
   bool interrupted = false;
-  auto stands = [&](double mu) {
+  auto verdict_at = [&](double mu) {
     ++out.programs;
-    AnalysisSettings at = settings;
+    AnalysisSettings at = settings.analysis;
     at.problem.friction = mu;
     const EquilibriumResult r = analyze_kinematic(structure, at);
     out.iterations += r.iterations;
     interrupted = r.status == SolverStatus::interrupted;
-    if (r.stable) return 1;
-    if (r.status != SolverStatus::converged) return -1;
-    out.critical.clear();
-    for (const LimitInterface& joint : r.limit) out.critical.push_back(joint.interface);
-    return 0;
+    const Verdict verdict = verdict_of(r);
+    if (verdict == Verdict::falls) {
+      out.critical.clear();
+      for (const LimitInterface& joint : r.limit) out.critical.push_back(joint.interface);
+    }
+    return verdict;
   };
   auto no_verdict = [&] {
-    return finish(interrupted ? "interrupted" : "no verdict", std::numeric_limits<double>::quiet_NaN());
+    return finish(interrupted ? MarginStatus::interrupted : MarginStatus::no_verdict,
+                  std::numeric_limits<double>::quiet_NaN());
   };
   constexpr double kLargestFriction = 1e3;
   double low = out.lower, high = std::max(out.friction, 1e-3);
-  for (int verdict = stands(high); verdict != 1; verdict = stands(high)) {
-    if (verdict < 0) return no_verdict();
+  for (Verdict verdict = verdict_at(high); verdict != Verdict::stands; verdict = verdict_at(high)) {
+    if (verdict == Verdict::no_verdict) return no_verdict();
     low = high;
     if (high >= kLargestFriction) {
       out.lower = low;
-      return finish("unbounded", std::numeric_limits<double>::infinity());
+      return finish(MarginStatus::unbounded, std::numeric_limits<double>::infinity());
     }
     high = std::min(kLargestFriction, 2.0 * high);
   }
   while (high - low > tolerance * high) {
     bracket.tell(low, high);
     const double middle = 0.5 * (low + high);
-    const int verdict = stands(middle);
-    if (verdict < 0) return no_verdict();
-    (verdict == 1 ? high : low) = middle;
+    const Verdict verdict = verdict_at(middle);
+    if (verdict == Verdict::no_verdict) return no_verdict();
+    (verdict == Verdict::stands ? high : low) = middle;
   }
   bracket.tell(low, high);
   out.lower = low;
-  return finish("optimal", high);
+  return finish(MarginStatus::optimal, high);
 }
 
 }  // namespace ashlar

@@ -69,37 +69,60 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
 // The load factor by the kinematic method: the largest lambda for which the
 // structure with the body force lambda x weight x direction on every free
 // block (or lambda x its point loads) still stands kinematically, found by
-// bisection to `tolerance` (relative) below the equilibrium method's factor
-// (load_factor), which bounds it: what stands kinematically stands by
-// equilibrium too.
+// bisection to `bracket_tolerance` (relative) below the equilibrium
+// method's factor (load_factor), which bounds it: what stands kinematically
+// stands by equilibrium too.
+struct KinematicLoadFactorSettings {
+  // What the factor multiplies (pattern, direction). Its problem is not
+  // read: analysis.problem is both methods'.
+  LoadFactorSettings load;
+  // The kinematic analyses' settings (their method is ignored).
+  AnalysisSettings analysis;
+  // Relative width of the final bisection bracket, in (0, 1): each digit
+  // costs about three kinematic analyses.
+  double bracket_tolerance = 1e-3;
+};
+
 struct KinematicLoadFactor {
-  // "optimal"; "unbounded" (stands under any multiple the equilibrium
-  // method allows: an infinite factor); "unstable" (falls with no load:
-  // factor 0 is not reached, NaN); or the equilibrium method's status when
-  // it has no factor ("infeasible", "floating", ...); "no verdict" when a
-  // kinematic analysis did not settle, "interrupted" when one was stopped
+  // optimal; unbounded (stands under any multiple the equilibrium method
+  // allows: an infinite factor); unstable (falls with no load: factor 0 is
+  // not reached, NaN); or the equilibrium method's status when it has no
+  // factor (infeasible, floating, stopped, ...); no_verdict when a
+  // kinematic analysis did not settle, interrupted when one was stopped
   // (Ctrl-C, a sandbox deadline) (both NaN).
-  std::string status = "optimal";
+  MarginStatus status = MarginStatus::optimal;
   double factor = 0.0;
+  // It stands with no load: a factor >= 0 was found, or it is unbounded.
+  // False without a verdict (no_verdict, interrupted, a failed program).
+  bool stable = false;
   double equilibrium_factor = 0.0;   // load_factor's, the upper bound
   int analyses = 0;                  // kinematic analyses made
   EquilibriumResult failure;         // the analysis just above the factor: its mechanism
   double seconds = 0.0;
 };
-// The least friction coefficient under which the kinematic method finds the
-// structure standing, by bisection to `tolerance` (relative) from the
-// equilibrium method's demand (friction_demand), which it cannot be below.
-// Status as friction_demand's, and "unbounded" when it stands only without
-// sliding (friction +inf; a block clamped between walls), "no verdict" when
-// an analysis did not settle, "interrupted" when one was stopped (both NaN).
-// `programs` counts kinematic analyses,
-// `critical` the interfaces that move at `lower`. Both searches tell
-// `progress` the digits of their bracket (BracketProgress, core/progress.hpp).
-FrictionDemand kinematic_friction_demand(const Structure& structure, const AnalysisSettings& settings,
-                                         double tolerance = 1e-3, const ProgressCount& progress = {});
 
-KinematicLoadFactor kinematic_load_factor(const Structure& structure, const LoadFactorSettings& load,
-                                          const AnalysisSettings& settings, double tolerance = 1e-3,
+struct KinematicFrictionDemandSettings {
+  // The kinematic analyses' settings (their friction is what the search
+  // finds, their method is ignored).
+  AnalysisSettings analysis;
+  // Relative width of the final bisection bracket, in (0, 1).
+  double bracket_tolerance = 1e-3;
+};
+
+// The least friction coefficient under which the kinematic method finds the
+// structure standing, by bisection to `bracket_tolerance` (relative) from
+// the equilibrium method's demand (friction_demand), which it cannot be
+// below. Status as friction_demand's, and unbounded when it stands only
+// without sliding (friction +inf; a block clamped between walls),
+// no_verdict when an analysis did not settle, interrupted when one was
+// stopped (both NaN). `programs` counts kinematic analyses, `critical` the
+// interfaces that move at `lower`. Both searches tell `progress` the
+// digits of their bracket (BracketProgress, core/progress.hpp), and throw
+// InvalidArgument for a bracket_tolerance outside (0, 1).
+FrictionDemand kinematic_friction_demand(const Structure& structure, const KinematicFrictionDemandSettings& settings,
+                                         const ProgressCount& progress = {});
+
+KinematicLoadFactor kinematic_load_factor(const Structure& structure, const KinematicLoadFactorSettings& settings,
                                           const ProgressCount& progress = {});
 
 }  // namespace ashlar

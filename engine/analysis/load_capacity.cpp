@@ -486,9 +486,12 @@ private:
 
 }  // namespace
 
-LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads,
-                           const ProgressCount& progress, bool use_symmetry) {
+LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySettings& capacity_settings,
+                           const ProgressCount& progress) {
   const auto start = Clock::now();
+  const AnalysisSettings& settings = capacity_settings.analysis;
+  const int threads = capacity_settings.threads;
+  const bool use_symmetry = capacity_settings.use_symmetry;
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   // A block's bounds are optimal values: its images under the problem's
   // symmetries have the same, and only one block of each orbit is solved.
@@ -579,7 +582,7 @@ LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& s
   for (size_t k = 0; k < blocks.size(); ++k) {
     result.programs += bounds[k].programs;
     result.simplex_iterations += bounds[k].pivots;
-    if (bounds[k].failure != 0 && result.status == "optimal") result.status = clp_failure(bounds[k].failure);
+    if (bounds[k].failure != 0 && result.status == MarginStatus::optimal) result.status = clp_failure(bounds[k].failure);
     interrupted = interrupted || !bounds[k].solved || bounds[k].failure == kClpInterrupted;
   }
   if (interrupted) {  // the blocks done keep their bounds; no verdict

@@ -30,13 +30,22 @@
 // blocks that need it wait for it.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/margin_status.hpp"
 #include "core/progress.hpp"
 
 namespace ashlar {
+
+struct LoadCapacitySettings {
+  AnalysisSettings analysis;  // friction, contacts, and the equilibrium solver's settings
+  // Worker threads, 0 for one per hardware thread; the bounds do not depend on it.
+  int threads = 0;
+  // Solve one block per orbit of the problem's symmetries (false: every
+  // block, for checking them).
+  bool use_symmetry = true;
+};
 
 struct LoadCapacity {
   // Per block, multiples of its own weight (dimensionless, >= 0): the
@@ -48,12 +57,12 @@ struct LoadCapacity {
   std::vector<double> min, max;
   // The structure stands as it is (every multiple 1).
   bool stable = false;
-  // "optimal", or the failure of the first block (in block order) whose
-  // programs failed ("stopped" on the iteration limit, "numerical
-  // difficulties"); that block's bounds are NaN, the others stand.
-  // "interrupted" (Ctrl-C or a sandbox deadline): the blocks not done are
+  // optimal, or the failure of the first block (in block order) whose
+  // programs failed (stopped on the iteration limit, numerical_difficulties,
+  // unexpected); that block's bounds are NaN, the others stand.
+  // interrupted (Ctrl-C or a sandbox deadline): the blocks not done are
   // NaN, and stable is false (no verdict).
-  std::string status = "optimal";
+  MarginStatus status = MarginStatus::optimal;
   // The problem's symmetries used (analysis/problem_symmetry.hpp; 1: none,
   // or not searched): one block of each orbit is solved and its bounds
   // are its orbit's.
@@ -64,11 +73,8 @@ struct LoadCapacity {
 };
 
 // Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
-// threads: worker threads, 0 for one per hardware thread; the bounds do not
-// depend on it. progress: blocks solved (core/progress.hpp; none when
-// empty). use_symmetry: solve one block per orbit of the problem's
-// symmetries (false: every block, for checking them).
-LoadCapacity load_capacity(const Structure& structure, const AnalysisSettings& settings, int threads = 0,
-                           const ProgressCount& progress = {}, bool use_symmetry = true);
+// progress: blocks solved (core/progress.hpp; none when empty).
+LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySettings& settings,
+                           const ProgressCount& progress = {});
 
 }  // namespace ashlar

@@ -227,7 +227,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   LoadFactor result;
   if (problem.has_floating_bodies()) {
-    result.status = "floating";
+    result.status = MarginStatus::floating;
     result.factor = kNaN;
     result.seconds = seconds_since(start);
     return result;
@@ -271,7 +271,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   }
   result.stable = at_rest.borderline ? solve_checked(simplex) == 0 : at_rest.stable;
   if (result.stable && live_load_stands_alone(problem, live_load, settings)) {
-    result.status = "unbounded";
+    result.status = MarginStatus::unbounded;
     result.factor = kInfinity;
     result.seconds = seconds_since(start);
     return result;
@@ -291,12 +291,12 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
       result.limit = limit_interfaces(structure, *structure.interfaces(settings.problem.contact), result.mechanism);
       break;
     case 1:
-      result.status = "infeasible";
+      result.status = MarginStatus::infeasible;
       result.factor = kNaN;
       result.stable = false;
       break;
     case 2:
-      result.status = "unbounded";
+      result.status = MarginStatus::unbounded;
       result.factor = kInfinity;
       break;
     default:  // an interrupted search says so and carries no verdict
@@ -561,11 +561,13 @@ double analysed_demand(const Structure& structure, const EquilibriumOptions& opt
 
 }  // namespace
 
-FrictionDemand friction_demand(const Structure& structure, const EquilibriumOptions& options, double tolerance,
+FrictionDemand friction_demand(const Structure& structure, const FrictionDemandSettings& settings,
                                const ProgressCount& progress) {
+  const double tolerance = settings.bracket_tolerance;
   if (!(tolerance > 0.0 && tolerance < 1.0)) {
-    throw InvalidArgument("tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
+    throw InvalidArgument("bracket_tolerance: expected a number in (0, 1), got " + std::to_string(tolerance));
   }
+  const EquilibriumOptions& options = settings.problem;
   const auto start = Clock::now();
   const BracketProgress bracket(tolerance, progress);
   bracket.tell(0.0, kInfinity);
@@ -573,13 +575,13 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   unbounded.friction = kInfinity;
   const EquilibriumProblem problem = build_equilibrium_problem(structure, unbounded);
   FrictionDemand result;
-  auto finish = [&](const std::string& status, double friction) {
+  auto finish = [&](MarginStatus status, double friction) {
     result.status = status;
     result.friction = friction;
     result.seconds = seconds_since(start);
     return result;
   };
-  if (problem.has_floating_bodies()) return finish("floating", kInfinity);
+  if (problem.has_floating_bodies()) return finish(MarginStatus::floating, kInfinity);
   FrictionPrograms programs(problem, options, result);
   std::vector<Eigen::Vector4d> unknowns;
   int status = 0;
@@ -620,7 +622,7 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     status = programs.stands(kInfinity, &unknowns);
     if (status == 1) {
       result.lower = demand.low;
-      return finish("unstable", kInfinity);
+      return finish(MarginStatus::unstable, kInfinity);
     }
     if (status != 0) return finish(clp_failure(status), kNaN);
     demand.high = programs.needed(unknowns);
@@ -636,20 +638,20 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
     }
     if (status == 1) {
       result.lower = demand.low;
-      return finish("unstable", kInfinity);
+      return finish(MarginStatus::unstable, kInfinity);
     }
     if (status != 0) return finish(clp_failure(status), kNaN);
     demand.high = std::min(high, programs.needed(unknowns));
   } else if (!high_stands) {
     status = programs.stands(demand.high, &unknowns);
-    if (status != 0) return finish(status == 1 ? "numerical difficulties" : clp_failure(status), kNaN);
+    if (status != 0) return finish(status == 1 ? MarginStatus::numerical_difficulties : clp_failure(status), kNaN);
   }
-  if (high_stands && demand.high == 0.0) return finish("optimal", 0.0);  // it stood without friction
+  if (high_stands && demand.high == 0.0) return finish(MarginStatus::optimal, 0.0);  // it stood without friction
   if (demand.low == 0.0) {
     // No program has fallen short yet (one that does proves every smaller
     // coefficient too small): whether it stands without friction.
     status = programs.stands(0.0);
-    if (status == 0) return finish("optimal", 0.0);
+    if (status == 0) return finish(MarginStatus::optimal, 0.0);
     if (status != 1) return finish(clp_failure(status), kNaN);
   }
   std::vector<Eigen::Vector4d> at_high = unknowns;
@@ -674,7 +676,7 @@ FrictionDemand friction_demand(const Structure& structure, const EquilibriumOpti
   }
   result.lower = demand.low;
   programs.needed(at_high, &result.critical);
-  return finish("optimal", demand.high);
+  return finish(MarginStatus::optimal, demand.high);
 }
 
 }  // namespace ashlar

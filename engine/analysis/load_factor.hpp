@@ -15,12 +15,12 @@
 // equilibrium analysis.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "core/enum_names.hpp"
 #include "core/progress.hpp"
 #include "analysis/equilibrium_problem.hpp"
+#include "analysis/margin_status.hpp"
 #include "analysis/mechanism.hpp"
 
 namespace ashlar {
@@ -42,14 +42,16 @@ struct LoadFactorSettings {
 };
 
 struct LoadFactor {
-  // "optimal", "unbounded" (no load is too much: factor = +inf),
-  // "infeasible" (no multiple of the load lets it stand: factor NaN),
-  // "floating" (a free block with no contact path to a support: NaN),
-  // "stopped" or "numerical difficulties" (Clp failed: NaN), "interrupted"
+  // optimal; unbounded (no load is too much: factor = +inf); infeasible
+  // (no multiple of the load lets it stand: factor NaN); floating (a free
+  // block with no contact path to a support: NaN); stopped,
+  // numerical_difficulties or unexpected (Clp failed: NaN); interrupted
   // (Ctrl-C or a sandbox deadline: NaN, and stable false: no verdict).
-  std::string status = "optimal";
+  MarginStatus status = MarginStatus::optimal;
   double factor = 0.0;  // the largest multiple lambda; negative when it needs a push
-  bool stable = false;  // it stands with no load (lambda = 0)
+  // It stands with no load (lambda = 0): the equilibrium analysis's verdict,
+  // which a program that failed afterwards (stopped, ...) leaves standing.
+  bool stable = false;
   std::vector<BlockMotion> mechanism;  // per block, zero for supports; empty unless optimal
   std::vector<LimitInterface> limit;   // interfaces that move in the mechanism
   int iterations = 0;                  // Clp's: barrier iterations, crossover and simplex pivots
@@ -62,12 +64,21 @@ struct LoadFactor {
 LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings,
                        const ProgressCount& progress = {});
 
+struct FrictionDemandSettings {
+  // The cone approximation (friction_model, friction_sides) and the
+  // contacts; its friction is ignored: it is what the search finds.
+  EquilibriumOptions problem;
+  // Relative width of the final bracket [lower, friction], in (0, 1).
+  double bracket_tolerance = 1e-6;
+};
+
 struct FrictionDemand {
-  // "optimal"; "unstable" when it does not stand even without sliding
-  // (friction +inf); "floating" (+inf); "stopped" or "numerical
-  // difficulties" (NaN); "interrupted" (Ctrl-C or a sandbox deadline: the
+  // optimal; unstable when it does not stand even without sliding
+  // (friction +inf); floating (+inf); stopped, numerical_difficulties or
+  // unexpected (NaN); interrupted (Ctrl-C or a sandbox deadline: the
   // bracket found so far, [lower, friction], or NaN before there is one).
-  std::string status = "optimal";
+  // The kinematic search (kinematic.hpp) adds its own.
+  MarginStatus status = MarginStatus::optimal;
   double friction = 0.0;       // the smallest coefficient, to the tolerance (upper end of the bracket)
   double lower = 0.0;          // the largest coefficient found too small
   std::vector<int> critical;   // interfaces at the friction limit in the final equilibrium
@@ -76,11 +87,10 @@ struct FrictionDemand {
   double seconds = 0.0;
 };
 
-// `options.friction` is ignored; the cone approximation (model, sides) is
-// the options'. tolerance: relative width of the final bracket (> 0).
+// Throws InvalidArgument for a bracket_tolerance outside (0, 1).
 // progress: the bracket's digits, as -log10 of its relative width, of
 // those the tolerance asks for (core/progress.hpp; none when empty).
-FrictionDemand friction_demand(const Structure& structure, const EquilibriumOptions& options,
-                               double tolerance = 1e-6, const ProgressCount& progress = {});
+FrictionDemand friction_demand(const Structure& structure, const FrictionDemandSettings& settings,
+                               const ProgressCount& progress = {});
 
 }  // namespace ashlar

@@ -52,7 +52,7 @@ Threshold find_threshold(double start, const ThresholdSettings& settings,
     if (exhausted()) return finish(ThresholdStatus::max_analyses);
     probe(std::min(2.0 * t.unstable, settings.ceiling));
   }
-  while (t.stable - t.unstable > settings.tolerance * t.stable) {
+  while (t.stable - t.unstable > settings.bracket_tolerance * t.stable) {
     if (exhausted()) return finish(ThresholdStatus::max_analyses);
     probe(0.5 * (t.unstable + t.stable));
   }

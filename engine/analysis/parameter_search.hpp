@@ -47,11 +47,19 @@ const char* threshold_status_name(ThresholdStatus status);
 
 // Requires floor <= start <= ceiling.
 struct ThresholdSettings {
-  double tolerance = 1e-6;  // final bracket width relative to its upper end, in (0, 1)
-  double floor = 0.0;       // smallest value tried
+  double bracket_tolerance = 1e-6;  // final bracket width relative to its upper end, in (0, 1)
+  double floor = 0.0;               // smallest value tried
   double ceiling = std::numeric_limits<double>::infinity();  // largest value tried
   int max_evaluations = 200;  // calls of the criterion, the first included
 };
+
+// The range a search for a model's geometric factor of safety tries when
+// not told, relative to the as-built value `start`: down to a millionth of
+// it (a model that still stands there has a factor of a million or more,
+// as good as unbounded, and no generator is asked for a zero or negative
+// value), and up to a thousand times it.
+constexpr double kThresholdFloorFraction = 1e-6;
+constexpr double kThresholdCeilingMultiple = 1e3;
 
 // The figures of the equilibrium analysis behind a verdict, kept for the
 // history.

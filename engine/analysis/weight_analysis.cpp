@@ -192,9 +192,12 @@ NecessaryWeights necessary_weights(const Structure& structure, int block,
   return problem.solve(block, false);
 }
 
-ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings, int threads,
-                                   const ProgressCount& progress, bool use_symmetry) {
+ImportantWeights important_weights(const Structure& structure, const ImportantWeightsSettings& weights_settings,
+                                   const ProgressCount& progress) {
   const auto start = Clock::now();
+  const AnalysisSettings& settings = weights_settings.analysis;
+  const int threads = weights_settings.threads;
+  const bool use_symmetry = weights_settings.use_symmetry;
   check_analysis_settings(settings);
   // Each problem's solver on one core when the workers may be several.
   const SolverCores cores =
@@ -263,7 +266,7 @@ ImportantWeights important_weights(const Structure& structure, const AnalysisSet
     for (int j = 0; j < structure.size(); ++j) result.per_volume[j] += share.per_weight[j];
     result.unstable_blocks.insert(result.unstable_blocks.end(), share.unstable.begin(), share.unstable.end());
     result.solves += share.solves;
-    result.interrupted = result.interrupted || share.interrupted;
+    if (share.interrupted) result.status = ImportantWeightsStatus::interrupted;
   }
   result.symmetries = static_cast<int>(symmetry.block_maps.size());
   std::sort(result.unstable_blocks.begin(), result.unstable_blocks.end());

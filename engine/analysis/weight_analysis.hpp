@@ -7,6 +7,7 @@
 
 #include "analysis/equilibrium.hpp"
 #include "analysis/load_capacity.hpp"
+#include "core/enum_names.hpp"
 
 namespace ashlar {
 
@@ -52,6 +53,26 @@ struct NecessaryWeights {
 NecessaryWeights necessary_weights(const Structure& structure, int block,
                                    const AnalysisSettings& settings);
 
+struct ImportantWeightsSettings {
+  AnalysisSettings analysis;  // friction, contacts, and the equilibrium solver's settings
+  // Worker threads, 0 for one per hardware thread; each takes a contiguous
+  // share of the blocks (its own problem, each solve warm from its own
+  // last), so the answer depends on the count only to the solver's
+  // tolerance.
+  int threads = 0;
+  // Solve one block per orbit of the problem's symmetries and map its
+  // weights to the others (false: every block, for checking them).
+  bool use_symmetry = true;
+};
+
+// Whether every free block's problem was solved.
+enum class ImportantWeightsStatus {
+  done,
+  interrupted,  // Ctrl-C or a sandbox deadline
+};
+inline constexpr EnumNames<ImportantWeightsStatus, 2> kImportantWeightsStatusNames{
+    {{{ImportantWeightsStatus::done, "done"}, {ImportantWeightsStatus::interrupted, "interrupted"}}}};
+
 struct ImportantWeights {
   // N/m^3 per block: the sum over every free block i of block j's necessary
   // weight for i (i's own weight excluded), over block j's volume; 0 for
@@ -60,9 +81,9 @@ struct ImportantWeights {
   // Free blocks whose necessary-weights problem has no compression-only
   // solution (0-based); they add what they found all the same.
   std::vector<int> unstable_blocks;
-  // Every free block done, or stopped by Ctrl-C or a sandbox deadline:
-  // per_volume then sums only the orbits of the `solves` blocks done before.
-  bool interrupted = false;
+  // done, or interrupted: per_volume then sums only the orbits of the
+  // `solves` blocks done before.
+  ImportantWeightsStatus status = ImportantWeightsStatus::done;
   int solves = 0;  // problems solved: one per orbit of the symmetries
   // The problem's symmetries used (analysis/problem_symmetry.hpp; 1: none,
   // or not searched).
@@ -71,15 +92,9 @@ struct ImportantWeights {
 };
 
 // One necessary-weights problem per free block, on one factorisation
-// pattern, each warm-started from the last. threads: worker threads, 0 for
-// one per hardware thread; each takes a contiguous share of the blocks
-// (its own problem, each solve warm from its own last), so the answer
-// depends on the count only to the solver's tolerance. progress: as
-// load_capacity's (analysis/load_capacity.hpp). use_symmetry: solve one
-// block per orbit of the problem's symmetries and map its weights to the
-// others (false: every block, for checking them).
-ImportantWeights important_weights(const Structure& structure, const AnalysisSettings& settings,
-                                   int threads = 0, const ProgressCount& progress = {},
-                                   bool use_symmetry = true);
+// pattern, each warm-started from the last. progress: as load_capacity's
+// (analysis/load_capacity.hpp).
+ImportantWeights important_weights(const Structure& structure, const ImportantWeightsSettings& settings,
+                                   const ProgressCount& progress = {});
 
 }  // namespace ashlar

@@ -33,8 +33,8 @@ TEST(LoadCapacity, BoundsAgreeWithTheAnalysis) {
   for (double friction : {std::numeric_limits<double>::infinity(), 0.5}) {
     AnalysisSettings settings;
     settings.problem.friction = friction;
-    const LoadCapacity capacity = load_capacity(s, settings, 0, {}, symmetry);
-    ASSERT_EQ(capacity.status, "optimal");
+    const LoadCapacity capacity = load_capacity(s, {settings, 0, symmetry});
+    ASSERT_EQ(capacity.status, MarginStatus::optimal);
     EXPECT_EQ(capacity.symmetries, symmetry ? 2 : 1);
     EXPECT_TRUE(capacity.stable);
     int finite_maxima = 0;
@@ -85,8 +85,8 @@ TEST(LoadCapacity, ACounterweightedCantileverHasItsClosedFormBounds) {
   const int counterweight = s.add(box({1, 1, 2}, {0, 0, 3.5}));
   for (double friction : {0.7, std::numeric_limits<double>::infinity()}) {
     const AnalysisSettings settings = with_friction(friction);
-    const LoadCapacity capacity = load_capacity(s, settings);
-    ASSERT_EQ(capacity.status, "optimal");
+    const LoadCapacity capacity = load_capacity(s, {settings});
+    ASSERT_EQ(capacity.status, MarginStatus::optimal);
     EXPECT_TRUE(capacity.stable);
     EXPECT_NEAR(capacity.min[counterweight], 0.75, 1e-6);
     EXPECT_TRUE(std::isinf(capacity.max[counterweight]));
@@ -120,8 +120,8 @@ TEST(LoadCapacity, ACableHoldingACantileverBoundsItsLargestMultiple) {
   s.add_cable(cable);
   for (double friction : {0.7, std::numeric_limits<double>::infinity()}) {
     const AnalysisSettings settings = with_friction(friction);
-    const LoadCapacity capacity = load_capacity(s, settings);
-    ASSERT_EQ(capacity.status, "optimal");
+    const LoadCapacity capacity = load_capacity(s, {settings});
+    ASSERT_EQ(capacity.status, MarginStatus::optimal);
     EXPECT_TRUE(capacity.stable);
     EXPECT_EQ(capacity.min[lintel], 0.0);
     EXPECT_NEAR(capacity.max[lintel], 2.0, 1e-6);
@@ -155,14 +155,14 @@ TEST(LoadCapacity, AnInterruptedComputationCarriesNoVerdict) {
   LoadCapacity capacity;
   {
     const DeadlineScope past(Clock::now());
-    capacity = load_capacity(s, AnalysisSettings{});
+    capacity = load_capacity(s, {});
   }
-  EXPECT_EQ(capacity.status, "interrupted");
+  EXPECT_EQ(capacity.status, MarginStatus::interrupted);
   EXPECT_FALSE(capacity.stable);
   for (int j = 0; j < s.size(); ++j) {
     EXPECT_TRUE(std::isnan(capacity.min[j]) && std::isnan(capacity.max[j])) << j;
   }
-  EXPECT_TRUE(load_capacity(s, AnalysisSettings{}).stable);
+  EXPECT_TRUE(load_capacity(s, {}).stable);
 }
 
 TEST(LoadCapacity, TellsItsProgressOnTheCallingThread) {
@@ -173,13 +173,11 @@ TEST(LoadCapacity, TellsItsProgressOnTheCallingThread) {
   const std::thread::id caller = std::this_thread::get_id();
   bool elsewhere = false;
   const LoadCapacity capacity = load_capacity(
-      s, AnalysisSettings{}, 2,
-      [&](int done, int total) {
+      s, {AnalysisSettings{}, 2, /*use_symmetry=*/false}, [&](int done, int total) {
         elsewhere = elsewhere || std::this_thread::get_id() != caller;
         told.emplace_back(done, total);
-      },
-      /*use_symmetry=*/false);
-  ASSERT_EQ(capacity.status, "optimal");
+      });
+  ASSERT_EQ(capacity.status, MarginStatus::optimal);
   ASSERT_GE(told.size(), 2u);
   EXPECT_FALSE(elsewhere);
   EXPECT_EQ(told.front(), std::make_pair(0, 9));

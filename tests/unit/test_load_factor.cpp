@@ -65,7 +65,7 @@ TEST(LoadFactor, BlockTipsAtWidthOverHeight) {
   const Structure s = stack(1, 0.4, 1.2);
   for (const double sign : {1.0, -1.0}) {
     const LoadFactor f = load_factor(s, lateral(kNoSliding, Vec3(sign, 0, 0)));
-    ASSERT_EQ(f.status, "optimal");
+    ASSERT_EQ(f.status, MarginStatus::optimal);
     EXPECT_TRUE(f.stable);
     EXPECT_NEAR(f.factor, 0.4 / 1.2, 1e-9);
     ASSERT_EQ(f.limit.size(), 1u);
@@ -79,7 +79,7 @@ TEST(LoadFactor, BlockTipsAtWidthOverHeight) {
 
 TEST(LoadFactor, BlockSlidesAtTheFrictionCoefficient) {
   const LoadFactor f = load_factor(stack(1, 0.4, 1.2), lateral(0.2));
-  ASSERT_EQ(f.status, "optimal");
+  ASSERT_EQ(f.status, MarginStatus::optimal);
   EXPECT_NEAR(f.factor, 0.2, 1e-9);
   ASSERT_EQ(f.limit.size(), 1u);
   EXPECT_EQ(f.limit[0].mode, LimitMode::sliding);
@@ -90,7 +90,7 @@ TEST(LoadFactor, StackTipsAsAWhole) {
   // The top k blocks tip about their lowest joint at b / (k h): the whole
   // stack, about the support, goes first.
   const LoadFactor f = load_factor(stack(3, 0.5, 0.4), lateral(kNoSliding));
-  ASSERT_EQ(f.status, "optimal");
+  ASSERT_EQ(f.status, MarginStatus::optimal);
   EXPECT_NEAR(f.factor, 0.5 / 1.2, 1e-9);
   ASSERT_EQ(f.limit.size(), 1u);
   EXPECT_EQ(f.limit[0].mode, LimitMode::hinge);
@@ -106,22 +106,22 @@ TEST(LoadFactor, ALoadThatStandsAloneIsUnboundedWithoutAProgram) {
   // r), r the smaller of the two.
   const Structure s = stack(1, 0.4, 1.2);  // b / h = 1/3
   const LoadFactor leaning = load_factor(s, lateral(0.7, Vec3(0.3, 0, -1)));
-  EXPECT_EQ(leaning.status, "unbounded");
+  EXPECT_EQ(leaning.status, MarginStatus::unbounded);
   EXPECT_TRUE(leaning.stable);
   EXPECT_EQ(leaning.iterations, 0) << "the load alone was proven to stand: no program solved";
   const LoadFactor slides = load_factor(s, lateral(0.2, Vec3(0.3, 0, -1)));
-  ASSERT_EQ(slides.status, "optimal");
+  ASSERT_EQ(slides.status, MarginStatus::optimal);
   EXPECT_NEAR(slides.factor, std::sqrt(1.09) * 0.2 / (0.3 - 0.2), 1e-9);
   const LoadFactor tips = load_factor(s, lateral(0.7, Vec3(0.5, 0, -1)));
-  ASSERT_EQ(tips.status, "optimal");
+  ASSERT_EQ(tips.status, MarginStatus::optimal);
   EXPECT_NEAR(tips.factor, std::sqrt(1.25) * (1.0 / 3.0) / (0.5 - 1.0 / 3.0), 1e-9);
 }
 
 TEST(LoadFactor, GravityNeverTopplesItAndLiftingOffTakesOneG) {
   const Structure s = stack(2, 0.4, 1.2);
-  EXPECT_EQ(load_factor(s, lateral(0.7, Vec3(0, 0, -1))).status, "unbounded");
+  EXPECT_EQ(load_factor(s, lateral(0.7, Vec3(0, 0, -1))).status, MarginStatus::unbounded);
   const LoadFactor lift = load_factor(s, lateral(0.7, Vec3(0, 0, 2)));
-  ASSERT_EQ(lift.status, "optimal");
+  ASSERT_EQ(lift.status, MarginStatus::optimal);
   EXPECT_NEAR(lift.factor, 1.0, 1e-9);
   // Weightless at one g, any motion that lifts a block is a mechanism: the
   // solver picks one of them (a block rises, none sinks).
@@ -140,7 +140,7 @@ TEST(LoadFactor, PointLoadTipsTheBlock) {
   LoadFactorSettings settings = lateral(kNoSliding);
   settings.pattern = LoadPattern::point_loads;
   const LoadFactor f = load_factor(s, settings);
-  ASSERT_EQ(f.status, "optimal");
+  ASSERT_EQ(f.status, MarginStatus::optimal);
   EXPECT_NEAR(f.factor, weight * 0.2 / (1000 * 1.2), 1e-9);
 }
 
@@ -148,7 +148,7 @@ TEST(LoadFactor, ArchAgreesWithTheAnalysisOnEitherSide) {
   const Structure s = semicircular_arch(16, 0.9);
   for (const double friction : {kNoSliding, 0.4}) {
     const LoadFactor f = load_factor(s, lateral(friction));
-    ASSERT_EQ(f.status, "optimal");
+    ASSERT_EQ(f.status, MarginStatus::optimal);
     ASSERT_GT(f.factor, 0.05);
     EXPECT_TRUE(stands_with(s, f.factor * (1 - 1e-4), Vec3(1, 0, 0), friction)) << friction;
     EXPECT_FALSE(stands_with(s, f.factor * (1 + 1e-4), Vec3(1, 0, 0), friction)) << friction;
@@ -164,7 +164,7 @@ TEST(LoadFactor, ArchAgreesWithTheAnalysisOnEitherSide) {
 TEST(LoadFactor, ReportsWhatItCannotAnswer) {
   Structure floating = stack(1, 0.4, 1.2);
   floating.add(box({0.2, 0.2, 0.2}, {5, 0, 5}));
-  EXPECT_EQ(load_factor(floating, lateral(0.7)).status, "floating");
+  EXPECT_EQ(load_factor(floating, lateral(0.7)).status, MarginStatus::floating);
   EXPECT_TRUE(contains(error_of([] { load_factor(stack(1, 1, 1), lateral(0.7, Vec3(0, 0, 0))); }),
                        "direction"));
   EXPECT_TRUE(contains(error_of([] { load_factor(stack(1, 1, 1), lateral(0.7, Vec3(1, 1, 0))); }),
@@ -180,8 +180,8 @@ TEST(FrictionDemand, BlockOnAnInclineNeedsTheTangentOfItsSlope) {
     const Vec3 axis(0, 1, 0), origin(0, 0, 0);
     s.add(std::make_shared<const Block>(make_box({3.0, 1.0, 0.2}, {0, 0, -0.1}).rotated(axis, slope, origin)), true);
     s.add(std::make_shared<const Block>(make_box({1.0, 0.6, 0.4}, {0, 0, 0.2}).rotated(axis, slope, origin)));
-    const FrictionDemand demand = friction_demand(s, EquilibriumOptions{}, 1e-9);
-    ASSERT_EQ(demand.status, "optimal");
+    const FrictionDemand demand = friction_demand(s, {EquilibriumOptions{}, 1e-9});
+    ASSERT_EQ(demand.status, MarginStatus::optimal);
     EXPECT_NEAR(demand.friction, std::tan(slope), 1e-7 * std::tan(slope)) << slope;
     EXPECT_LE(demand.lower, demand.friction);
     ASSERT_EQ(demand.critical.size(), 1u);
@@ -190,8 +190,8 @@ TEST(FrictionDemand, BlockOnAnInclineNeedsTheTangentOfItsSlope) {
 
 TEST(FrictionDemand, ArchAgreesWithTheAnalysis) {
   const Structure s = semicircular_arch(16, 0.65);
-  const FrictionDemand demand = friction_demand(s, EquilibriumOptions{});
-  ASSERT_EQ(demand.status, "optimal");
+  const FrictionDemand demand = friction_demand(s, {});
+  ASSERT_EQ(demand.status, MarginStatus::optimal);
   ASSERT_GT(demand.friction, 0.05);
   AnalysisSettings settings;
   settings.problem.friction = demand.friction * (1 + 1e-4);
@@ -205,9 +205,9 @@ TEST(FrictionDemand, TellsTheDigitsOfItsBracket) {
   // that only grow, ending at 6: the bracket [lower, friction] is then
   // within 1e-6 relative.
   std::vector<std::pair<int, int>> told;
-  const FrictionDemand demand = friction_demand(semicircular_arch(16, 0.65), EquilibriumOptions{}, 1e-6,
+  const FrictionDemand demand = friction_demand(semicircular_arch(16, 0.65), {EquilibriumOptions{}, 1e-6},
                                                 [&](int done, int total) { told.emplace_back(done, total); });
-  ASSERT_EQ(demand.status, "optimal");
+  ASSERT_EQ(demand.status, MarginStatus::optimal);
   ASSERT_GE(told.size(), 2u);
   EXPECT_EQ(told.front(), std::make_pair(0, 6));
   EXPECT_EQ(told.back(), std::make_pair(6, 6));
@@ -216,13 +216,13 @@ TEST(FrictionDemand, TellsTheDigitsOfItsBracket) {
 }
 
 TEST(FrictionDemand, NoneOnFlatGroundAndNoneEnoughWhenItFalls) {
-  const FrictionDemand flat = friction_demand(stack(2, 0.4, 0.4), EquilibriumOptions{});
-  EXPECT_EQ(flat.status, "optimal");
+  const FrictionDemand flat = friction_demand(stack(2, 0.4, 0.4), {});
+  EXPECT_EQ(flat.status, MarginStatus::optimal);
   EXPECT_EQ(flat.friction, 0.0);
-  const FrictionDemand thin = friction_demand(semicircular_arch(16, 0.3), EquilibriumOptions{});
-  EXPECT_EQ(thin.status, "unstable");
+  const FrictionDemand thin = friction_demand(semicircular_arch(16, 0.3), {});
+  EXPECT_EQ(thin.status, MarginStatus::unstable);
   EXPECT_TRUE(std::isinf(thin.friction));
-  EXPECT_TRUE(contains(error_of([] { friction_demand(stack(1, 1, 1), EquilibriumOptions{}, 0.0); }),
+  EXPECT_TRUE(contains(error_of([] { friction_demand(stack(1, 1, 1), {EquilibriumOptions{}, 0.0}); }),
                        "tolerance"));
 }
 
@@ -234,7 +234,7 @@ TEST(LoadFactor, TellsEveryIterationOfItsProgram) {
   std::vector<std::pair<int, int>> told;
   const LoadFactor factor =
       load_factor(s, lateral(kNoSliding), [&](int done, int total) { told.emplace_back(done, total); });
-  ASSERT_EQ(factor.status, "optimal");
+  ASSERT_EQ(factor.status, MarginStatus::optimal);
   ASSERT_FALSE(told.empty());
   for (size_t k = 0; k < told.size(); ++k) EXPECT_EQ(told[k], std::make_pair(static_cast<int>(k) + 1, kTotalUnknown));
   EXPECT_EQ(factor.iterations, static_cast<int>(told.size()));
@@ -250,8 +250,8 @@ TEST(LoadFactor, TheKinematicSearchTellsTheDigitsOfItsBracket) {
   settings.problem.friction = 0.5;
   std::vector<std::pair<int, int>> told;
   const KinematicLoadFactor factor = kinematic_load_factor(
-      s, lateral(0.5), settings, 1e-3, [&](int done, int total) { told.emplace_back(done, total); });
-  ASSERT_EQ(factor.status, "optimal");
+      s, {lateral(0.5), settings, 1e-3}, [&](int done, int total) { told.emplace_back(done, total); });
+  ASSERT_EQ(factor.status, MarginStatus::optimal);
   ASSERT_GE(told.size(), 2u);
   EXPECT_EQ(told.front(), std::make_pair(0, 3));
   EXPECT_EQ(told.back(), std::make_pair(3, 3));
@@ -267,12 +267,12 @@ TEST(LoadFactor, AnInterruptedSearchCarriesNoVerdict) {
   const Structure s = stack(1, 0.4, 1.2);
   interrupt_requested() = true;
   const LoadFactor factor = load_factor(s, lateral(kNoSliding));
-  const FrictionDemand demand = friction_demand(s, lateral(kNoSliding).problem);
+  const FrictionDemand demand = friction_demand(s, {lateral(kNoSliding).problem});
   interrupt_requested() = false;
-  EXPECT_EQ(factor.status, "interrupted");
+  EXPECT_EQ(factor.status, MarginStatus::interrupted);
   EXPECT_TRUE(std::isnan(factor.factor));
   EXPECT_FALSE(factor.stable);
-  EXPECT_EQ(demand.status, "interrupted");
+  EXPECT_EQ(demand.status, MarginStatus::interrupted);
   EXPECT_TRUE(std::isnan(demand.friction));
   // And without the request, the same calls answer.
   EXPECT_NEAR(load_factor(s, lateral(kNoSliding)).factor, 0.4 / 1.2, 1e-9);
@@ -288,11 +288,11 @@ TEST(LoadFactor, AStopAskedMidProgramCarriesNoVerdict) {
       if (done == 3) interrupt_requested() = true;
     });
     interrupt_requested() = false;
-    EXPECT_EQ(factor.status, "interrupted");
+    EXPECT_EQ(factor.status, MarginStatus::interrupted);
     EXPECT_TRUE(std::isnan(factor.factor));
     EXPECT_FALSE(factor.stable);
     const LoadFactor answered = load_factor(s, lateral(0.7));
-    EXPECT_EQ(answered.status, "optimal");
+    EXPECT_EQ(answered.status, MarginStatus::optimal);
     EXPECT_GT(answered.factor, 0.0);
     EXPECT_TRUE(stands_with(s, answered.factor * (1 - 1e-4), Vec3(1, 0, 0), 0.7));
     EXPECT_FALSE(stands_with(s, answered.factor * (1 + 1e-4), Vec3(1, 0, 0), 0.7));

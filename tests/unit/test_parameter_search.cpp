@@ -84,7 +84,7 @@ TEST(ParameterSearch, ThresholdFromBelow) {
 // 1.95e-3 <= 3.14e-3; 3.9e-3 at k = 6), leaving [0.3125, 0.3125 + 2^-9].
 TEST(ParameterSearch, ThresholdBisectsToTheTolerance) {
   ThresholdSettings settings;
-  settings.tolerance = 1e-2;
+  settings.bracket_tolerance = 1e-2;
   const Threshold t = find_threshold(1.0, settings, stands_from_threshold);
   EXPECT_EQ(t.status, ThresholdStatus::converged);
   EXPECT_EQ(t.evaluations, 10);
@@ -182,7 +182,7 @@ TEST(ParameterSearch, ThresholdHistoryKeepsVerdicts) {
     return verdict;
   };
   ThresholdSettings settings;
-  settings.tolerance = 1e-2;
+  settings.bracket_tolerance = 1e-2;
   const Threshold t = find_threshold(1.0, settings, criterion);
   ASSERT_EQ(t.history.size(), 10u);
   for (size_t k = 0; k < t.history.size(); ++k) {

@@ -111,7 +111,7 @@ TEST(NecessaryWeights, TopBlockHoldsTheOverhangingMiddleOne) {
   EXPECT_TRUE(top.stable);
   EXPECT_LT(top.weights[1] + top.weights[2], 1e-6 * middle);
 
-  const ImportantWeights important = important_weights(s, settings);
+  const ImportantWeights important = important_weights(s, {settings});
   EXPECT_EQ(important.solves, 3);
   EXPECT_TRUE(important.unstable_blocks.empty());
   EXPECT_NEAR(important.per_volume[3] * s.block(3).volume(),
@@ -123,14 +123,14 @@ TEST(ImportantWeights, AnInterruptedComputationSaysSo) {
   // is called unstable (each block's problem would stand on this arch).
   const Structure s = semicircular_arch(9, 0.8);
   interrupt_requested() = true;
-  const ImportantWeights important = important_weights(s, AnalysisSettings{});
+  const ImportantWeights important = important_weights(s, {});
   interrupt_requested() = false;
-  EXPECT_TRUE(important.interrupted);
+  EXPECT_EQ(important.status, ImportantWeightsStatus::interrupted);
   EXPECT_EQ(important.solves, 0);
   EXPECT_TRUE(important.unstable_blocks.empty());
   for (double w : important.per_volume) EXPECT_EQ(w, 0.0);
-  const ImportantWeights done = important_weights(s, AnalysisSettings{});
-  EXPECT_FALSE(done.interrupted);
+  const ImportantWeights done = important_weights(s, {});
+  EXPECT_EQ(done.status, ImportantWeightsStatus::done);
   EXPECT_EQ(done.symmetries, 2);  // the arch's mirror: one voussoir of each pair, and the keystone
   EXPECT_EQ(done.solves, 5);
 }
@@ -142,9 +142,9 @@ TEST(ImportantWeights, EveryWorkerAnswersToTheCallersDeadline) {
   ImportantWeights important;
   {
     const DeadlineScope past(Clock::now());
-    important = important_weights(s, AnalysisSettings{}, 2);
+    important = important_weights(s, {AnalysisSettings{}, 2});
   }
-  EXPECT_TRUE(important.interrupted);
+  EXPECT_EQ(important.status, ImportantWeightsStatus::interrupted);
   EXPECT_EQ(important.solves, 0);
 }
 
@@ -156,8 +156,8 @@ TEST(ImportantWeights, WorkersShareTheBlocksAndAgreeWithOne) {
   const Structure s = semicircular_arch(15, 0.8);
   AnalysisSettings settings;
   settings.problem.friction = std::numeric_limits<double>::infinity();
-  const ImportantWeights one = important_weights(s, settings, 1, {}, /*use_symmetry=*/false);
-  const ImportantWeights two = important_weights(s, settings, 2, {}, /*use_symmetry=*/false);
+  const ImportantWeights one = important_weights(s, {settings, 1, /*use_symmetry=*/false});
+  const ImportantWeights two = important_weights(s, {settings, 2, /*use_symmetry=*/false});
   ASSERT_EQ(one.solves, 15);
   ASSERT_EQ(two.solves, 15);
   EXPECT_EQ(one.unstable_blocks, two.unstable_blocks);
