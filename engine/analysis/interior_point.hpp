@@ -4,18 +4,18 @@
 // The Hessian is diagonal and every inequality row involves the unknowns of
 // one contact vertex, so eliminating the unknowns vertex by vertex (4 x 4
 // systems) leaves normal equations A Phi^-1 A^T dy = r of size 6 x (free
-// blocks) (3 x for planar problems), sparse with the contact graph's pattern. That matrix is analysed
-// once (EquilibriumSolver's constructor) and factorised once per iteration;
-// predictor and corrector share the factorisation.
+// blocks) (3 x for planar problems), sparse with the contact graph's
+// pattern. That matrix is analysed once (EquilibriumSolver's constructor)
+// and factorised once per iteration; predictor and corrector share the
+// factorisation.
 //
-// Twins: contact vertices with the same rules, bodies, bound and effect on
-// the balance rows (a planar problem's vertex pairs on either face of the
-// wall, which differ only in y) have one optimum, the same forces at each
-// (the objective is strictly convex in them and symmetric). The solver
-// takes m such twins as one group with effect m A, objective m (1/2 x^T H x
-// + q^T x) and the same inequalities, whose multipliers are m times each
-// twin's, and hands every twin the group's x, w and z / m: the same QP,
-// with half the per-group work on a planar wall.
+// Its pieces: the normal matrix and its pattern (normal_matrix.hpp,
+// normal_pattern.hpp), a group's eliminated block (phi_factor.hpp), twin
+// vertices solved as one group (twin_groups.hpp), the Newton system with
+// iterative refinement (newton_system.hpp), residuals (iterate_residuals.hpp),
+// starting point and step lengths (step_policy.hpp) and the best iterate
+// kept when the tolerance is out of reach (best_iterate.hpp). Shapes and
+// units: interior_point_iterate.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,13 +23,15 @@
 #include <string>
 #include <vector>
 
-#include "core/enum_names.hpp"
 #include "analysis/equilibrium_problem.hpp"
+#include "analysis/interior_point_iterate.hpp"
+#include "analysis/normal_matrix.hpp"
+#include "analysis/phi_factor.hpp"
+#include "analysis/twin_groups.hpp"
+#include "core/enum_names.hpp"
 #include "core/parallel_loop.hpp"
 
 namespace ashlar {
-
-class SparseCholesky;
 
 struct InteriorPointSettings {
   int max_iterations = 100;   // Newton iterations before giving up
@@ -48,7 +50,7 @@ struct InteriorPointSettings {
   // (compression_only_imbalance): stability is proven, the optimum is not
   // needed. 0: always solve to the optimum.
   double certify_below = 0.0;
-  // Solve twin contact vertices (see above) as one group each; false solves
+  // Solve twin contact vertices (twin_groups.hpp) as one group each; false solves
   // every vertex on its own (the same optimum, for checking the merge).
   bool merge_twins = true;
 };
@@ -91,12 +93,6 @@ struct InteriorPointInfo {
   double assembly_seconds = 0.0;    // residuals, vertex eliminations, normal-matrix values
   double factorization_seconds = 0.0;
   double solve_seconds = 0.0;       // triangular solves and step updates
-};
-
-// Primal x (4 per force group, scaled), equality multipliers y, inequality
-// slacks w and multipliers z (the group's rule rows per group, in order).
-struct InteriorPointSolution {
-  Eigen::VectorXd x, y, w, z;
 };
 
 // The cores one solver may use: all of them (one analysis at a time), or
@@ -145,89 +141,22 @@ public:
   Eigen::Vector4d group_response(const EquilibriumProblem& problem, int group,
                                  const Eigen::VectorXd& multipliers) const;
 
-  // A group's factor R of Phi = R^T R (4 x 4 upper triangular), its 10
-  // entries packed by rows, diagonal stored inverted: 80 bytes a group
-  // instead of a full matrix's 128 (100 MB less on a 100,052-block vault).
-  // (Public for the solver's helper functions; not used outside it.)
-  struct PhiFactor {
-    double packed[10];
-    double& operator()(int i, int j) { return packed[i * (7 - i) / 2 + j]; }
-    double operator()(int i, int j) const { return packed[i * (7 - i) / 2 + j]; }
-  };
-
 private:
-  // Fills the normal matrix A Phi^-1 A^T for barrier scaling z/w (slacks w
-  // and multipliers z, one per inequality row, rows of group k from
-  // first_row[k]) and each group's factor R of Phi = R^T R (upper
-  // triangular). D = block_rows_ (3 or 6) at compile time; assemble()
-  // picks it.
-  template <int D>
-  void assemble_normal_matrix(const EquilibriumProblem& problem, const std::vector<int>& first_row,
-                              const Eigen::VectorXd& w, const Eigen::VectorXd& z,
-                              std::vector<PhiFactor>& phi_factors);
-  void assemble(const EquilibriumProblem& problem, const std::vector<int>& first_row,
-                const Eigen::VectorXd& w, const Eigen::VectorXd& z,
-                std::vector<PhiFactor>& phi_factors);
-  // Splits the normal matrix's block columns among loop_'s parts
-  // (part_first_column_, part_groups_) so that each adds about as many
-  // blocks.
-  void partition_columns(int blocks);
-  // solve() for D = block_rows_ balance rows per body.
-  template <int D>
-  InteriorPointInfo solve_rows(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
-                               InteriorPointSolution& solution, bool warm_start);
-  bool factorize_shifted();
-
-  // The twin classes of `problem` (see the file comment; none unless
-  // `merge`): twins_ and, when they changed, the slots and parts of the
-  // groups the solver works on.
+  // The twin classes of `problem` (none unless `merge`), and the normal
+  // matrix working on them when they changed.
   void find_twins(const EquilibriumProblem& problem, bool merge);
-  // `problem` with each twin class as one group (find_twins first).
-  EquilibriumProblem merge_twins(const EquilibriumProblem& problem) const;
-  // Where each merged group's inequality rows start (and the total), from
-  // the problem's (EquilibriumProblem::inequality_starts).
-  std::vector<int> merged_first_rows(const std::vector<int>& full_first_row) const;
-  // The number of twins group k of the groups worked on stands for.
-  double twin_count(int k) const { return twins_.count.empty() ? 1.0 : twins_.count[k]; }
-  // One of the problem's solutions in the merged groups' unknowns, and back.
-  void merge_solution(const InteriorPointSolution& full, const std::vector<int>& full_first_row,
-                      InteriorPointSolution& merged) const;
-  void split_solution(const InteriorPointSolution& merged, const std::vector<int>& full_first_row,
-                      InteriorPointSolution& full) const;
   // solve() of the groups the solver works on, `problem` merged or not.
   InteriorPointInfo solve_groups(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
                                  InteriorPointSolution& solution, bool warm_start);
+  // solve_groups() for D = block rows per body: the Mehrotra
+  // predictor-corrector iterations.
+  template <int D>
+  InteriorPointInfo solve_rows(const EquilibriumProblem& problem, const InteriorPointSettings& settings,
+                               InteriorPointSolution& solution, bool warm_start);
 
-  struct VertexSlots {
-    int row_a = -1, row_b = -1;     // the group's bodies' first balance rows
-    int aa = -1, bb = -1, ab = -1;  // pattern slots of the 6 x 6 blocks, -1 if absent
-    bool ab_transposed = false;     // block (a, b) stored as (b, a) in the upper triangle
-  };
-  // The slots of `problem`'s groups in the analysed pattern; false if some
-  // group adds to a block the pattern lacks.
-  bool find_slots(const EquilibriumProblem& problem, std::vector<VertexSlots>& slots) const;
-  std::vector<std::vector<int>> block_pattern_;  // per block column J, its block rows I <= J, sorted
-  std::vector<VertexSlots> pattern_slots_;  // per group of the problem analysed (fits())
-  // The groups the solver works on: the problem's, or its twin classes.
-  struct Twins {
-    std::vector<int> merged_of;     // problem group -> merged group; empty: no twins
-    std::vector<int> first_member;  // merged group -> its first problem group
-    std::vector<double> count;      // merged group -> its number of twins (m)
-  } twins_;
-  std::vector<VertexSlots> merged_slots_;  // per merged group, when twins merge
-  const std::vector<VertexSlots>& worked_slots() const {
-    return twins_.merged_of.empty() ? pattern_slots_ : merged_slots_;
-  }
   ParallelLoop loop_;  // passes over the groups, on one thread per core
-  // The assembly's parts: part p adds into block columns
-  // [part_first_column_[p], part_first_column_[p + 1]), for the groups
-  // part_groups_[p] (empty lists for a single part: every group).
-  std::vector<int> part_first_column_;
-  std::vector<std::vector<int>> part_groups_;
-  std::vector<int> column_starts_;
-  std::unique_ptr<SparseCholesky> cholesky_;
-  int size_ = 0;
-  int block_rows_ = 6;
+  NormalMatrix normal_;
+  TwinGroups twins_;
   std::vector<PhiFactor> response_phi_;  // factor R of Phi per group at prepare_response
   bool response_ready_ = false;
 };

@@ -1,23 +1,12 @@
 // Sparse Cholesky factorisation (CHOLMOD, supernodal) of symmetric positive
 // definite matrices that share one sparsity pattern: the pattern is analysed
 // (fill-reducing ordering, symbolic factor) once, then any number of
-// numeric factorisations and solves reuse it. CHOLMOD stays in the .cpp.
+// numeric factorisations and solves reuse it.
 //
 // Large patterns are factored on two cores by one level of domain
-// decomposition: a vertex separator S splits the unknowns into parts A and
-// B with no entry between them,
-//     M = [ M_AA   0     M_AS ]
-//         [ 0      M_BB  M_BS ]
-//         [ M_SA   M_SB  M_SS ],
-// and [M_AA M_AS; M_SA M_SS] and [M_BB M_BS; M_SB M_SS] are factored at
-// the same time, each with S ordered last. The trailing block L_SS of each
-// factor gives that side's share of the Schur complement
-//     M_SS - M_SA M_AA^-1 M_AS = L_SS L_SS^T   (and the same for B),
-// so the Schur complement of M onto S is T_A + T_B - M_SS, a small dense
-// matrix factored by dense Cholesky. Solves run the two sides' triangular
-// solves in parallel around one dense solve on S. The result is the same
-// factorisation of M as a whole (A, then B, then S); only its order of
-// operations differs.
+// decomposition (core/split_cholesky.hpp); the result is the same
+// factorisation, in another order of operations. CHOLMOD is reached
+// through core/cholmod_system.hpp, whose .cpp alone includes cholmod.h.
 #pragma once
 
 #include <Eigen/Core>
@@ -57,7 +46,9 @@ public:
   double* values();
   int nonzeros() const;
   // Numeric factorisation of the current values; false when the matrix is
-  // not (numerically) positive definite.
+  // not (numerically) positive definite. The first call in the process
+  // sets OpenBLAS to one thread for the whole process
+  // (use_one_blas_thread_in_whole_process, core/blas.hpp).
   bool factorize();
   // Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;

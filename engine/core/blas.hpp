@@ -1,0 +1,59 @@
+// BLAS and LAPACK as the engine calls them directly (the sparse
+// factorisation's dense kernels, core/cholmod_system.cpp, and the split
+// factorisation's Schur complement, core/split_cholesky.cpp), and the one
+// setting of theirs the engine makes.
+//
+// Fortran interfaces: every argument by pointer, matrices column-major
+// with their leading dimension, and the hidden lengths of the character
+// arguments last (1 each). Whichever BLAS the build links (OpenBLAS on
+// Debian through libblas.so.3) provides them.
+#pragma once
+
+#include <cstddef>
+
+extern "C" {
+// C = alpha A A^T + beta C (or A^T A), one triangle of C.
+void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+            const int* lda, const double* beta, double* c, const int* ldc, size_t uplo_length, size_t trans_length);
+// C = alpha op(A) op(B) + beta C.
+void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
+            const int* ldc, size_t transa_length, size_t transb_length);
+// B = alpha op(A)^-1 B (or B op(A)^-1), A triangular.
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb, size_t side_length,
+            size_t uplo_length, size_t transa_length, size_t diag_length);
+// A = U U^T (or L^T L) in place, A triangular.
+void dlauum_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
+// Dense Cholesky factorisation in place, and the solve with its factor.
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, size_t uplo_length);
+void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda, double* b,
+             const int* ldb, int* info, size_t uplo_length);
+}
+
+namespace ashlar {
+
+// Sets OpenBLAS to one thread, once, for the WHOLE PROCESS: every BLAS call
+// of every library in it from then on, not only the engine's. In the
+// `ashlar` host that is the engine's own choice; in a host program that
+// loads the C module for stock lua5.4 (or links the engine) it changes
+// that program's BLAS too, for as long as it runs. Nothing happens when
+// the loaded BLAS is not OpenBLAS. Called by SparseCholesky::factorize
+// (core/sparse_cholesky.hpp), before the first factorisation; safe to call
+// from several threads at once.
+//
+// Why one thread, measured on a 2-core machine (22 factorisations of a
+// 10,051-block wall's 60,300-row normal matrix): one thread, 3.13 s of
+// factorisation and 0.25 s of system time for the whole run; OpenBLAS on 2
+// threads 2.85 s, but its idle thread yields the core in a loop between
+// calls (6.2 s of system time). On a 100,052-block vault (5.4e10 flops per
+// factorisation) two OpenBLAS threads cut the factorisations from 46.6 s
+// to 37.3 s, but the idle one yielded for 32 s of system time (40 % of
+// user time), so one thread there too. Two cores help where the work
+// itself is split: the solver's loops (ParallelLoop) and a large pattern's
+// two halves, factored side by side (core/split_cholesky.hpp, 1.7x on that
+// wall's factorisations). Set here so that a user never needs OPENBLAS_*
+// variables for speed.
+void use_one_blas_thread_in_whole_process();
+
+}  // namespace ashlar

@@ -1,0 +1,81 @@
+// CHOLMOD behind a plain interface, for the sparse factorisations of
+// core/sparse_cholesky.hpp and core/split_cholesky.hpp: one sparse
+// symmetric matrix with its analysis and supernodal factor, owned and freed
+// with the object (CholmodSystem), and the orderings asked of CHOLMOD
+// (bisect, order_with_last_rows). cholmod.h is included by
+// cholmod_system.cpp alone (engine/CMakeLists.txt gives that file its
+// include directory).
+//
+// Patterns are n x n in compressed columns: rows of column j are
+// row_indices[column_starts[j] .. column_starts[j + 1]), ascending; values
+// follow the same order.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace ashlar {
+
+// One CHOLMOD matrix (the upper or the lower triangle) with its analysis
+// and factor.
+class CholmodSystem {
+public:
+  enum class Triangle { upper, lower };
+  enum class Solve {
+    whole,     // A x = b
+    forward,   // L x = b
+    backward,  // L^T x = b
+  };
+
+  // The pattern (copied), values 0.
+  CholmodSystem(int n, const int* column_starts, const int* row_indices, Triangle stored);
+  ~CholmodSystem();
+  CholmodSystem(const CholmodSystem&) = delete;
+  CholmodSystem& operator=(const CholmodSystem&) = delete;
+
+  // Fill-reducing ordering of CHOLMOD's choice; then permutation()[k] is
+  // the row placed k-th (postordered).
+  void analyze();
+  // The rows' own order (the caller has permuted them), kept as given: no
+  // postordering. Only a system analysed so, a lower triangle, can be
+  // factorised (factorize()): its columns then go straight into the
+  // factor's.
+  void analyze_as_ordered();
+  const int* permutation() const;
+
+  int rows() const;
+  // The values to fill before factorize(), in pattern order.
+  double* values();
+  double factor_nonzeros() const;
+
+  // Numeric factorisation of the lower triangle in factor order (a system
+  // analysed with analyze_as_ordered) into CHOLMOD's supernodal factor,
+  // which solve() then uses; false when the matrix is not positive
+  // definite.
+  bool factorize();
+  // Solves `system` for the right-hand side rhs[0 .. rows()); the solution
+  // stays valid until the next solve, which reuses its storage.
+  const double* solve(Solve system, const double* rhs);
+  // The factor's trailing block L(first.., first..) (s = rows() - first
+  // square, lower triangular) reversed in both directions: out(a, b) =
+  // L(last - a, last - b) with last = rows() - 1, upper triangular.
+  void trailing_block_reversed(int first, Eigen::MatrixXd& out) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The rows of the pattern's graph (upper triangle) that separate it into
+// two parts (METIS through CHOLMOD): part[i] is 0 or 1, or 2 for the
+// separator. Empty when CHOLMOD cannot bisect.
+std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices);
+
+// A fill-reducing order of the pattern's rows (upper triangle; order[k]:
+// the row placed k-th) that places the rows from `first_last` on after all
+// others. Empty if CHOLMOD fails.
+std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_starts,
+                                      const std::vector<int>& row_indices, int first_last);
+
+}  // namespace ashlar
