@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "analysis/verdict_notes.hpp"
 #include "core/clock.hpp"
@@ -68,8 +69,19 @@ double fill_result_forces(const Structure& structure, const std::vector<Interfac
   return penalised;
 }
 
-EquilibriumAnalysis::EquilibriumAnalysis(const Structure& structure, const AnalysisSettings& settings) {
+EquilibriumAnalysis::EquilibriumAnalysis(const Structure& structure, const AnalysisSettings& settings,
+                                         SolverCores cores)
+    : cores_(cores) {
   update(structure, settings);
+}
+
+EquilibriumAnalysis::EquilibriumAnalysis(EquilibriumProblem problem, const AnalysisSettings& settings,
+                                         SolverCores cores)
+    : settings_(settings), cores_(cores), problem_(std::move(problem)) {
+  const auto start = Clock::now();
+  check_analysis_settings(settings);
+  fit_solver();
+  setup_seconds_ = seconds_since(start);
 }
 
 EquilibriumAnalysis::~EquilibriumAnalysis() = default;
@@ -81,16 +93,45 @@ void EquilibriumAnalysis::update(const Structure& structure, const AnalysisSetti
   structure_ = &structure;
   settings_ = settings;
   floating_gaps_.clear();
-  if (!problem_.floating_blocks.empty()) {
-    // Near misses only: a gap of over 1 % of the structure is not one.
-    floating_gaps_ = structure.missed_contacts(problem_.floating_blocks, kNearMiss * structure.bounds().diagonal(),
-                                               settings.problem.contact);
-  }
+  floating_gaps_found_ = false;
+  fit_solver();
+  setup_seconds_ = seconds_since(start);
+}
+
+void EquilibriumAnalysis::fit_solver() {
   if (!solver_ || !solver_->fits(problem_)) {
-    solver_ = std::make_unique<EquilibriumSolver>(problem_);
+    solver_ = std::make_unique<EquilibriumSolver>(problem_, cores_);
     ++symbolic_analyses_;
   }
-  setup_seconds_ = seconds_since(start);
+}
+
+void EquilibriumAnalysis::set_rhs(Eigen::VectorXd rhs) {
+  if (rhs.size() != problem_.row_count) {
+    throw std::invalid_argument("set_rhs: " + std::to_string(problem_.row_count) + " rows expected, got " +
+                                std::to_string(rhs.size()));
+  }
+  problem_.rhs = std::move(rhs);
+}
+
+void EquilibriumAnalysis::update_loads(const Structure& structure) {
+  const auto start = Clock::now();
+  set_rhs(load_rhs(structure, problem_));
+  structure_ = &structure;
+  setup_seconds_ += seconds_since(start);
+}
+
+void EquilibriumAnalysis::set_group(int k, const ForceGroup& group) {
+  if (k < 0 || k >= static_cast<int>(problem_.groups.size())) {
+    throw std::invalid_argument("set_group: no group " + std::to_string(k));
+  }
+  ForceGroup& old = problem_.groups[k];
+  if (group.kind != old.kind) throw std::invalid_argument("set_group: group " + std::to_string(k) + " changes kind");
+  const bool moved = group.row_a != old.row_a || group.row_b != old.row_b;
+  old = group;
+  if (moved && !solver_->refit(problem_)) {
+    solver_ = std::make_unique<EquilibriumSolver>(problem_, cores_);
+    ++symbolic_analyses_;
+  }
 }
 
 void EquilibriumAnalysis::set_shear_strengths(const std::vector<double>& strengths) {
@@ -104,14 +145,38 @@ bool EquilibriumAnalysis::prepare_response() {
   return !has_no_answer(last_status_) && solver_->prepare_response(problem_, solution_);
 }
 
+InteriorPointInfo EquilibriumAnalysis::solve_qp(const InteriorPointSettings& solver, bool warm_start) {
+  const InteriorPointInfo info = solver_->solve(problem_, solver, solution_, warm_start);
+  last_status_ = info.status;
+  return info;
+}
+
+bool EquilibriumAnalysis::carries_alone(Eigen::VectorXd load, int max_iterations, int& iterations) {
+  set_rhs(std::move(load));
+  InteriorPointSettings verdict;
+  verdict.max_iterations = max_iterations;
+  verdict.certify_below = settings_.stable_tolerance;
+  const InteriorPointInfo info = solve_qp(verdict, false);
+  iterations = info.iterations;
+  return info.status == SolverStatus::certified;
+}
+
 EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
+  if (!structure_) throw std::logic_error("EquilibriumAnalysis::solve: a QP without a structure (solve_qp)");
+  if (!floating_gaps_found_ && !problem_.floating_blocks.empty()) {  // part of the setup
+    const auto start = Clock::now();
+    // Near misses only: a gap of over 1 % of the structure is not one.
+    floating_gaps_ = structure_->missed_contacts(problem_.floating_blocks, kNearMiss * structure_->bounds().diagonal(),
+                                                 settings_.problem.contact);
+    setup_seconds_ += seconds_since(start);
+  }
+  floating_gaps_found_ = true;
   const auto start = Clock::now();
   EquilibriumResult result;
   result.timings.setup = setup_seconds_;
   InteriorPointSettings solver_settings = settings_.solver;
   if (settings_.verdict_only) solver_settings.certify_below = settings_.stable_tolerance;
-  const InteriorPointInfo info = solver_->solve(problem_, solver_settings, solution_, warm_start);
-  last_status_ = info.status;
+  const InteriorPointInfo info = solve_qp(solver_settings, warm_start);
   result.status = info.status;
   result.iterations = info.iterations;
   result.factorizations = info.factorizations;

@@ -282,6 +282,45 @@ void set_rules(EquilibriumProblem& problem, const EquilibriumOptions& options) {
   weight.hessian = Eigen::Vector4d::Constant(regularisation);
 }
 
+// The balance rows' right-hand side of `structure`'s loads (block weights,
+// point loads, half of each cable's weight at either end) in `problem`'s
+// units and rows; cable_bodies and cable_weight (N) as the build finds them.
+Eigen::VectorXd balance_rhs(const Structure& structure, const EquilibriumProblem& problem,
+                            const std::vector<std::array<int, 2>>& cable_bodies,
+                            const std::vector<double>& cable_weight) {
+  const int n = structure.size();
+  const int junction_count = static_cast<int>(problem.junctions.size());
+  const std::vector<Cable>& cables = structure.cables();
+  const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);
+  const int d = problem.block_rows;
+  const double wu = problem.weight_unit, lu = problem.length_unit;
+  auto row_of_body = [&](int body) {
+    return body < n ? problem.row_of_block[body] : problem.row_of_junction[body - n];
+  };
+  // Each body's external force and moment, then the rows the problem keeps.
+  const int bodies = n + junction_count;
+  std::vector<Eigen::Matrix<double, 6, 1>> external(bodies, Eigen::Matrix<double, 6, 1>::Zero());
+  for (int i = 0; i < n; ++i) external[i](2) = structure.block(i).mass() * kGravity / wu;
+  auto add_force = [&](int body, const Vec3& force, const Vec3& at) {
+    const Vec3* centroid = body < n ? &structure.block(body).centroid() : nullptr;
+    external[body] += applied_force_rhs(force, at, centroid, wu, lu);
+  };
+  for (const PointLoad& load : structure.loads()) add_force(load.block, load.force, load.at);
+  for (size_t c = 0; c < cables.size(); ++c) {
+    const CableEnd* ends[2] = {&cables[c].from, &cables[c].to};
+    for (int e = 0; e < 2; ++e) {
+      add_force(cable_bodies[c][e], Vec3(0.0, 0.0, -0.5 * cable_weight[c]), ends[e]->point);
+    }
+  }
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(problem.row_count);
+  for (int body = 0; body < bodies; ++body) {
+    const int row = row_of_body(body);
+    if (row < 0) continue;
+    for (int r = 0; r < d; ++r) rhs(row + r) = external[body](rows[r]);
+  }
+  return rhs;
+}
+
 }  // namespace
 
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
@@ -351,27 +390,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   else if (!cables.empty()) problem.length_unit = cable_length_sum / cables.size();
   const double wu = problem.weight_unit, lu = problem.length_unit;
 
-  // Each body's external force and moment, then the rows the problem keeps.
+  problem.rhs = balance_rhs(structure, problem, cable_bodies, cable_weight);
   const int bodies = n + junction_count;
-  std::vector<Eigen::Matrix<double, 6, 1>> external(bodies, Eigen::Matrix<double, 6, 1>::Zero());
-  for (int i = 0; i < n; ++i) external[i](2) = structure.block(i).mass() * kGravity / wu;
-  auto add_force = [&](int body, const Vec3& force, const Vec3& at) {
-    const Vec3* centroid = body < n ? &structure.block(body).centroid() : nullptr;
-    external[body] += applied_force_rhs(force, at, centroid, wu, lu);
-  };
-  for (const PointLoad& load : structure.loads()) add_force(load.block, load.force, load.at);
-  for (size_t c = 0; c < cables.size(); ++c) {
-    const CableEnd* ends[2] = {&cables[c].from, &cables[c].to};
-    for (int e = 0; e < 2; ++e) {
-      add_force(cable_bodies[c][e], Vec3(0.0, 0.0, -0.5 * cable_weight[c]), ends[e]->point);
-    }
-  }
-  problem.rhs = Eigen::VectorXd::Zero(problem.row_count);
-  for (int body = 0; body < bodies; ++body) {
-    const int row = row_of_body(body);
-    if (row < 0) continue;
-    for (int r = 0; r < d; ++r) problem.rhs(row + r) = external[body](rows[r]);
-  }
 
   // Reserved exactly (slacks: at most d per end of each cable): the groups
   // are most of a large problem's memory, and growing by doubling left up to
@@ -467,6 +487,26 @@ Eigen::Matrix<double, 6, 1> applied_force_rhs(const Vec3& force, const Vec3& at,
   rhs.head<3>() = -force / weight_unit;
   if (centroid) rhs.tail<3>() = -((at - *centroid) / length_unit).cross(force / weight_unit);
   return rhs;
+}
+
+Eigen::VectorXd load_rhs(const Structure& structure, const EquilibriumProblem& problem) {
+  if (static_cast<int>(problem.row_of_block.size()) != structure.size()) {
+    throw InvalidArgument("loads: the structure has " + std::to_string(structure.size()) +
+                          " blocks, the problem was built for " + std::to_string(problem.row_of_block.size()));
+  }
+  const double size = structure.bounds().diagonal();
+  std::vector<std::array<int, 2>> cable_bodies;
+  const std::vector<Vec3> junctions = find_junctions(structure, 1e-9 * size, cable_bodies);
+  if (junctions.size() != problem.junctions.size()) {
+    throw InvalidArgument("loads: the structure's cables meet at other junctions than the problem's");
+  }
+  if (structure.planar()) check_planar_loads_and_cables(structure, 1e-9 * size);
+  const std::vector<Cable>& cables = structure.cables();
+  std::vector<double> cable_weight(cables.size());
+  for (size_t c = 0; c < cables.size(); ++c) {
+    cable_weight[c] = cables[c].mass_per_length * (cables[c].to.point - cables[c].from.point).norm() * kGravity;
+  }
+  return balance_rhs(structure, problem, cable_bodies, cable_weight);
 }
 
 double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen::VectorXd& x) {

@@ -199,6 +199,16 @@ struct EquilibriumProblem {
 EquilibriumProblem build_equilibrium_problem(const Structure& structure,
                                              const EquilibriumOptions& options);
 
+// The balance rows' right-hand side (scaled, row_count long, as
+// problem.rhs) of `structure`'s loads: its blocks' weights, point loads and
+// cables' weights, in `problem`'s units (weight_unit, length_unit) and rows.
+// For a structure with the blocks, supports, contacts and cables `problem`
+// was built for, loaded otherwise; with only its point loads changed it is
+// the rhs build_equilibrium_problem gives, to the bit. Throws
+// InvalidArgument for another number of blocks or cable junctions, and as
+// build_equilibrium_problem for a planar structure loaded out of its plane.
+Eigen::VectorXd load_rhs(const Structure& structure, const EquilibriumProblem& problem);
+
 // How far the scaled unknowns x, with every penalised unknown (tension,
 // cable compression, virtual torques) set to zero, are from a
 // compression-only equilibrium that respects friction: the largest

@@ -217,16 +217,4 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   return info;
 }
 
-bool carries_alone(EquilibriumSolver& solver, EquilibriumProblem problem, const Eigen::VectorXd& load,
-                   double stable_tolerance, int max_iterations, int& iterations) {
-  problem.rhs = load;
-  InteriorPointSettings verdict;
-  verdict.max_iterations = max_iterations;
-  verdict.certify_below = stable_tolerance;
-  InteriorPointSolution forces;
-  const InteriorPointInfo info = solver.solve(problem, verdict, forces);
-  iterations = info.iterations;
-  return info.status == SolverStatus::certified;
-}
-
 }  // namespace ashlar

@@ -161,18 +161,4 @@ private:
   bool response_ready_ = false;
 };
 
-// Whether `load` alone (scaled, as problem.rhs), nothing else loaded, is
-// carried compression-only by `problem`'s force groups: `solver` (analysed
-// for `problem`) on `problem` with `load` as its right-hand side, from a
-// cold start, stopped at the first forces that balance it without tension
-// to `stable_tolerance` (InteriorPointSettings::certify_below, the
-// analysis's stability proof); false when not proven within
-// `max_iterations` (the iterations taken go to `iterations`). On a
-// structure that stands, where the feasible forces form a cone (no
-// bounded cable or shear strength), every multiple of such a load stands
-// too: the ray along which a load factor or a block's load capacity is
-// unbounded.
-bool carries_alone(EquilibriumSolver& solver, EquilibriumProblem problem, const Eigen::VectorXd& load,
-                   double stable_tolerance, int max_iterations, int& iterations);
-
 }  // namespace ashlar

@@ -12,6 +12,7 @@
 #include <mutex>
 
 #include "analysis/clp_barrier.hpp"
+#include "analysis/equilibrium_analysis.hpp"
 #include "analysis/equilibrium_program.hpp"
 #include "analysis/interior_point.hpp"
 #include "analysis/problem_symmetry.hpp"
@@ -80,61 +81,75 @@ public:
            });
   }
 
-  // as_built: the analysis's optimum of `problem`, shared by the workers.
-  InteriorCapacity(const EquilibriumProblem& problem, const InteriorPointSolution& as_built,
-                   const AnalysisSettings& settings, bool maximise, SolverCores cores)
-      : problem_(problem), rhs_(problem.rhs), as_built_(as_built), settings_(settings.solver),
-        analysis_(problem, cores), cores_(cores) {
+  // analysis: of the problem (its right-hand side is changed per block),
+  // on the worker's cores. as_built: the analysis's optimum of the
+  // problem, shared by the workers.
+  InteriorCapacity(std::unique_ptr<EquilibriumAnalysis> analysis, const InteriorPointSolution& as_built,
+                   const AnalysisSettings& settings, bool maximise)
+      : analysis_(std::move(analysis)), rhs_(analysis_->problem().rhs), as_built_(as_built),
+        settings_(settings.solver), analysis_settings_(settings) {
     settings_.certify_below = settings.stable_tolerance;
     if (maximise) build_program();
   }
 
-  bool maximises() const { return !program_.groups.empty(); }
+  bool maximises() const { return multiple_group_ >= 0; }
 
   // Whether the structure stands with the weight (scaled) of the block
   // whose first balance row is `row` removed.
   bool stands_weightless(int row, double weight, int& iterations) {
-    problem_.rhs = rhs_;
-    problem_.rhs(row + problem_.vertical_row()) -= weight;
-    solution_ = as_built_;
-    const InteriorPointInfo info = analysis_.solve(problem_, settings_, solution_, /*warm_start=*/true);
+    Eigen::VectorXd rhs = rhs_;
+    rhs(row + analysis_->problem().vertical_row()) -= weight;
+    analysis_->set_rhs(std::move(rhs));
+    analysis_->set_starting_point(as_built_);
+    const InteriorPointInfo info = analysis_->solve_qp(settings_, /*warm_start=*/true);
     iterations = info.iterations;
     return info.status == SolverStatus::certified;
   }
 
   // Whether that weight alone, nothing else loaded, is carried
-  // compression-only (carries_alone): then no multiple of it is too much.
+  // compression-only (EquilibriumAnalysis::carries_alone): then no
+  // multiple of it is too much.
   bool carries_weight_alone(int row, double weight, int& iterations) {
-    Eigen::VectorXd load = Eigen::VectorXd::Zero(problem_.row_count);
-    load(row + problem_.vertical_row()) = weight;
-    return carries_alone(analysis_, problem_, load, settings_.certify_below, kAloneIterations, iterations);
+    const EquilibriumProblem& problem = analysis_->problem();
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(problem.row_count);
+    load(row + problem.vertical_row()) = weight;
+    return analysis_->carries_alone(std::move(load), kAloneIterations, iterations);
   }
 
   // The largest multiple of that weight under `cap`; NaN when the solver
   // did not converge.
   double largest(int row, double weight, double cap, int& iterations) {
-    const int vertical = program_.vertical_row();
-    const int multiple = static_cast<int>(program_.groups.size()) - 1;
-    ForceGroup& group = program_.groups[multiple];
+    const int vertical = analysis_->problem().vertical_row();
+    const int multiple = multiple_group_;
+    ForceGroup group = maximum_ ? maximum_->problem().groups[multiple] : program_.groups[multiple];
     group.row_a = row;
     group.on_a(vertical, 0) = -weight;
     group.bound = cap;
-    program_.rhs = rhs_;
-    program_.rhs(row + vertical) -= weight;
-    // The multiple's group moved to this block's diagonal: the pattern holds.
-    if (!maximum_solver_ || !maximum_solver_->refit(program_)) {
-      maximum_solver_ = std::make_unique<EquilibriumSolver>(program_, cores_);
+    Eigen::VectorXd rhs = rhs_;
+    rhs(row + vertical) -= weight;
+    if (!maximum_) {
+      // Analysed with the multiple's group on the first block asked.
+      program_.groups[multiple] = group;
+      program_.rhs = std::move(rhs);
+      maximum_ = std::make_unique<EquilibriumAnalysis>(std::move(program_), analysis_settings_,
+                                                       analysis_->cores());
+    } else {
+      // The multiple's group moved to this block's diagonal: the pattern holds (a refit).
+      maximum_->set_group(multiple, group);
+      maximum_->set_rhs(std::move(rhs));
     }
     // The as-built forces, tension dropped, carrying t = 1: feasible, and
     // 27 iterations on a dome's blocks where the cold start took 34.
-    maximum_.x = Eigen::VectorXd::Zero(4 * (multiple + 1));
-    maximum_.x.head(4 * multiple) = as_built_.x.head(4 * multiple);
-    for (int k = 0; k < multiple; ++k) maximum_.x(4 * k + 1) = 0.0;
-    maximum_.x(4 * multiple) = 1.0;
+    InteriorPointSolution start;
+    start.x = Eigen::VectorXd::Zero(4 * (multiple + 1));
+    start.x.head(4 * multiple) = as_built_.x.head(4 * multiple);
+    for (int k = 0; k < multiple; ++k) start.x(4 * k + 1) = 0.0;
+    start.x(4 * multiple) = 1.0;
     const int inequalities = program_inequalities_;
-    maximum_.y = Eigen::VectorXd::Zero(program_.row_count);
-    maximum_.w = Eigen::VectorXd::Ones(inequalities);  // recomputed from x by the solver
-    maximum_.z = Eigen::VectorXd::Constant(inequalities, kStartMultiplier);
+    start.y = Eigen::VectorXd::Zero(maximum_->problem().row_count);
+    start.w = Eigen::VectorXd::Ones(inequalities);  // recomputed from x by the solver
+    start.z = Eigen::VectorXd::Constant(inequalities, kStartMultiplier);
+    maximum_->set_starting_point(std::move(start));
     InteriorPointSettings settings;
     settings.merge_twins = false;  // a dome's vertices have no twins; the solver's setting is for the analysis
     // The gap relative to the objective bounds the maximum's error: 1e-8
@@ -142,9 +157,9 @@ public:
     // saves an iteration in 20 against the analysis's 1e-10 (the 16 x 18
     // dome's maxima within 7.3e-9 of the simplex-era references).
     settings.tolerance = 1e-8;
-    const InteriorPointInfo info = maximum_solver_->solve(program_, settings, maximum_, /*warm_start=*/true);
+    const InteriorPointInfo info = maximum_->solve_qp(settings, /*warm_start=*/true);
     iterations = info.iterations;
-    return info.status == SolverStatus::converged ? maximum_.x(4 * multiple) : kNaN;
+    return info.status == SolverStatus::converged ? maximum_->solution().x(4 * multiple) : kNaN;
   }
 
 private:
@@ -157,7 +172,7 @@ private:
   static constexpr int kAloneIterations = 30;
 
   void build_program() {
-    program_ = problem_;
+    program_ = analysis_->problem();
     std::vector<ForceGroup>& groups = program_.groups;
     groups.erase(std::remove_if(groups.begin(), groups.end(),
                                 [](const ForceGroup& group) { return group.kind != GroupKind::contact_vertex; }),
@@ -185,20 +200,21 @@ private:
     group.kind = GroupKind::weight;
     groups.push_back(group);
     program_.contact_vertex_count = static_cast<int>(groups.size()) - 1;
+    multiple_group_ = program_.contact_vertex_count;
     program_inequalities_ = program_.inequality_starts().back();
   }
 
-  EquilibriumProblem problem_;  // the analysis's, the right-hand side changed per block
-  Eigen::VectorXd rhs_;  // the analysis's, which the capacity program shares
+  std::unique_ptr<EquilibriumAnalysis> analysis_;  // its right-hand side changed per block
+  Eigen::VectorXd rhs_;  // the analysis's as built, which the capacity program shares
   const InteriorPointSolution& as_built_;
   InteriorPointSettings settings_;
-  EquilibriumSolver analysis_;
-  SolverCores cores_;
-  InteriorPointSolution solution_;
-  EquilibriumProblem program_;  // the largest multiple's; no groups when not used
+  AnalysisSettings analysis_settings_;
+  // The largest multiple's QP, until its analysis is set up by the first
+  // largest() (no groups when not used), and that analysis.
+  EquilibriumProblem program_;
+  std::unique_ptr<EquilibriumAnalysis> maximum_;
+  int multiple_group_ = -1;  // the multiple's group in the program
   int program_inequalities_ = 0;
-  std::unique_ptr<EquilibriumSolver> maximum_solver_;
-  InteriorPointSolution maximum_;
 };
 
 // Simplex pivots allowed for a planar largest multiple before the barrier takes over.
@@ -492,6 +508,7 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   const AnalysisSettings& settings = capacity_settings.analysis;
   const int threads = capacity_settings.threads;
   const bool use_symmetry = capacity_settings.use_symmetry;
+  check_analysis_settings(settings);  // planar or 3D, as the analyses of 3D structures do
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   // A block's bounds are optimal values: its images under the problem's
   // symmetries have the same, and only one block of each orbit is solved.
@@ -525,11 +542,14 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   programs.reserve(workers);
   // The as-built forces for the equilibrium solver's warm starts; none
   // when it finds no optimum (the simplex and the barrier answer alone).
+  // The as-built analysis runs on every core; a lone worker goes on with it.
   InteriorPointSolution as_built_forces;
+  std::unique_ptr<EquilibriumAnalysis> as_built_analysis;
   bool interior = InteriorCapacity::certifies(problem, settings.problem);
   if (interior) {
-    EquilibriumSolver solver(problem);
-    interior = !has_no_answer(solver.solve(problem, settings.solver, as_built_forces).status);
+    as_built_analysis = std::make_unique<EquilibriumAnalysis>(problem, settings, SolverCores::all);
+    interior = !has_no_answer(as_built_analysis->solve_qp(settings.solver).status);
+    as_built_forces = as_built_analysis->take_solution();
   }
   const bool maximise = interior && InteriorCapacity::maximises(problem, settings.problem);
   // No block is begun once a stop is asked for (Ctrl-C, the caller's
@@ -538,11 +558,16 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   AsBuiltProgram as_built;  // solved once the copies are made
   const SolverCores solver_cores = workers > 1 ? SolverCores::one : SolverCores::all;
   for (int w = 0; w < workers; ++w) {
-    programs.emplace_back(capacity, rays, as_built, problem.block_rows == 3,
-                          interior ? std::make_unique<InteriorCapacity>(problem, as_built_forces, settings, maximise,
-                                                                        solver_cores)
-                                   : nullptr);
+    std::unique_ptr<InteriorCapacity> interior_capacity;
+    if (interior) {
+      std::unique_ptr<EquilibriumAnalysis> analysis =
+          workers == 1 ? std::move(as_built_analysis)
+                       : std::make_unique<EquilibriumAnalysis>(problem, settings, solver_cores);
+      interior_capacity = std::make_unique<InteriorCapacity>(std::move(analysis), as_built_forces, settings, maximise);
+    }
+    programs.emplace_back(capacity, rays, as_built, problem.block_rows == 3, std::move(interior_capacity));
   }
+  as_built_analysis.reset();
   std::atomic<size_t> next{0};
   std::atomic<int> done{0};
   const int total = static_cast<int>(blocks.size());

@@ -190,15 +190,16 @@ constexpr int kRayIterations = 20;
 // such programs (the 16 x 18 dome pushed down at mu = 0.7: 7.1 s). Only
 // where the feasible set is a cone (no bounded cable or shear strength) and
 // friction is Coulomb's; false when not proven in kRayIterations.
-bool live_load_stands_alone(const EquilibriumProblem& problem, const Eigen::VectorXd& live_load,
+// The analysis's QP takes the live load as its right-hand side.
+bool live_load_stands_alone(EquilibriumAnalysis& analysis, const Eigen::VectorXd& live_load,
                             const LoadFactorSettings& settings) {
+  const EquilibriumProblem& problem = analysis.problem();
   if (settings.problem.friction_law != FrictionLaw::coulomb) return false;
   for (const ForceGroup& group : problem.groups) {
     if (group.bound != 0.0 && problem.rules_of(group).bound_coefficients.size()) return false;
   }
-  EquilibriumSolver solver(problem);
   int iterations = 0;
-  return carries_alone(solver, problem, live_load, AnalysisSettings{}.stable_tolerance, kRayIterations, iterations);
+  return analysis.carries_alone(live_load, kRayIterations, iterations);
 }
 
 void check_settings(const Structure& structure, const LoadFactorSettings& settings) {
@@ -224,7 +225,12 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
                        const ProgressCount& progress) {
   const auto start = Clock::now();
   check_settings(structure, settings);
-  const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
+  // One analysis for the verdict at rest and the live load's own (their
+  // QPs differ in the right-hand side); its QP is the program's.
+  AnalysisSettings unloaded;
+  unloaded.problem = settings.problem;
+  EquilibriumAnalysis analysis(structure, unloaded);
+  const EquilibriumProblem& problem = analysis.problem();
   LoadFactor result;
   if (problem.has_floating_bodies()) {
     result.status = MarginStatus::floating;
@@ -260,9 +266,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
   // interior point answers in a fiftieth of the simplex's time: 0.04 s
   // against 2.3 s on a 305-block dome), or, where that verdict is at its
   // resolution (borderline), the simplex's exact feasibility.
-  AnalysisSettings unloaded;
-  unloaded.problem = settings.problem;
-  const EquilibriumResult at_rest = analyze_equilibrium(structure, unloaded);
+  const EquilibriumResult at_rest = analysis.solve();
   if (at_rest.status == SolverStatus::interrupted) {  // no verdict: the programs need not start
     result.status = clp_failure(kClpInterrupted);
     result.factor = kNaN;
@@ -270,7 +274,7 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
     return result;
   }
   result.stable = at_rest.borderline ? solve_checked(simplex) == 0 : at_rest.stable;
-  if (result.stable && live_load_stands_alone(problem, live_load, settings)) {
+  if (result.stable && live_load_stands_alone(analysis, live_load, settings)) {
     result.status = MarginStatus::unbounded;
     result.factor = kInfinity;
     result.seconds = seconds_since(start);

@@ -64,16 +64,16 @@ class NecessaryWeightsProblem {
 public:
   NecessaryWeightsProblem(const Structure& structure, const AnalysisSettings& settings,
                           SolverCores cores = SolverCores::all)
-      : structure_(structure),
-        settings_(least_squares_settings(settings)),
-        problem_(build_equilibrium_problem(structure, settings_.problem)),
-        vertical_(problem_.vertical_row()) {
-    const double wu = problem_.weight_unit;
+      : structure_(structure), settings_(least_squares_settings(settings)) {
+    check_analysis_settings(settings);  // the caller's, before they are scaled
+    EquilibriumProblem problem = build_equilibrium_problem(structure, settings_.problem);
+    vertical_ = problem.vertical_row();
+    const double wu = problem.weight_unit;
     group_of_block_.assign(structure.size(), -1);
     for (int j = 0; j < structure.size(); ++j) {
-      const int row = problem_.row_of_block[j];
+      const int row = problem.row_of_block[j];
       if (row < 0) continue;
-      problem_.rhs(row + vertical_) -= structure.block(j).mass() * kGravity / wu;
+      problem.rhs(row + vertical_) -= structure.block(j).mass() * kGravity / wu;
       ForceGroup weight;
       weight.kind = GroupKind::weight;
       weight.source = j;
@@ -81,63 +81,74 @@ public:
       weight.row_a = row;
       weight.position = structure.block(j).centroid();
       weight.on_a(vertical_, 0) = -1.0;  // the weight joins the loads the contacts carry
-      group_of_block_[j] = static_cast<int>(problem_.groups.size());
-      problem_.groups.push_back(weight);
+      group_of_block_[j] = static_cast<int>(problem.groups.size());
+      problem.groups.push_back(weight);
     }
-    rhs_without_weights_ = problem_.rhs;
-    solver_ = std::make_unique<EquilibriumSolver>(problem_, cores);
+    rhs_without_weights_ = problem.rhs;
+    analysis_ = std::make_unique<EquilibriumAnalysis>(std::move(problem), settings_, cores);
   }
 
-  const EquilibriumProblem& problem() const { return problem_; }
+  const EquilibriumProblem& problem() const { return analysis_->problem(); }
 
   NecessaryWeights solve(int block, bool warm_start) {
     const auto start = Clock::now();
-    check_analysed_block(problem_, structure_, block, "");
-    const double wu = problem_.weight_unit;
+    const EquilibriumProblem& problem = analysis_->problem();
+    check_analysed_block(problem, structure_, block, "");
+    const double wu = problem.weight_unit;
     const double own_weight = structure_.block(block).mass() * kGravity;
-    if (chosen_ >= 0) problem_.groups[group_of_block_[chosen_]].on_a(vertical_, 0) = -1.0;
+    // The weight unknowns' effects: the last chosen block's back, this
+    // one's cut off; its weight back in the right-hand side.
+    if (chosen_ >= 0) set_weight_effect(chosen_, -1.0);
     chosen_ = block;
-    problem_.groups[group_of_block_[block]].on_a(vertical_, 0) = 0.0;
-    problem_.rhs = rhs_without_weights_;
-    problem_.rhs(problem_.row_of_block[block] + vertical_) += own_weight / wu;
+    set_weight_effect(block, 0.0);
+    Eigen::VectorXd rhs = rhs_without_weights_;
+    rhs(problem.row_of_block[block] + vertical_) += own_weight / wu;
+    analysis_->set_rhs(std::move(rhs));
 
-    const InteriorPointInfo info =
-        solver_->solve(problem_, settings_.solver, solution_, warm_start);
+    const InteriorPointInfo info = analysis_->solve_qp(settings_.solver, warm_start);
+    const InteriorPointSolution& solution = analysis_->solution();
     NecessaryWeights result;
     result.status = info.status;
     result.iterations = info.iterations;
     result.weights.assign(structure_.size(), 0.0);
     double penalised = 0.0;
-    for (size_t k = 0; k < problem_.groups.size(); ++k) {
-      const ForceGroup& group = problem_.groups[k];
-      const Eigen::Vector4d x = solution_.x.segment<4>(4 * static_cast<Eigen::Index>(k));
-      penalised += problem_.rules_of(group).linear.dot(x);
+    for (size_t k = 0; k < problem.groups.size(); ++k) {
+      const ForceGroup& group = problem.groups[k];
+      const Eigen::Vector4d x = solution.x.segment<4>(4 * static_cast<Eigen::Index>(k));
+      penalised += problem.rules_of(group).linear.dot(x);
       if (group.kind == GroupKind::weight && group.source != block) {
         result.weights[group.source] = x(0) * wu;
       }
     }
     result.weights[block] = own_weight;
-    const bool floating = problem_.has_floating_bodies();
+    const bool floating = problem.has_floating_bodies();
     result.stable = !floating && !has_no_answer(info.status) &&
-                    compression_only_imbalance(problem_, solution_.x) <= settings_.stable_tolerance;
+                    compression_only_imbalance(problem, solution.x) <= settings_.stable_tolerance;
     if (floating || has_no_answer(info.status)) {
       result.infeasibility = std::numeric_limits<double>::infinity();
     } else {
-      result.infeasibility = result.stable ? 0.0 : penalised / std::max(problem_.body_count, 1);
+      result.infeasibility = result.stable ? 0.0 : penalised / std::max(problem.body_count, 1);
     }
     result.seconds = seconds_since(start);
     return result;
   }
 
 private:
+  // Block j's weight unknown enters its vertical row with `effect` (-1:
+  // carried by the contacts; 0: cut off).
+  void set_weight_effect(int j, double effect) {
+    const int k = group_of_block_[j];
+    ForceGroup group = analysis_->problem().groups[k];
+    group.on_a(vertical_, 0) = effect;
+    analysis_->set_group(k, group);
+  }
+
   const Structure& structure_;
   const AnalysisSettings settings_;
-  EquilibriumProblem problem_;
   int vertical_ = 2;
   std::vector<int> group_of_block_;  // the weight group of each analysed block, else -1
   Eigen::VectorXd rhs_without_weights_;
-  std::unique_ptr<EquilibriumSolver> solver_;
-  InteriorPointSolution solution_;
+  std::unique_ptr<EquilibriumAnalysis> analysis_;  // of eq. 8's problem, with the weights' groups
   int chosen_ = -1;
 };
 

@@ -1,9 +1,13 @@
 // The analysis object: setup once, update loads, friction or geometry, and
 // solve again, each answer checked against closed-form statics.
+#include <dirent.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <thread>
 
 #include "analysis/equilibrium_analysis.hpp"
 #include "test_support.hpp"
@@ -128,4 +132,146 @@ TEST(AnalysisSequence, WarmStartsGiveTheColdAnswersInFewerIterations) {
   // Another number of blocks: no optimum is offered, the solve is cold.
   const Structure finer = semicircular_arch(24, 1.5);
   EXPECT_EQ(sequence.analyze(finer).iterations, analyze_equilibrium(finer, settings).iterations);
+}
+
+namespace {
+
+// The threads of this process (each test runs in a process of its own).
+int thread_count() {
+  int count = 0;
+  if (DIR* dir = ::opendir("/proc/self/task")) {
+    while (const dirent* entry = ::readdir(dir)) count += entry->d_name[0] != '.';
+    ::closedir(dir);
+  }
+  return count;
+}
+
+// The largest difference of two solutions' unknowns, relative to the
+// larger unknown (scaled units: forces of a mean body weight).
+double relative_difference(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  return (x - y).lpNorm<Eigen::Infinity>() / std::max(1.0, y.lpNorm<Eigen::Infinity>());
+}
+
+}  // namespace
+
+TEST(EquilibriumAnalysis, NewPointLoadsAloneGiveTheFreshAnalysis) {
+  // An arch with a push and a press on voussoir 6: update_loads changes
+  // only the right-hand side, which is then the fresh build's to the bit,
+  // and so is every iterate.
+  const Structure plain = semicircular_arch(16, 1.0);
+  Structure loaded = semicircular_arch(16, 1.0);
+  const Vec3 at = loaded.block(5).centroid() + Vec3(0.1, 0.0, 0.05);
+  loaded.add_load({5, {4000, 0, -30000}, at});
+  const AnalysisSettings settings = with_friction(0.7);
+  EquilibriumAnalysis analysis(plain, settings);
+  ASSERT_TRUE(analysis.solve().stable);
+  analysis.update_loads(loaded);
+  const EquilibriumResult reused = analysis.solve();
+  EquilibriumAnalysis fresh(loaded, settings);
+  const EquilibriumResult expected = fresh.solve();
+  EXPECT_EQ(analysis.symbolic_analyses(), 1);
+  ASSERT_EQ(reused.status, SolverStatus::converged);
+  EXPECT_EQ(reused.stable, expected.stable);
+  EXPECT_EQ(reused.iterations, expected.iterations);
+  EXPECT_EQ(analysis.problem().rhs, fresh.problem().rhs);
+  EXPECT_LE(relative_difference(analysis.solution().x, fresh.solution().x), 1e-10);
+  ASSERT_EQ(reused.interfaces.size(), expected.interfaces.size());
+  const double weight = analysis.problem().total_weight;
+  for (size_t i = 0; i < expected.interfaces.size(); ++i) {
+    EXPECT_NEAR(reused.interfaces[i].normal_force, expected.interfaces[i].normal_force, 1e-10 * weight) << i;
+  }
+  // Warm from the unloaded optimum: the same answer to the solver's tolerance.
+  analysis.update_loads(plain);
+  analysis.solve();
+  analysis.update_loads(loaded);
+  const EquilibriumResult warm = analysis.solve(true);
+  ASSERT_EQ(warm.status, SolverStatus::converged);
+  EXPECT_NEAR(warm.penalty, expected.penalty, 1e-8 * (1.0 + expected.penalty));
+  EXPECT_EQ(analysis.symbolic_analyses(), 1);
+}
+
+TEST(EquilibriumAnalysis, HeavierBlockByTheRightHandSideAlone) {
+  // Voussoir 8 half as heavy again: set_rhs adds 0.5 W to its vertical
+  // row, the same QP as a fresh analysis of the arch with 0.5 W pressing
+  // down at its centroid (point loads keep the units), to rounding.
+  const Structure plain = semicircular_arch(16, 1.0);
+  const int j = 7;
+  const double extra = 0.5 * plain.block(j).mass() * kGravity;  // N
+  Structure heavier = semicircular_arch(16, 1.0);
+  heavier.add_load({j, {0, 0, -extra}, heavier.block(j).centroid()});
+  EquilibriumAnalysis analysis(plain, {});
+  ASSERT_TRUE(analysis.solve().stable);
+  const EquilibriumProblem& problem = analysis.problem();
+  Eigen::VectorXd rhs = problem.rhs;
+  rhs(problem.row_of_block[j] + problem.vertical_row()) += extra / problem.weight_unit;
+  analysis.set_rhs(rhs);
+  const EquilibriumResult reused = analysis.solve();
+  EquilibriumAnalysis fresh(heavier, {});
+  const EquilibriumResult expected = fresh.solve();
+  EXPECT_EQ(analysis.symbolic_analyses(), 1);
+  ASSERT_EQ(reused.status, SolverStatus::converged);
+  EXPECT_EQ(reused.stable, expected.stable);
+  EXPECT_LE((analysis.problem().rhs - fresh.problem().rhs).lpNorm<Eigen::Infinity>(), 1e-14);
+  EXPECT_LE(relative_difference(analysis.solution().x, fresh.solution().x), 1e-10);
+  // Another length is refused.
+  EXPECT_THROW(analysis.set_rhs(Eigen::VectorXd::Zero(problem.row_count + 1)), std::invalid_argument);
+}
+
+TEST(EquilibriumAnalysis, AGroupChangedInPlaceKeepsTheSymbolicAnalysis) {
+  // From a problem built by the caller: the slab's ground contact carries
+  // its weight; a corner's effect cut off and then restored changes the
+  // QP, not the pattern.
+  const Structure s = pushed_slab(0.0);
+  EquilibriumProblem problem = build_equilibrium_problem(s, {});
+  EquilibriumAnalysis analysis(std::move(problem), {});
+  EXPECT_THROW(analysis.solve(), std::logic_error);  // no structure to report on
+  ASSERT_EQ(analysis.solve_qp(analysis.settings().solver).status, SolverStatus::converged);
+  const Eigen::VectorXd before = analysis.solution().x;
+  const ForceGroup original = analysis.problem().groups[0];
+  ForceGroup cut = original;
+  cut.on_a.setZero();
+  cut.on_b.setZero();
+  analysis.set_group(0, cut);
+  ASSERT_EQ(analysis.solve_qp(analysis.settings().solver).status, SolverStatus::converged);
+  // The other three corners carry the slab (a vertex that carries nothing
+  // keeps only the interior point's rounding of a force).
+  EXPECT_GT(relative_difference(analysis.solution().x, before), 0.1);
+  EXPECT_LT(analysis.solution().x(0), 1e-3);
+  analysis.set_group(0, original);
+  ASSERT_EQ(analysis.solve_qp(analysis.settings().solver).status, SolverStatus::converged);
+  EXPECT_LE(relative_difference(analysis.solution().x, before), 1e-12);
+  EXPECT_EQ(analysis.symbolic_analyses(), 1);
+  ForceGroup other_kind = original;
+  other_kind.kind = GroupKind::weight;
+  EXPECT_THROW(analysis.set_group(0, other_kind), std::invalid_argument);
+}
+
+TEST(EquilibriumAnalysis, OneCoreMeansNoHelperThreads) {
+  // A column of 400 blocks: a normal matrix of 2,400 rows, which on all
+  // cores is factorised in two halves side by side (a helper thread,
+  // core/sparse_cholesky.hpp), on one core whole.
+  Structure column;
+  column.add(box({2, 2, 0.5}, {0, 0, -0.25}), true);
+  for (int k = 0; k < 400; ++k) column.add(box({1, 1, 0.5}, {0, 0, 0.25 + 0.5 * k}));
+  EquilibriumAnalysis warm_up(column, {}, SolverCores::one);  // libraries' own threads, if any
+  ASSERT_TRUE(warm_up.solve().stable);
+  const int threads = thread_count();
+  EquilibriumAnalysis one(column, {}, SolverCores::one);
+  EXPECT_EQ(one.cores(), SolverCores::one);
+  const EquilibriumResult on_one = one.solve();
+  // A new pattern (a block more) is analysed on one core again.
+  Structure taller = column;
+  taller.add(box({1, 1, 0.5}, {0, 0, 0.25 + 0.5 * 400}));
+  one.update(taller, {});
+  EXPECT_EQ(one.symbolic_analyses(), 2);
+  EXPECT_TRUE(one.solve().stable);
+  EXPECT_EQ(thread_count(), threads);
+  if (std::thread::hardware_concurrency() >= 2) {
+    EquilibriumAnalysis all(column, {});
+    EXPECT_EQ(all.cores(), SolverCores::all);
+    const EquilibriumResult on_all = all.solve();
+    EXPECT_GT(thread_count(), threads);
+    EXPECT_EQ(on_all.stable, on_one.stable);
+    EXPECT_NEAR(on_all.penalty, on_one.penalty, 1e-9 * (1.0 + on_one.penalty));
+  }
 }
