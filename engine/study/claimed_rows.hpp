@@ -25,6 +25,7 @@ struct ClaimTimes {
   double lease = 60.0;     // a run whose heartbeat is older than this (s) has lost its claims
   double heartbeat = 5.0;  // seconds between heartbeats
   double retry = 0.5;      // seconds between looks at rows other runs hold
+  double batch = 0.2;      // seconds of work per worker claimed at a time (at most 256 rows, at least 1)
 };
 
 class ClaimedRows {

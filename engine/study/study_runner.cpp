@@ -107,6 +107,26 @@ private:
   std::vector<std::thread> threads_;
 };
 
+// How many rows a worker gets per claim: about `batch` seconds of work by
+// the mean time of the rows so far (1 until one has finished), so that fast
+// rows do not cost a transaction each and slow ones are shared finely.
+class RowPace {
+public:
+  void add(const Outcome& outcome) {
+    seconds_ += std::max(outcome.seconds, 0.0);
+    ++rows_;
+  }
+  std::size_t per_worker(double batch) const {
+    if (rows_ == 0) return 1;
+    const double mean = std::max(seconds_ / static_cast<double>(rows_), 1e-6);
+    return static_cast<std::size_t>(std::clamp(batch / mean, 1.0, 256.0));
+  }
+
+private:
+  double seconds_ = 0.0;
+  std::size_t rows_ = 0;
+};
+
 // Sleeps up to `seconds` in short naps, returning early on a stop request.
 void nap(double seconds) {
   const double until = monotonic_seconds() + seconds;
@@ -135,10 +155,12 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
     return info;
   }
   ClaimedRows claims(store, name, std::move(unfinished), settings.claims);
+  RowPace pace;
 
   auto record = [&](std::vector<Outcome>& batch) {
     if (batch.empty()) return;
     for (Outcome& outcome : batch) {
+      pace.add(outcome);
       outcome = checked_outcome(std::move(outcome), table.parameter_names);
       info.errors += outcome.status == RunStatus::error;
       workers_seen.insert(outcome.worker);
@@ -154,27 +176,36 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
     // while a long row runs.
     const HeartbeatThread heartbeat(store.path(), name, claims.run(), settings.claims);
     std::vector<Outcome> batch;
-    while (!claims.done()) {
+    std::deque<Task> mine;  // claimed, not started
+    while (!(mine.empty() && claims.done())) {
       if (stop_requested()) {
         info.interrupted = true;
         break;
       }
-      std::vector<Task> next = claims.take(1);
-      if (next.empty()) {  // the rows left run in other processes: wait for them
-        progress.update(info.ran + claims.finished_elsewhere(), info.errors);
-        nap(std::max(claims.retry_in(), 0.01));
-        continue;
+      if (!claims.beat()) {  // lost the lease: claim the unstarted rows again
+        claims.give_back(std::vector<Task>(std::make_move_iterator(mine.begin()), std::make_move_iterator(mine.end())));
+        mine.clear();
       }
-      batch.push_back(calling_thread_worker->run(next.front()));
+      if (mine.empty()) {
+        std::vector<Task> next = claims.take(pace.per_worker(settings.claims.batch));
+        if (next.empty()) {  // the rows left run in other processes: wait for them
+          progress.update(info.ran + claims.finished_elsewhere(), info.errors);
+          nap(std::max(claims.retry_in(), 0.01));
+          continue;
+        }
+        mine.assign(std::make_move_iterator(next.begin()), std::make_move_iterator(next.end()));
+      }
+      batch.push_back(calling_thread_worker->run(mine.front()));
+      mine.pop_front();
       batch.back().worker = 1;
       record(batch);
       progress.update(info.ran + claims.finished_elsewhere(), info.errors);
     }
   } else {
     SharedQueue queue;
-    // Rows to keep claimed ahead: one waiting per thread, and what the
-    // remotes hold.
-    const std::size_t ahead = static_cast<std::size_t>(settings.threads) + (remote ? remote->capacity() : 0);
+    // Workers to keep rows claimed ahead for: the threads and what the
+    // remotes hold; each gets RowPace's rows per claim.
+    const std::size_t slots = static_cast<std::size_t>(settings.threads) + (remote ? remote->capacity() : 0);
     auto refill = [&] {
       std::vector<Task> returned;
       {
@@ -192,7 +223,9 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
         std::lock_guard lock(queue.mutex);
         queued = queue.pending.size();
       }
-      std::vector<Task> taken = queued < ahead ? claims.take(ahead - queued) : std::vector<Task>{};
+      // Claimed again once half of what was claimed ahead has started.
+      const std::size_t ahead = slots * pace.per_worker(settings.claims.batch);
+      std::vector<Task> taken = 2 * queued <= ahead ? claims.take(ahead - queued) : std::vector<Task>{};
       std::lock_guard lock(queue.mutex);
       for (Task& task : taken) queue.pending.push_back(std::move(task));
       if (claims.done()) queue.no_more = true;

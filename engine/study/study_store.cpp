@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <map>
 #include <set>
+#include <thread>
 
 #include <sqlite3.h>
 
@@ -78,7 +80,7 @@ StudyStore::StudyStore(const std::string& path, bool read_only) : path_(path) {
     throw IoError("cannot open study database '" + path + "': " + message);
   }
   sqlite3_busy_timeout(db_, 10000);
-  try {
+  const auto set_up = [&] {
     // WAL with synchronous=NORMAL: a commit survives the process being
     // killed (only a power cut can lose the last ones), and costs no fsync.
     if (!read_only && !path.empty()) execute(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL");
@@ -94,9 +96,25 @@ StudyStore::StudyStore(const std::string& path, bool read_only) : path_(path) {
               "CREATE TABLE IF NOT EXISTS ashlar_claims(study TEXT NOT NULL, row INTEGER NOT NULL,"
               " run INTEGER NOT NULL, PRIMARY KEY(study, row));"
               "CREATE INDEX IF NOT EXISTS ashlar_claims_run ON ashlar_claims(run)");
-  } catch (const IoError& e) {
-    sqlite3_close(db_);
-    throw IoError("cannot use study database '" + path + "': " + e.what());
+  };
+  // Processes opening a new file together: switching it to WAL, or a
+  // statement that read the schema and then writes, may find the file
+  // locked without SQLite waiting (it would deadlock). Every step is
+  // idempotent, so it is tried again, for as long as the busy timeout.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  for (;;) {
+    try {
+      set_up();
+      break;
+    } catch (const IoError& e) {
+      const int code = sqlite3_errcode(db_) & 0xff;
+      if ((code == SQLITE_BUSY || code == SQLITE_LOCKED) && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        continue;
+      }
+      sqlite3_close(db_);
+      throw IoError("cannot use study database '" + path + "': " + e.what());
+    }
   }
 }
 

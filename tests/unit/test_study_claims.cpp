@@ -230,6 +230,45 @@ TEST(StudyClaims, ClaimedRowsWaitForRowsHeldElsewhereAndTakeThemWhenStale) {
   EXPECT_TRUE(rows.done());
 }
 
+namespace {
+
+class SleepingWorker : public RowWorker {
+public:
+  Outcome run(const Task& task) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    ++runs;
+    return squared(task);
+  }
+  std::atomic<int> runs{0};
+};
+
+}  // namespace
+
+// A row longer than the lease, run on the calling thread: the heartbeat
+// thread keeps the claim.
+TEST(StudyClaims, ARowLongerThanTheLeaseKeepsItsClaim) {
+  const std::string db = temp_db("long");
+  StudyStore a(db), b(db);
+  const StudyTable table = a.open_study("s", numbers(2));
+  StudySettings settings;
+  settings.threads = 0;
+  settings.progress = false;
+  settings.claims.lease = 0.3;
+  settings.claims.heartbeat = 0.05;
+  SleepingWorker worker;
+  StudyRunInfo info;
+  std::thread runner([&] { info = run_study(a, "s", table, settings, &worker, {}); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));  // the first row runs, claimed 0.4 s ago
+  const std::int64_t run_b = b.begin_run("s", settings.claims.lease);
+  const auto result = b.claim("s", run_b, {table.rows[0].task.id}, 1, settings.claims.lease);
+  b.end_run(run_b);
+  runner.join();
+  EXPECT_EQ(result.elsewhere, (std::vector<std::int64_t>{table.rows[0].task.id}));
+  EXPECT_TRUE(result.claimed.empty());
+  EXPECT_EQ(worker.runs.load(), 2);
+  EXPECT_EQ(info.ran, 2u);
+}
+
 TEST(ProcessIdentity, AProcessThatEndedIsKnownToHaveEnded) {
   const ProcessIdentity& self = this_process();
   EXPECT_FALSE(has_ended(self));
