@@ -1,8 +1,9 @@
 #include "study/process_identity.hpp"
 
 #include <cerrno>
-#include <climits>
+#include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <signal.h>
 #include <sstream>
 #include <unistd.h>
@@ -34,7 +35,7 @@ std::int64_t start_ticks(std::int64_t pid) {
 
 ProcessIdentity identify() {
   ProcessIdentity self;
-  char host[HOST_NAME_MAX + 1] = {};
+  char host[256] = {};
   if (gethostname(host, sizeof host - 1) == 0) self.host = host;
   self.pid = static_cast<std::int64_t>(getpid());
   self.started = start_ticks(self.pid);

@@ -29,13 +29,12 @@ namespace {
 struct SharedQueue {
   std::mutex mutex;
   std::condition_variable changed;         // to the coordinator: an outcome, a thread ended
-  std::condition_variable work_available;  // to the threads: a task, or nothing more to come
+  std::condition_variable work_available;  // to the threads: a task, or stop
   std::deque<Task> pending;                // claimed, not started
   std::vector<Outcome> outcomes;
   std::size_t running = 0;      // tasks taken by threads whose outcome is not queued yet
   int live_threads = 0;
-  bool no_more = false;         // every row handed out: threads end when pending is empty
-  bool stop = false;            // no more tasks to anyone
+  bool stop = false;            // no more tasks to anyone: the threads end
   std::vector<std::string> failures;
 
   std::optional<Task> take() {  // with the mutex held
@@ -58,7 +57,7 @@ void work(SharedQueue& queue, const WorkerFactory& factory, int number) {
     std::optional<Task> task;
     {
       std::unique_lock lock(queue.mutex);
-      queue.work_available.wait(lock, [&] { return queue.stop || queue.no_more || !queue.pending.empty(); });
+      queue.work_available.wait(lock, [&] { return queue.stop || !queue.pending.empty(); });
       task = queue.take();
       if (!task) break;
       ++queue.running;
@@ -206,11 +205,13 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
     // Workers to keep rows claimed ahead for: the threads and what the
     // remotes hold; each gets RowPace's rows per claim.
     const std::size_t slots = static_cast<std::size_t>(settings.threads) + (remote ? remote->capacity() : 0);
+    // Keeps the heartbeat to the end (rows may run long after the last is
+    // claimed) and the queue filled.
     auto refill = [&] {
       std::vector<Task> returned;
       {
         std::lock_guard lock(queue.mutex);
-        if (queue.stop || queue.no_more) return;
+        if (queue.stop) return;
       }
       if (!claims.beat()) {  // lost the lease: claim the unstarted rows again
         std::lock_guard lock(queue.mutex);
@@ -226,10 +227,10 @@ StudyRunInfo run_study(StudyStore& store, const std::string& name, const StudyTa
       // Claimed again once half of what was claimed ahead has started.
       const std::size_t ahead = slots * pace.per_worker(settings.claims.batch);
       std::vector<Task> taken = 2 * queued <= ahead ? claims.take(ahead - queued) : std::vector<Task>{};
+      if (taken.empty()) return;
       std::lock_guard lock(queue.mutex);
       for (Task& task : taken) queue.pending.push_back(std::move(task));
-      if (claims.done()) queue.no_more = true;
-      if (!taken.empty() || queue.no_more) queue.work_available.notify_all();
+      queue.work_available.notify_all();
     };
     refill();  // before the threads start: work for them at once
     {

@@ -230,6 +230,36 @@ TEST(StudyClaims, ClaimedRowsWaitForRowsHeldElsewhereAndTakeThemWhenStale) {
   EXPECT_TRUE(rows.done());
 }
 
+// A run silent for longer than the lease (a process stopped, a laptop
+// asleep) is told so by its next beat, and claims its unstarted rows again:
+// those another run took meanwhile it leaves to that run.
+TEST(StudyClaims, ARunThatLostItsLeaseClaimsItsUnstartedRowsAgain) {
+  const std::string db = temp_db("lost");
+  StudyStore a(db), b(db);
+  const StudyTable table = a.open_study("s", numbers(4));
+  std::vector<Task> tasks;
+  for (const Row& row : table.rows) tasks.push_back(row.task);
+  ClaimTimes times;
+  times.lease = 0.2;
+  times.heartbeat = 0.05;
+  ClaimedRows rows(a, "s", tasks, times);
+  std::vector<Task> held = rows.take(4);
+  ASSERT_EQ(held.size(), 4u);
+  EXPECT_TRUE(rows.done());
+  EXPECT_TRUE(rows.beat());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const std::int64_t run_b = b.begin_run("s", times.lease);  // forgets A's run: stale
+  ASSERT_EQ(b.claim("s", run_b, {tasks[0].id}, 1, times.lease).claimed.size(), 1u);
+  EXPECT_FALSE(rows.beat());
+  rows.give_back(std::move(held));
+  EXPECT_FALSE(rows.done());
+  const std::vector<Task> again = rows.take(4);
+  ASSERT_EQ(again.size(), 3u);
+  EXPECT_EQ(again[0].id, tasks[1].id);
+  EXPECT_EQ(rows.held_elsewhere(), 1u);
+  EXPECT_TRUE(rows.beat());
+}
+
 namespace {
 
 class SleepingWorker : public RowWorker {
