@@ -12,8 +12,8 @@ namespace ashlar::study {
 
 namespace {
 
-// Heartbeats are wall-clock seconds (Unix time), compared across machines:
-// their clocks must agree to well within the lease (NTP does).
+// Heartbeats are wall-clock seconds (Unix time), so that every process
+// (and the sqlite3 shell: unixepoch()) reads them alike.
 double now_seconds() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
