@@ -148,6 +148,16 @@ int run_worker_script(lua_State* L) {
   if (!sandboxed) host::open_host_libraries(L);  // else they are open, restricted
   host::prepend_script_folder_to_path(L, invocation.path().c_str());
   host::create_arg_table(L, invocation.argv, invocation.script);
+  if (!sandboxed) {
+    // The globals the host gives a script outside a sandbox, so that the
+    // script runs here as it did in the calling state.
+    for (const auto& [global, module] : {std::pair{"ashlar", "ashlar"}, std::pair{"models", "ashlar.models"}}) {
+      lua_getglobal(L, "require");
+      lua_pushstring(L, module);
+      lua_call(L, 1, 1);
+      lua_setglobal(L, global);
+    }
+  }
   lua_pushcfunction(L, do_nothing);  // runs print in step; their output would garble the progress line
   lua_setglobal(L, "print");
   lua_pushlightuserdata(L, slot);

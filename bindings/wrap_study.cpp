@@ -361,7 +361,7 @@ int w_study_info(lua_State* L) {
     const StudyObject& study = *kept;
     const std::size_t finished = study.table.finished_count(), errors = study.table.error_count();
     return call_protected(L, 0, [&](lua_State* L) {
-      lua_createtable(L, 0, 12);
+      lua_createtable(L, 0, 13);
       set_string(L, "name", study.name.c_str());
       if (!study.db.empty()) set_string(L, "db", study.db.c_str());
       set_integer(L, "rows", study.table.rows.size());
@@ -369,6 +369,7 @@ int w_study_info(lua_State* L) {
       set_integer(L, "errors", errors);
       set_integer(L, "pending", study.table.rows.size() - finished);
       set_integer(L, "ran", study.info.ran);
+      set_integer(L, "elsewhere", study.info.elsewhere);
       set_field(L, "seconds", study.info.seconds);
       set_field(L, "runs_per_second", study.info.seconds > 0 ? static_cast<double>(study.info.ran) / study.info.seconds : 0.0);
       set_integer(L, "workers", static_cast<std::size_t>(study.info.workers));

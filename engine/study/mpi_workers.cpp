@@ -50,6 +50,10 @@ std::size_t RankWorkers::in_flight() const {
   return static_cast<std::size_t>(std::accumulate(outstanding_.begin(), outstanding_.end(), 0));
 }
 
+std::size_t RankWorkers::capacity() const {
+  return static_cast<std::size_t>(kRowsInFlight) * (outstanding_.size() - 1);
+}
+
 void RankWorkers::handle(int source, int tag, const std::string& bytes, std::vector<Outcome>& arrived) {
   if (tag == kReached) {
     if (bytes != study_name_)

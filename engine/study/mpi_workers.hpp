@@ -26,6 +26,7 @@ public:
 
   void exchange(const std::function<std::optional<Task>()>& next_task, std::vector<Outcome>& arrived) override;
   std::size_t in_flight() const override;
+  std::size_t capacity() const override;
 
   // Waits until every rank has reached the study, then sends each the
   // finished table.

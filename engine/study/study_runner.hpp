@@ -1,7 +1,13 @@
 // Runs the unfinished rows of a study: on the calling thread, on worker
 // threads (each with its own worker, e.g. its own Lua state), and on remote
 // workers (MPI ranks), recording every outcome in the store as it arrives.
-// The calling thread is the only one that touches the store.
+// The calling thread is the only one that touches the store (but for the
+// heartbeat thread while it runs a row itself, see claimed_rows).
+//
+// Other processes may run the same study on the same database: rows are
+// claimed a few at a time (what the workers can take next) before they run,
+// so no row runs in two processes; rows other processes hold are waited for
+// (see claimed_rows), so the run ends with every row of the table finished.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "study/claimed_rows.hpp"
 #include "study/study_store.hpp"
 
 namespace ashlar::study {
@@ -39,6 +46,8 @@ public:
   virtual void exchange(const std::function<std::optional<Task>()>& next_task, std::vector<Outcome>& arrived) = 0;
   // Tasks handed out whose outcome has not arrived.
   virtual std::size_t in_flight() const = 0;
+  // Tasks the remotes can hold at once: how many rows to claim for them.
+  virtual std::size_t capacity() const = 0;
 };
 
 struct StudySettings {
@@ -47,6 +56,7 @@ struct StudySettings {
   int threads = 0;
   bool progress = true;  // progress line on stderr
   double log_interval = 10.0;  // seconds between progress lines when stderr is not a terminal
+  ClaimTimes claims;           // lease, heartbeat and retry of rows other processes hold
 };
 
 struct StudyRunInfo {
@@ -55,6 +65,7 @@ struct StudyRunInfo {
   double seconds = 0.0;      // wall time of this session
   int workers = 0;           // workers that ran rows (threads + remotes' first outcomes)
   bool interrupted = false;  // Ctrl-C: stopped handing out rows, kept what finished
+  std::size_t elsewhere = 0;  // rows other processes finished meanwhile (none of them ran here)
   std::vector<std::string> worker_failures;  // workers that could not start, with why
 };
 

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <map>
 #include <set>
+#include <thread>
 
 #include <sqlite3.h>
 
 #include "core/error.hpp"
 #include "core/text.hpp"
+#include "study/sqlite_statement.hpp"
 
 namespace ashlar::study {
 
@@ -34,88 +37,6 @@ std::string merged_kind(const std::string& kind, const char* added) {
 }
 
 std::string quoted(const std::string& identifier) { return "\"" + identifier + "\""; }
-
-class Statement {
-public:
-  Statement(sqlite3* db, const std::string& sql) : db_(db) {
-    if (sqlite3_prepare_v2(db, sql.c_str(), static_cast<int>(sql.size()), &statement_, nullptr) != SQLITE_OK)
-      throw IoError(std::string("study database: ") + sqlite3_errmsg(db) + " in: " + sql);
-  }
-  ~Statement() { sqlite3_finalize(statement_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  Statement& bind(int index, const Value& value) {
-    int rc = SQLITE_OK;
-    if (const auto* b = std::get_if<bool>(&value)) rc = sqlite3_bind_int64(statement_, index, *b ? 1 : 0);
-    else if (const auto* i = std::get_if<std::int64_t>(&value)) rc = sqlite3_bind_int64(statement_, index, *i);
-    else if (const auto* d = std::get_if<double>(&value)) rc = sqlite3_bind_double(statement_, index, *d);
-    else if (const auto* s = std::get_if<std::string>(&value))
-      rc = sqlite3_bind_text(statement_, index, s->data(), static_cast<int>(s->size()), SQLITE_TRANSIENT);
-    else rc = sqlite3_bind_null(statement_, index);
-    if (rc != SQLITE_OK) fail();
-    return *this;
-  }
-  // True while there is a row to read.
-  bool step() {
-    const int rc = sqlite3_step(statement_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc != SQLITE_DONE) fail();
-    return false;
-  }
-  void run() {
-    while (step()) {
-    }
-  }
-  Value column(int index, const std::string& kind = "") const {
-    switch (sqlite3_column_type(statement_, index)) {
-      case SQLITE_INTEGER: {
-        const std::int64_t v = sqlite3_column_int64(statement_, index);
-        if (kind == kBoolean) return v != 0;
-        return v;
-      }
-      case SQLITE_FLOAT: return sqlite3_column_double(statement_, index);
-      case SQLITE_TEXT:
-      case SQLITE_BLOB: {
-        const auto* text = static_cast<const char*>(sqlite3_column_blob(statement_, index));
-        return std::string(text ? text : "", static_cast<std::size_t>(sqlite3_column_bytes(statement_, index)));
-      }
-      default: return std::monostate{};
-    }
-  }
-  std::string text(int index) const { return to_text(column(index)); }
-
-private:
-  [[noreturn]] void fail() const { throw IoError(std::string("study database: ") + sqlite3_errmsg(db_)); }
-  sqlite3* db_;
-  sqlite3_stmt* statement_ = nullptr;
-};
-
-void execute(sqlite3* db, const std::string& sql) {
-  char* message = nullptr;
-  if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
-    const std::string text = message ? message : sqlite3_errmsg(db);
-    sqlite3_free(message);
-    throw IoError("study database: " + text);
-  }
-}
-
-// BEGIN IMMEDIATE ... COMMIT, rolled back when left by an exception.
-class Transaction {
-public:
-  explicit Transaction(sqlite3* db) : db_(db) { execute(db_, "BEGIN IMMEDIATE"); }
-  ~Transaction() {
-    if (!committed_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-  }
-  void commit() {
-    execute(db_, "COMMIT");
-    committed_ = true;
-  }
-
-private:
-  sqlite3* db_;
-  bool committed_ = false;
-};
 
 }  // namespace
 
@@ -159,7 +80,7 @@ StudyStore::StudyStore(const std::string& path, bool read_only) : path_(path) {
     throw IoError("cannot open study database '" + path + "': " + message);
   }
   sqlite3_busy_timeout(db_, 10000);
-  try {
+  const auto set_up = [&] {
     // WAL with synchronous=NORMAL: a commit survives the process being
     // killed (only a power cut can lose the last ones), and costs no fsync.
     if (!read_only && !path.empty()) execute(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL");
@@ -168,35 +89,55 @@ StudyStore::StudyStore(const std::string& path, bool read_only) : path_(path) {
               "CREATE TABLE IF NOT EXISTS ashlar_studies(name TEXT PRIMARY KEY, parameters TEXT NOT NULL,"
               " created TEXT NOT NULL);"
               "CREATE TABLE IF NOT EXISTS ashlar_columns(study TEXT NOT NULL, name TEXT NOT NULL,"
-              " role TEXT NOT NULL, kind TEXT NOT NULL, position INTEGER NOT NULL, PRIMARY KEY(study, name))");
-  } catch (const IoError& e) {
-    sqlite3_close(db_);
-    throw IoError("cannot use study database '" + path + "': " + e.what());
+              " role TEXT NOT NULL, kind TEXT NOT NULL, position INTEGER NOT NULL, PRIMARY KEY(study, name));"
+              "CREATE TABLE IF NOT EXISTS ashlar_runs(id INTEGER PRIMARY KEY AUTOINCREMENT, study TEXT NOT NULL,"
+              " host TEXT NOT NULL, machine TEXT NOT NULL, pid INTEGER NOT NULL, process_started INTEGER NOT NULL,"
+              " started TEXT NOT NULL, heartbeat REAL NOT NULL);"
+              "CREATE TABLE IF NOT EXISTS ashlar_claims(study TEXT NOT NULL, row INTEGER NOT NULL,"
+              " run INTEGER NOT NULL, PRIMARY KEY(study, row));"
+              "CREATE INDEX IF NOT EXISTS ashlar_claims_run ON ashlar_claims(run)");
+  };
+  // Processes opening a new file together: switching it to WAL, or a
+  // statement that read the schema and then writes, may find the file
+  // locked without SQLite waiting (it would deadlock). Every step is
+  // idempotent, so it is tried again, for as long as the busy timeout.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  for (;;) {
+    try {
+      set_up();
+      break;
+    } catch (const IoError& e) {
+      const int code = sqlite3_errcode(db_) & 0xff;
+      if ((code == SQLITE_BUSY || code == SQLITE_LOCKED) && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        continue;
+      }
+      sqlite3_close(db_);
+      throw IoError("cannot use study database '" + path + "': " + e.what());
+    }
   }
 }
 
 StudyStore::~StudyStore() { sqlite3_close(db_); }
 
-StudyStore::StudyColumns& StudyStore::columns_of(const std::string& name) {
-  for (auto& columns : columns_)
-    if (columns->study == name) return *columns;
+// Read afresh every time: another process may have added columns since.
+StudyStore::StudyColumns StudyStore::columns_of(const std::string& name) {
   const std::string missing = "no study '" + name + "' in '" + path_ + "'";
   Statement bookkeeping(db_, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'ashlar_studies'");
   if (!bookkeeping.step()) throw InvalidArgument(missing);
   Statement study(db_, "SELECT parameters FROM ashlar_studies WHERE name = ?");
   study.bind(1, name);
   if (!study.step()) throw InvalidArgument(missing);
-  auto columns = std::make_unique<StudyColumns>();
-  columns->study = name;
+  StudyColumns columns;
+  columns.study = name;
   Statement select(db_, "SELECT name, role, kind FROM ashlar_columns WHERE study = ? ORDER BY position");
   select.bind(1, name);
   while (select.step()) {
     const std::string column = select.text(0);
-    (select.text(1) == "parameter" ? columns->parameter_names : columns->field_names).push_back(column);
-    columns->kind[column] = select.text(2);
+    (select.text(1) == "parameter" ? columns.parameter_names : columns.field_names).push_back(column);
+    columns.kind[column] = select.text(2);
   }
-  columns_.push_back(std::move(columns));
-  return *columns_.back();
+  return columns;
 }
 
 StudyTable StudyStore::open_study(const std::string& name, const ParameterRows& rows, bool rerun_errors) {
@@ -224,7 +165,7 @@ StudyTable StudyStore::open_study(const std::string& name, const ParameterRows& 
       column.bind(1, name).bind(2, rows.names[c]).bind(3, kind).bind(4, static_cast<std::int64_t>(c)).run();
     }
   }
-  StudyColumns& columns = columns_of(name);
+  StudyColumns columns = columns_of(name);
   if (rerun_errors)
     execute(db_, "UPDATE " + quoted(name) +
                      " SET run_status = NULL, run_error = NULL, run_seconds = NULL, run_worker = NULL,"
@@ -259,7 +200,7 @@ StudyTable StudyStore::open_study(const std::string& name, const ParameterRows& 
     Statement insert(db_, insert_sql);
     for (std::size_t c = 0; c < row.size(); ++c) insert.bind(static_cast<int>(c) + 1, row[c]);
     insert.run();
-    ids.push_back(sqlite3_last_insert_rowid(db_));
+    ids.push_back(last_insert_id(db_));
   }
   transaction.commit();
 
@@ -280,7 +221,7 @@ StudyTable StudyStore::read_study(const std::string& name) {
 }
 
 StudyTable StudyStore::read_rows(const std::string& name) {
-  StudyColumns& columns = columns_of(name);
+  StudyColumns columns = columns_of(name);
   StudyTable table;
   table.parameter_names = columns.parameter_names;
   table.field_names = columns.field_names;
@@ -317,51 +258,47 @@ StudyTable StudyStore::read_rows(const std::string& name) {
 
 void StudyStore::record(const std::string& name, const std::vector<Outcome>& outcomes) {
   if (outcomes.empty()) return;
-  StudyColumns& columns = columns_of(name);
   Transaction transaction(db_);
-  const auto old_fields = columns.field_names;
-  const auto old_kinds = columns.kind;
-  try {
-    for (const Outcome& outcome : outcomes) {
-      if (const std::string problem = fields_problem(outcome, columns.parameter_names); !problem.empty())
-        throw InvalidArgument("returned field " + problem);
-      std::string update = "UPDATE " + quoted(name) + " SET ";
-      for (const auto& [field, value] : outcome.fields) {
-        const bool known = columns.kind.count(field) != 0;
-        const std::string kind = merged_kind(known ? columns.kind[field] : "", kind_of(value));
-        if (!known) {
-          execute(db_, "ALTER TABLE " + quoted(name) + " ADD COLUMN " + quoted(field));
-          Statement column(db_, "INSERT INTO ashlar_columns(study, name, role, kind, position) VALUES(?, ?, 'field', ?, ?)");
-          column.bind(1, name).bind(2, field).bind(3, kind)
-              .bind(4, static_cast<std::int64_t>(columns.parameter_names.size() + columns.field_names.size()))
-              .run();
-          columns.field_names.push_back(field);
-        } else if (kind != columns.kind[field]) {
-          Statement column(db_, "UPDATE ashlar_columns SET kind = ? WHERE study = ? AND name = ?");
-          column.bind(1, kind).bind(2, name).bind(3, field).run();
-        }
-        columns.kind[field] = kind;
-        update += quoted(field) + " = ?, ";
+  // Read inside the write transaction: the columns as they are now, with
+  // those other processes added, and nobody adds one until this commits.
+  StudyColumns columns = columns_of(name);
+  Statement release(db_, "DELETE FROM ashlar_claims WHERE study = ? AND row = ?");
+  for (const Outcome& outcome : outcomes) {
+    if (const std::string problem = fields_problem(outcome, columns.parameter_names); !problem.empty())
+      throw InvalidArgument("returned field " + problem);
+    std::string update = "UPDATE " + quoted(name) + " SET ";
+    for (const auto& [field, value] : outcome.fields) {
+      const bool known = columns.kind.count(field) != 0;
+      const std::string kind = merged_kind(known ? columns.kind[field] : "", kind_of(value));
+      if (!known) {
+        execute(db_, "ALTER TABLE " + quoted(name) + " ADD COLUMN " + quoted(field));
+        Statement column(db_, "INSERT INTO ashlar_columns(study, name, role, kind, position) VALUES(?, ?, 'field', ?, ?)");
+        column.bind(1, name).bind(2, field).bind(3, kind)
+            .bind(4, static_cast<std::int64_t>(columns.parameter_names.size() + columns.field_names.size()))
+            .run();
+        columns.field_names.push_back(field);
+      } else if (kind != columns.kind[field]) {
+        Statement column(db_, "UPDATE ashlar_columns SET kind = ? WHERE study = ? AND name = ?");
+        column.bind(1, kind).bind(2, name).bind(3, field).run();
       }
-      update += "run_status = ?, run_error = ?, run_seconds = ?, run_worker = ?,"
-                " run_finished = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND run_status IS NULL";
-      Statement statement(db_, update);
-      int index = 1;
-      for (const auto& field : outcome.fields) statement.bind(index++, field.second);
-      statement.bind(index, std::string(status_name(outcome.status)));
-      statement.bind(index + 1, outcome.error.empty() ? Value{} : Value{outcome.error});
-      statement.bind(index + 2, outcome.seconds);
-      statement.bind(index + 3, static_cast<std::int64_t>(outcome.worker));
-      statement.bind(index + 4, outcome.id);
-      statement
-          .run();
+      columns.kind[field] = kind;
+      update += quoted(field) + " = ?, ";
     }
-    transaction.commit();
-  } catch (...) {
-    columns.field_names = old_fields;  // the rollback also took the new columns away
-    columns.kind = old_kinds;
-    throw;
+    update += "run_status = ?, run_error = ?, run_seconds = ?, run_worker = ?,"
+              " run_finished = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND run_status IS NULL";
+    Statement statement(db_, update);
+    int index = 1;
+    for (const auto& field : outcome.fields) statement.bind(index++, field.second);
+    statement.bind(index, std::string(status_name(outcome.status)));
+    statement.bind(index + 1, outcome.error.empty() ? Value{} : Value{outcome.error});
+    statement.bind(index + 2, outcome.seconds);
+    statement.bind(index + 3, static_cast<std::int64_t>(outcome.worker));
+    statement.bind(index + 4, outcome.id);
+    statement.run();
+    release.reset();
+    release.bind(1, name).bind(2, outcome.id).run();
   }
+  transaction.commit();
 }
 
 }  // namespace ashlar::study

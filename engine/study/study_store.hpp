@@ -7,9 +7,21 @@
 // Every change is one transaction in WAL mode, so a process killed at any
 // instant (kill -9 included) leaves every recorded run and no partial one;
 // a finished row is recorded once: recording skips rows already finished.
+//
+// Several processes may use one database at once. Every decision about the
+// schema (a study's table, a new field column) is taken inside the write
+// transaction that acts on it, from what the database holds then, never
+// from what this connection saw earlier. Rows are shared out by claims
+// (study_store_claims.cpp): two more tables, ashlar_runs (one row per
+// process running a study: host, pid, started, heartbeat) and ashlar_claims
+// (study, row, run), say which process is computing which row. A claim
+// counts while its run's heartbeat is younger than the lease; a claim of a
+// run whose heartbeat is older, or whose process is known to have ended,
+// is free to take.
 #pragma once
 
-#include <memory>
+#include <cstdint>
+
 #include <string>
 #include <vector>
 
@@ -44,19 +56,46 @@ public:
 
   // Records finished runs of study `name` in one transaction: returned
   // fields not seen before become columns. Rows already finished are left
-  // as they are. Throws InvalidArgument for fields that fields_problem rejects.
+  // as they are; the claims of the recorded rows are released. Throws
+  // InvalidArgument for fields that fields_problem rejects.
   void record(const std::string& name, const std::vector<Outcome>& outcomes);
+
+  // Claims (study_store_claims.cpp). `lease` is in seconds.
+
+  // Registers this process as a run of study `name` and returns the run's
+  // id. Forgets runs whose lease ran out or whose process has ended, with
+  // their claims.
+  std::int64_t begin_run(const std::string& name, double lease);
+  // Refreshes the run's heartbeat. False when the run had lost its lease
+  // (its last heartbeat older than `lease`, or forgotten as stale by another
+  // process): its claims may have been taken, so rows it holds but has not
+  // started must be claimed again. The run is registered again either way.
+  bool heartbeat(const std::string& name, std::int64_t run, double lease);
+  // Claims for `run`, in one transaction, up to `count` of the rows
+  // `candidates` (ids, looked at in order) that are unfinished and not
+  // claimed by another live run; refreshes the run's heartbeat as
+  // heartbeat() does.
+  struct ClaimResult {
+    bool lease_kept = true;               // as heartbeat() returns
+    std::vector<std::int64_t> claimed;    // now the run's
+    std::vector<std::int64_t> finished;   // recorded already
+    std::vector<std::int64_t> elsewhere;  // claimed by other live runs
+    std::size_t examined = 0;             // candidates looked at: the first ones
+  };
+  ClaimResult claim(const std::string& name, std::int64_t run, const std::vector<std::int64_t>& candidates,
+                    std::size_t count, double lease);
+  // Releases every claim of `run` and removes it.
+  void end_run(std::int64_t run);
 
   const std::string& path() const { return path_; }
 
 private:
   struct StudyColumns;
-  StudyColumns& columns_of(const std::string& name);
+  StudyColumns columns_of(const std::string& name);
   StudyTable read_rows(const std::string& name);
 
   std::string path_;
   sqlite3* db_ = nullptr;
-  std::vector<std::unique_ptr<StudyColumns>> columns_;
 };
 
 // Empty when the outcome's fields may be columns of a study with these
