@@ -13,7 +13,6 @@
 #include <new>
 #include <string>
 #include <system_error>
-#include <thread>
 
 #include "ashlar_lua.hpp"
 #include "core/interrupt.hpp"
@@ -25,13 +24,13 @@ namespace ashlar::host {
 namespace {
 
 // The state running a chunk, for the signal handlers; chunks run one at a
-// time, on the main thread. Atomic: the SIGTERM thread reads it.
+// time, on the main thread.
 std::atomic<lua_State*> g_running_state{nullptr};
 volatile std::sig_atomic_t g_interrupted = 0;
 std::atomic<bool> g_terminated{false};
 pthread_t g_main_thread;
-// The SIGTERM thread hands a termination to the main thread with this
-// signal, whose handler (on_termination) nothing else installs.
+// A SIGTERM taken by another thread is handed to the main thread, which
+// runs Lua, with this signal, whose handler nothing else installs.
 constexpr int kTerminationSignal = SIGUSR1;
 
 void stop_at_hook(lua_State* L, lua_Debug*) {
@@ -55,8 +54,6 @@ void on_interrupt(int signal_number) {
   stop_running_chunk();
 }
 
-void on_termination(int) { stop_running_chunk(); }
-
 // Ends the process by SIGTERM, as if nothing had caught it.
 [[noreturn]] void die_by_sigterm() {
   std::signal(SIGTERM, SIG_DFL);
@@ -68,16 +65,18 @@ void on_termination(int) { stop_running_chunk(); }
   std::_Exit(128 + SIGTERM);  // not reached
 }
 
-void wait_for_sigterm(sigset_t terminate) {
-  for (;;) {
-    int signal_number = 0;
-    if (sigwait(&terminate, &signal_number) != 0) continue;
-    // A chunk to stop, the first time: the main thread stops it and ends
-    // the process when it is done. Else nothing is left to save.
-    if (g_terminated.exchange(true) || g_running_state.load() == nullptr) die_by_sigterm();
+void on_termination(int) {
+  // A chunk to stop, the first time: the main thread stops it and ends the
+  // process when it is done. Else nothing is left to save.
+  if (g_terminated.exchange(true) || g_running_state.load() == nullptr) die_by_sigterm();
+  if (pthread_equal(pthread_self(), g_main_thread)) {
+    stop_running_chunk();
+  } else {
     pthread_kill(g_main_thread, kTerminationSignal);
   }
 }
+
+void on_handed_termination(int) { stop_running_chunk(); }
 
 int add_traceback(lua_State* L) {
   const char* message = lua_tostring(L, 1);
@@ -202,17 +201,20 @@ int call_with_traceback(lua_State* L, int argument_count, int result_count) {
 
 bool interrupted() { return g_interrupted != 0 || g_terminated; }
 
-void watch_for_termination() {
+TerminationWatch::TerminationWatch() {
   g_main_thread = pthread_self();
   struct sigaction handler {};
-  handler.sa_handler = on_termination;
   sigemptyset(&handler.sa_mask);
-  sigaction(kTerminationSignal, &handler, nullptr);
-  sigset_t terminate;
-  sigemptyset(&terminate);
-  sigaddset(&terminate, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &terminate, nullptr);  // every thread started later inherits it
-  std::thread(wait_for_sigterm, terminate).detach();
+  handler.sa_flags = SA_RESTART;
+  handler.sa_handler = on_handed_termination;
+  sigaction(kTerminationSignal, &handler, &saved_handed_);
+  handler.sa_handler = on_termination;
+  sigaction(SIGTERM, &handler, &saved_terminate_);
+}
+
+TerminationWatch::~TerminationWatch() {
+  sigaction(SIGTERM, &saved_terminate_, nullptr);
+  sigaction(kTerminationSignal, &saved_handed_, nullptr);
 }
 
 bool terminated() { return g_terminated.load(); }

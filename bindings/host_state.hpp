@@ -3,6 +3,7 @@
 // state of its own.
 #pragma once
 
+#include <csignal>
 #include <string>
 #include <vector>
 
@@ -53,12 +54,21 @@ bool interrupted();
 // SIGTERM (what Slurm sends on scancel and at a job's time limit; kill's
 // default) stops the running chunk at a safe point as Ctrl-C does, with the
 // error "terminated (SIGTERM)"; with no chunk running, or at a second
-// SIGTERM, the process ends at once. Call first thing in main, before any
-// thread starts: SIGTERM is blocked in every thread and taken by a thread of
-// its own, so that no library's handler (METIS swaps SIGTERM's handler
-// process-wide while it orders a matrix, and leaves its own behind when two
-// threads order at once) ever runs for it.
-void watch_for_termination();
+// SIGTERM, the process ends at once. One per process, made first thing in
+// main; its end puts back the handlers it found. Linux gives a signal sent
+// to the process to the main thread unless that thread blocks it, so the
+// handler runs there, where the Lua state is; a SIGTERM another thread
+// takes is handed on to the main thread.
+class TerminationWatch {
+public:
+  TerminationWatch();
+  ~TerminationWatch();
+  TerminationWatch(const TerminationWatch&) = delete;
+  TerminationWatch& operator=(const TerminationWatch&) = delete;
+
+private:
+  struct sigaction saved_terminate_ {}, saved_handed_ {};
+};
 // Whether SIGTERM stopped the program: it then ends by SIGTERM itself
 // (end_if_terminated), so its parent sees the conventional status.
 bool terminated();

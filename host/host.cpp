@@ -380,7 +380,7 @@ lua_State* sandboxed_state(CommandLine& command_line) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ashlar::host::watch_for_termination();  // before MPI, CHOLMOD or a study starts a thread
+  const ashlar::host::TerminationWatch termination_watch;  // before MPI, CHOLMOD or a study starts a thread
   const std::string cluster_warning = ashlar::cluster::join_if_launched(&argc, &argv);
   if (!cluster_warning.empty()) std::fprintf(stderr, "%s%s\n", kErrorPrefix, cluster_warning.c_str());
   // Exactly "test": `ashlar ./test` and `ashlar -- test` still run a script.

@@ -217,9 +217,14 @@ fail()
       -- returned and waits (up to 20 s) to be terminated.
       local path = script("terminated.lua", ("local function ready() io.open(%q, 'w'):close() end\n"):format(ready)
         .. computation .. "\nlocal t = os.clock() while os.clock() - t < 20 do end")
+      -- Waits for the signal that the computation has begun while the
+      -- script still runs (at most 120 s: set-up under the sanitizers).
       local output, code = run(table.concat({
         quote(ashlar_bin) .. " " .. quote(path) .. " & pid=$!",
-        "while [ ! -e " .. quote(ready) .. " ]; do sleep 0.05; done",
+        "waited=0",
+        "while [ ! -e " .. quote(ready) .. " ] && kill -0 $pid 2>/dev/null && [ $waited -lt 2400 ]; do",
+        "  sleep 0.05; waited=$((waited + 1))",
+        "done",
         "sleep 0.2",
         "kill -TERM $pid",
         "wait $pid",
@@ -252,10 +257,11 @@ fail()
         print("returned", ashlar.simulate(s, { duration = 60 }).status)]])
       -- A study keeps every row it finished; the next run runs only the rest.
       local db = folder .. "/terminated.sqlite"
+      -- Terminated once row 10 has started (rows 1-8 or so are done then).
       local study = ("local st = ashlar.study{ name = 'busy', db = %q, params = { a = ashlar.range(1, 60, 60) }, "
-        .. "workers = 2, progress = false, run = function(p) local t = os.clock() "
-        .. "while os.clock() - t < 0.05 do end return { twice = 2 * p.a } end }\n"):format(db)
-      terminate_during("ready()\n" .. study)
+        .. "workers = 2, progress = false, run = function(p) if p.a >= 10 and ready then ready() end "
+        .. "local t = os.clock() while os.clock() - t < 0.05 do end return { twice = 2 * p.a } end }\n"):format(db)
+      terminate_during(study)
       local output, code = ashlar(quote(script("resumed.lua", study .. [[
         local info = st:info()
         local right = 0
