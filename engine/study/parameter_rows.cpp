@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <set>
@@ -61,6 +64,23 @@ std::string column_name_problem(const std::string& name) {
   return "";
 }
 
+namespace {
+
+// The fewest decimal places (0-15) that write x, to a millionth of the last
+// place (what a double read from a decimal, or a step computed from them,
+// keeps), or -1 when none do (a third, say).
+int decimal_places(double x) {
+  double scale = 1.0;
+  for (int places = 0; places <= 15; ++places, scale *= 10.0) {
+    const double scaled = std::abs(x) * scale;
+    if (scaled >= 1e12) return -1;  // past here a millionth of the place is below the double's resolution
+    if (std::abs(scaled - std::round(scaled)) <= 1e-6) return places;
+  }
+  return -1;
+}
+
+}  // namespace
+
 std::vector<double> linear_range(double first, double last, int count) {
   if (!std::isfinite(first) || !std::isfinite(last))
     throw InvalidArgument("range: the ends must be finite numbers");
@@ -71,6 +91,20 @@ std::vector<double> linear_range(double first, double last, int count) {
   std::vector<double> values(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i)
     values[i] = count == 1 ? first : first + (last - first) * (static_cast<double>(i) / (count - 1));
+  // Ends and step written in decimals (0.08 to 0.2 in steps of 0.00025):
+  // every value is the double nearest its decimal, as if typed, so that a
+  // query for 0.1025 finds the row (first + 90 * step is 0.10250000000000001).
+  const int places[] = {decimal_places(first), decimal_places(last),
+                        count == 1 ? 0 : decimal_places((last - first) / (count - 1))};
+  if (*std::min_element(std::begin(places), std::end(places)) >= 0) {
+    const int decimals = *std::max_element(std::begin(places), std::end(places));
+    char text[64];
+    for (double& value : values) {
+      std::snprintf(text, sizeof text, "%.*f", decimals, value);
+      value = std::strtod(text, nullptr);
+    }
+  }
+  values.front() = first;
   values.back() = last;
   return values;
 }

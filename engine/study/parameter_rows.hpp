@@ -18,7 +18,9 @@ struct ParameterRows {
   std::vector<std::vector<Value>> rows;    // rows × names.size()
 };
 
-// `count` numbers from first to last, evenly spaced, both ends exact.
+// `count` numbers from first to last, evenly spaced, both ends exact. When
+// the ends and the step are decimals of at most 15 places, each number is
+// the double nearest its decimal (0.1025, as typed, not 0.10250000000000001).
 // count >= 2, or 1 when first == last. Throws InvalidArgument otherwise or for
 // non-finite ends.
 std::vector<double> linear_range(double first, double last, int count);

@@ -73,6 +73,21 @@ TEST(ParameterRows, RangeHasExactEndsAndEvenSteps) {
   EXPECT_EQ(linear_range(2, 2, 1), std::vector<double>{2});
 }
 
+TEST(ParameterRows, RangeGivesTheDecimalsAUserTypes) {
+  // 0.08 + 90 * 0.00025 computed in doubles is 0.10250000000000001; a
+  // query for 0.1025 must find that row.
+  const auto values = linear_range(0.08, 0.20, 481);
+  EXPECT_EQ(values[90], 0.1025);
+  EXPECT_EQ(values[1], 0.08025);
+  EXPECT_EQ(values[480], 0.2);
+  EXPECT_EQ(linear_range(0.1, 0.2, 5), (std::vector<double>{0.1, 0.125, 0.15, 0.175, 0.2}));
+  EXPECT_EQ(linear_range(-1.5, 1.5, 7), (std::vector<double>{-1.5, -1, -0.5, 0, 0.5, 1, 1.5}));
+  // Not decimals (a step of a third): the evenly spaced doubles as before.
+  const auto thirds = linear_range(0, 1, 4);
+  EXPECT_EQ(thirds[1], 1.0 / 3.0);
+  EXPECT_EQ(thirds[2], 2.0 / 3.0);
+}
+
 TEST(ParameterRows, GridSortsColumnsAndVariesTheLastFastest) {
   const ParameterRows rows = small_grid();
   ASSERT_EQ(rows.names, (std::vector<std::string>{"n", "t"}));
