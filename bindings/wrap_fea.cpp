@@ -1,5 +1,6 @@
 #include "wrap_fea.hpp"
 
+#include <cmath>
 #include <cstring>
 
 #include "fea/fea.hpp"
@@ -204,6 +205,14 @@ int w_FeaResult_export(lua_State* L) {
   });
 }
 
+// A quantity, or nil where the result gives it no meaning (NaN), so that a
+// study stores NULL rather than a number.
+int push_measure(lua_State* L, double value) {
+  if (std::isnan(value)) return 0;
+  lua_pushnumber(L, value);
+  return 1;
+}
+
 int w_FeaResult_index(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<FeaRecord> kept = check_record(L, 1);
@@ -219,8 +228,8 @@ int w_FeaResult_index(lua_State* L) {
       else if (is("status")) lua_pushstring(L, fea_status_name(r.status));
       else if (is("compression_only")) lua_pushboolean(L, r.compression_only);
       else if (is("iterations")) lua_pushinteger(L, r.iterations);
-      else if (is("max_displacement")) lua_pushnumber(L, r.max_displacement);
-      else if (is("max_penetration")) lua_pushnumber(L, r.max_penetration);
+      else if (is("max_displacement")) return push_measure(L, r.max_displacement);
+      else if (is("max_penetration")) return push_measure(L, r.max_penetration);
       else if (is("total_weight")) lua_pushnumber(L, r.total_weight);
       else if (is("dofs")) lua_pushinteger(L, r.dofs);
       else if (is("element_count")) lua_pushinteger(L, static_cast<lua_Integer>(record.mesh->elements().size()));
@@ -250,8 +259,12 @@ int w_FeaResult_tostring(lua_State* L) {
     const std::shared_ptr<FeaRecord> record = check_record(L, 1);
     const FeaResult& r = record->result;
     return call_protected(L, 0, [&](lua_State* L) {
-      lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
-                      fea_status_name(r.status), r.iterations, r.max_displacement);
+      if (std::isnan(r.max_displacement)) {
+        lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations)", fea_status_name(r.status), r.iterations);
+      } else {
+        lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
+                        fea_status_name(r.status), r.iterations, r.max_displacement);
+      }
       return 1;
     });
   });

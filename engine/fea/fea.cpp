@@ -3,6 +3,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/sparse_cholesky.hpp"
@@ -376,6 +377,8 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   if (solution.factorized)
     for (size_t n = 0; n < mesh.nodes().size(); ++n) result.displacements[n] = solution.displacements.segment<3>(3 * n);
   for (const Vec3& u : result.displacements) result.max_displacement = std::max(result.max_displacement, u.norm());
+  // A mechanism's last solve is no equilibrium: its displacements are 0
+  // (not factorised) or past the limit by any amount, so they measure nothing.
 
   result.interfaces.assign(interfaces.size(), FeaInterfaceForce{});
   std::vector<Vec3> pressure_moment(interfaces.size(), Vec3::Zero());
@@ -407,6 +410,12 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
                                  : interfaces[k].center;
   }
   result.contacts = std::move(ties);
+  // A mechanism's last solve is no equilibrium: its displacements are 0
+  // (not factorised) or past the limit by any amount, so they measure nothing.
+  if (result.status == FeaStatus::Mechanism) {
+    result.max_displacement = std::numeric_limits<double>::quiet_NaN();
+    result.max_penetration = std::numeric_limits<double>::quiet_NaN();
+  }
 
   if (settings.stresses && solution.factorized) {
     result.stresses.reserve(mesh.elements().size());

@@ -114,6 +114,7 @@ struct FeaResult {
   std::vector<FeaContact> contacts;
   std::vector<FeaInterfaceForce> interfaces;  // per structure interface
   std::vector<Stress> stresses;       // per element, when settings.stresses
+  // Of a mechanism both are NaN: its last solve is no equilibrium.
   double max_displacement = 0.0;      // m
   // Largest overlap of a released node into the block it had touched (m):
   // releases free the node both ways, as in the thesis.

@@ -83,7 +83,13 @@ describe("ashlar.fea", function()
     assert.are.equal(0, relaxed.history[3].tensile)
     -- The thesis's rule, releasing every tensile node at once, opens the
     -- crown and both springings together: four hinges, a mechanism.
-    assert.are.equal("mechanism", ashlar.fea(s).status)
+    local mechanism = ashlar.fea(s)
+    assert.are.equal("mechanism", mechanism.status)
+    -- Its last solve is no equilibrium: no displacement to report.
+    assert.is_nil(mechanism.max_displacement)
+    assert.is_nil(mechanism.max_penetration)
+    assert.matches("^FeaResult %(mechanism after %d+ relaxation iterations%)$", tostring(mechanism))
+    assert.is_true(relaxed.max_displacement > 0)
     -- With fewer voussoirs the thesis's rule suffices.
     local short = ashlar.fea(models.arch{ radius = 5, thickness = 0.6, voussoirs = 12 })
     assert.are.equal("compression_only", short.status)
