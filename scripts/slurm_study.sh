@@ -5,12 +5,17 @@
 #   sbatch scripts/slurm_study.sh [script] [db] [csv]
 # A job that hits its time limit (or is cancelled, or a node dies) keeps
 # every finished run: submit it again and only the unfinished rows run.
+# Two minutes before the limit Slurm sends SIGTERM to every task
+# (--signal below): each rank stops at a safe point ("terminated
+# (SIGTERM)"), the rows it finished are in the database, and it ends by
+# SIGTERM; scancel does the same at once.
 #SBATCH --job-name=ashlar-study
 #SBATCH --nodes=2
 #SBATCH --ntasks-per-node=32      # one rank per core: each rank runs one row at a time
 #SBATCH --cpus-per-task=1
 #SBATCH --time=02:00:00
 #SBATCH --output=ashlar-study-%j.log
+#SBATCH --signal=TERM@120
 set -euo pipefail
 
 ashlar=${ASHLAR:-"$SLURM_SUBMIT_DIR/build/bin/ashlar"}
