@@ -57,7 +57,7 @@ int w_fea(lua_State* L) {
                                      "max_relax_iterations", "release", "tension_tolerance",
                                      "max_displacement", "stresses", "contact_tolerance"});
     const FeaSettings settings = fea_settings(options);
-    const int refine = static_cast<int>(options.whole("refine", 1, 64, "a whole number from 1 to 64").value_or(1));
+    const int refine = static_cast<int>(options.whole("refine", 1, 64, "a whole number from 1 to 64").value_or(kDefaultRefine));
     const double element_size = options.positive("element_size", 0.0, true);
     auto record = std::make_shared<FeaRecord>();
     record->structure = s;

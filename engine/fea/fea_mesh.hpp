@@ -24,6 +24,9 @@ struct NodeWeights {
   std::vector<double> weights;  // sum to 1
 };
 
+// Elements along each edge of a block when a script does not say.
+inline constexpr int kDefaultRefine = 1;
+
 class FeaMesh {
 public:
   // Throws InvalidArgument naming the block when a free block is not a
@@ -31,7 +34,7 @@ public:
   // and for refine outside [1, 64]. element_size (m, 0 = none): each block
   // edge direction gets at least ceil(mean edge length / element_size)
   // divisions, at most 256.
-  FeaMesh(const Structure& structure, int refine, double element_size = 0.0);
+  FeaMesh(const Structure& structure, int refine = kDefaultRefine, double element_size = 0.0);
 
   // Divisions of the block along its parametric directions xi, eta, zeta.
   const std::array<int, 3>& divisions(int block) const { return divisions_[block]; }

@@ -17,6 +17,8 @@
 #include "analysis/margin_status.hpp"
 #include "analysis/parameter_search.hpp"
 #include "analysis/weight_analysis.hpp"
+#include "fea/fea.hpp"
+#include "fea/fea_mesh.hpp"
 
 using namespace ashlar;
 
@@ -83,6 +85,7 @@ const char* kFrictionDemand = "### Friction demand";
 const char* kGeometricFactor = "### Geometric factor of safety";
 const char* kRefine = "### Refining a discretisation";
 const char* kWeights = "## Weights: sensitivity, load capacity, necessary and important weights";
+const char* kFea = "## Elastic FEA";
 
 }  // namespace
 
@@ -144,6 +147,19 @@ TEST(DocumentedDefaults, LoadCapacityAndImportantWeights) {
   EXPECT_EQ(number_in(documented(kWeights, "threads")), ImportantWeightsSettings{}.threads);
   EXPECT_EQ(documented(kWeights, "symmetry"), LoadCapacitySettings{}.use_symmetry ? "true" : "false");
   EXPECT_EQ(documented(kWeights, "symmetry"), ImportantWeightsSettings{}.use_symmetry ? "true" : "false");
+}
+
+TEST(DocumentedDefaults, Fea) {
+  const FeaSettings settings;
+  EXPECT_EQ(number_in(documented(kFea, "young")), settings.material.young);
+  EXPECT_EQ(number_in(documented(kFea, "poisson")), settings.material.poisson);
+  EXPECT_EQ(number_in(documented(kFea, "refine")), kDefaultRefine);
+  EXPECT_EQ(documented(kFea, "relax"), settings.relax ? "`true`" : "`false`");
+  EXPECT_EQ(number_in(documented(kFea, "max_relax_iterations")), settings.max_relax_iterations);
+  EXPECT_EQ(documented(kFea, "release"), std::string("`\"") + kFeaReleaseNames.name(settings.release) + "\"`");
+  EXPECT_EQ(number_in(documented(kFea, "tension_tolerance")), settings.tension_tolerance);
+  EXPECT_EQ(number_in(documented(kFea, "max_displacement")), settings.max_displacement);
+  EXPECT_EQ(documented(kFea, "stresses"), settings.stresses ? "`true`" : "`false`");
 }
 
 // Every status name reads back as its value, and no two values share one.
