@@ -72,9 +72,9 @@ describe("ashlar.study from several processes on one database", function()
       -- recorded some before).
       assert.is_true(ran[who] + elsewhere[who] <= rows, out)
     end
+    -- How the rows split depends on when each process got going (under the
+    -- sanitizers one may start after the other is done): not asserted.
     assert.equal(rows, ran.A + ran.B)
-    assert.is_true(elsewhere.A + elsewhere.B > 0)
-    assert.is_true(ran.A > 0 and ran.B > 0, ("A ran %d, B ran %d"):format(ran.A, ran.B))
 
     -- Each row computed once (the log), recorded once, by the process that says it ran it.
     local counts, total = computed(folder .. "/log")

@@ -193,9 +193,9 @@ TEST(StudyClaims, TwoRunnersOnOneDatabaseRunEveryRowOnce) {
     });
   for (auto& thread : coordinators) thread.join();
   for (int id = 1; id <= count; ++id) EXPECT_EQ(runs[static_cast<std::size_t>(id)].load(), 1) << "row " << id;
+  // How the rows split depends on when each runner got going (under the
+  // sanitizers one may start after the other is done): not asserted.
   EXPECT_EQ(infos[0].ran + infos[1].ran, static_cast<std::size_t>(count));
-  EXPECT_GT(infos[0].ran, 0u);
-  EXPECT_GT(infos[1].ran, 0u);
   EXPECT_EQ(infos[0].ran + infos[0].elsewhere, unfinished[0]);  // each waited for the other's rows
   EXPECT_EQ(infos[1].ran + infos[1].elsewhere, unfinished[1]);
   StudyStore store(db);
