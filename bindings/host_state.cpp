@@ -57,10 +57,6 @@ void on_interrupt(int signal_number) {
 // Ends the process by SIGTERM, as if nothing had caught it.
 [[noreturn]] void die_by_sigterm() {
   std::signal(SIGTERM, SIG_DFL);
-  sigset_t terminate;
-  sigemptyset(&terminate);
-  sigaddset(&terminate, SIGTERM);
-  pthread_sigmask(SIG_UNBLOCK, &terminate, nullptr);
   std::raise(SIGTERM);
   std::_Exit(128 + SIGTERM);  // not reached
 }
