@@ -37,6 +37,7 @@ FeaSettings fea_settings(const OptionTable& options) {
   if (!(settings.material.poisson > -1 && settings.material.poisson < 0.5))
     throw ArgError(options.arg(), "poisson: expected a number in (-1, 0.5), got " +
                                       std::to_string(settings.material.poisson));
+  settings.method = options.choice("method", kFeaContactModelNames).value_or(settings.method);
   settings.relax = options.boolean("relax").value_or(settings.relax);
   settings.max_relax_iterations = static_cast<int>(
       options.whole("max_relax_iterations", 0, 100000, "a whole number from 0 to 100000")
@@ -53,7 +54,7 @@ int w_fea(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {"young", "poisson", "refine", "element_size", "relax",
+    const OptionTable options(L, 2, {"young", "poisson", "refine", "element_size", "method", "relax",
                                      "max_relax_iterations", "release", "tension_tolerance",
                                      "max_displacement", "stresses", "contact_tolerance"});
     const FeaSettings settings = fea_settings(options);
@@ -158,7 +159,8 @@ void push_history(lua_State* L, const FeaRecord& r) {
     const FeaIteration& it = history[i];
     lua_createtable(L, 0, 8);
     set_field(L, "active", it.active);
-    set_field(L, "released", i == 0 ? 0 : history[i - 1].tensile);
+    set_field(L, "released", i == 0 ? 0 : history[i - 1].released);
+    set_field(L, "engaged", i == 0 ? 0 : history[i - 1].engaged);
     set_field(L, "tensile", it.tensile);
     set_field(L, "tension", it.tension);
     set_field(L, "max_tension", it.max_tension);
@@ -228,6 +230,7 @@ int w_FeaResult_index(lua_State* L) {
       else if (is("status")) lua_pushstring(L, fea_status_name(r.status));
       else if (is("compression_only")) lua_pushboolean(L, r.compression_only);
       else if (is("iterations")) lua_pushinteger(L, r.iterations);
+      else if (is("interior_point_iterations")) lua_pushinteger(L, r.interior_point_iterations);
       else if (is("max_displacement")) return push_measure(L, r.max_displacement);
       else if (is("max_penetration")) return push_measure(L, r.max_penetration);
       else if (is("total_weight")) lua_pushnumber(L, r.total_weight);
@@ -260,9 +263,9 @@ int w_FeaResult_tostring(lua_State* L) {
     const FeaResult& r = record->result;
     return call_protected(L, 0, [&](lua_State* L) {
       if (std::isnan(r.max_displacement)) {
-        lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations)", fea_status_name(r.status), r.iterations);
+        lua_pushfstring(L, "FeaResult (%s after %d iterations)", fea_status_name(r.status), r.iterations);
       } else {
-        lua_pushfstring(L, "FeaResult (%s after %d relaxation iterations, max displacement %f m)",
+        lua_pushfstring(L, "FeaResult (%s after %d iterations, max displacement %f m)",
                         fea_status_name(r.status), r.iterations, r.max_displacement);
       }
       return 1;

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/interrupt.hpp"
 #include "fea/fea.hpp"
 #include "test_support.hpp"
 
@@ -235,4 +236,69 @@ TEST(Fea, RejectsBlocksThatAreNotHexahedraCablesAndBadSettings) {
   cabled.add_cable(cable);
   EXPECT_TRUE(contains(error_of([&] { analyze_fea(cabled, FeaMesh(cabled, 1), FeaSettings{}); }),
                        "does not model cables"));
+}
+
+namespace {
+
+// A block 1 m long (x), 0.5 m deep, 2 m high on a support slab, pushed
+// along +x by `push` N at its top centre.
+Structure pushed_block(double push) {
+  Structure s;
+  s.add(box({3, 2, 1}, {0, 0, -0.5}), true);
+  s.add(box({1, 0.5, 2}, {0, 0, 1}));
+  s.add_load({1, Vec3(push, 0, 0), Vec3(0, 0, 2)});
+  return s;
+}
+
+}  // namespace
+
+TEST(FeaUnilateral, ABlockPushedSidewaysLiftsItsHeelAndOverturnsAtTheClosedForm) {
+  // Statics: the ground's vertical reaction W acts at x = 2 H / W (moments
+  // about the base centre), whatever the elasticity; past x = 0.5 (the toe)
+  // nothing holds the block: H = W / 4 overturns it.
+  const double weight = 2400 * kGravity * 1.0, overturning = weight / 4;
+  FeaSettings settings;
+  const Structure standing = pushed_block(0.9 * overturning);
+  const FeaMesh mesh(standing, 4);
+  const FeaResult r = analyze_fea(standing, mesh, settings);
+  ASSERT_EQ(r.status, FeaStatus::CompressionOnly);
+  ASSERT_EQ(r.interfaces.size(), 1u);
+  EXPECT_NEAR(r.interfaces[0].center_of_pressure.x(), 2 * 0.9 * overturning / weight, 1e-8);
+  EXPECT_NEAR(r.interfaces[0].resultant.z(), weight, 1e-8 * weight);
+  EXPECT_NEAR(r.interfaces[0].resultant.x(), -0.9 * overturning, 1e-8 * weight);
+  // With the resultant at 0.45 m of the 0.5 m half-length the heel lifts:
+  // open nodes there, carrying nothing, none overlapping; closed ones press.
+  int open = 0;
+  for (const FeaContact& c : r.contacts) {
+    if (c.released) {
+      ++open;
+      EXPECT_LT(mesh.nodes()[c.node].x(), 0.45);
+      EXPECT_NEAR(c.normal_force, 0, 1e-9 * weight);
+      EXPECT_GT(c.opening, -1e-6 * r.max_displacement);
+    } else {
+      EXPECT_GT(c.normal_force, -1e-6 * weight / r.contacts.size());
+    }
+  }
+  EXPECT_GT(open, 0);
+  const Structure toppling = pushed_block(1.1 * overturning);
+  const FeaResult fallen = analyze_fea(toppling, FeaMesh(toppling, 4), settings);
+  EXPECT_EQ(fallen.status, FeaStatus::Mechanism);
+  EXPECT_TRUE(std::isnan(fallen.max_displacement));
+}
+
+TEST(FeaUnilateral, AnInterruptedOrUnfinishedAnalysisHasNoVerdict) {
+  const Structure s = pushed_block(0.9 * 2400 * kGravity / 4);
+  const FeaMesh mesh(s, 2);
+  FeaSettings settings;
+  settings.max_relax_iterations = 0;  // the heel needs a second solve
+  const FeaResult unfinished = analyze_fea(s, mesh, settings);
+  EXPECT_EQ(unfinished.status, FeaStatus::IterationLimit);
+  EXPECT_FALSE(unfinished.compression_only);
+  EXPECT_TRUE(std::isnan(unfinished.max_displacement));
+  interrupt_requested() = true;
+  const FeaResult interrupted = analyze_fea(s, mesh, FeaSettings{});
+  interrupt_requested() = false;
+  EXPECT_EQ(interrupted.status, FeaStatus::Interrupted);
+  EXPECT_FALSE(interrupted.compression_only);
+  EXPECT_TRUE(std::isnan(interrupted.max_displacement));
 }

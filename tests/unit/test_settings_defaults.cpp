@@ -154,6 +154,7 @@ TEST(DocumentedDefaults, Fea) {
   EXPECT_EQ(number_in(documented(kFea, "young")), settings.material.young);
   EXPECT_EQ(number_in(documented(kFea, "poisson")), settings.material.poisson);
   EXPECT_EQ(number_in(documented(kFea, "refine")), kDefaultRefine);
+  EXPECT_EQ(documented(kFea, "method"), std::string("`\"") + kFeaContactModelNames.name(settings.method) + "\"`");
   EXPECT_EQ(documented(kFea, "relax"), settings.relax ? "`true`" : "`false`");
   EXPECT_EQ(number_in(documented(kFea, "max_relax_iterations")), settings.max_relax_iterations);
   EXPECT_EQ(documented(kFea, "release"), std::string("`\"") + kFeaReleaseNames.name(settings.release) + "\"`");
