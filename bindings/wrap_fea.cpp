@@ -188,14 +188,18 @@ int w_FeaResult_export(lua_State* L) {
     const std::shared_ptr<FeaRecord> record = check_record(L, 1);
     const FeaRecord& r = *record;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
-    const OptionTable options(L, 3, {"scale", "color", "map", "undeformed", "contacts"});
+    const OptionTable options(L, 3, {"scale", "color", "map", "undeformed", "contacts", "format"});
     if (file_extension(path) == "vtu") {
       for (const char* key : {"scale", "color", "map", "undeformed", "contacts"})
         if (options.has(key))
           throw ArgError(3, std::string(key) + ": applies to 3D files, not to .vtu, which holds every result");
-      export_fea_vtu(r.structure, *r.mesh, r.result, *r.structure.interfaces(r.contact), path);
+      FeaVtuOptions vtu;
+      vtu.format = options.choice("format", kVtuFormatNames).value_or(vtu.format);
+      export_fea_vtu(r.structure, *r.mesh, r.result, *r.structure.interfaces(r.contact), path, vtu);
       return 0;
     }
+    if (options.has("format"))
+      throw ArgError(3, "format: applies to .vtu files, not to 3D files, whose extension gives the format");
     FeaMeshExportOptions settings;
     settings.scale = options.positive("scale", settings.scale, true);
     if (std::optional<std::string> color = options.string("color")) settings.color = *color;

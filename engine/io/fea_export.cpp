@@ -1,15 +1,13 @@
-// FEA results as a VTK unstructured grid (written by hand: the XML format is
-// simple and VTK is not a dependency) and as deformed 3D meshes through
-// assimp (assimp_scene.hpp).
+// FEA results as a VTK unstructured grid (vtu_file.hpp) and as deformed 3D
+// meshes through assimp (assimp_scene.hpp).
 #include "io/fea_export.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <iomanip>
+#include <cstdint>
 #include <limits>
-#include <locale>
-#include <sstream>
+#include <optional>
 
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
@@ -17,11 +15,13 @@
 #include "core/atomic_file.hpp"
 #include "io/color_map.hpp"
 #include "io/mesh_io.hpp"
+#include "io/vtu_file.hpp"
 
 namespace ashlar {
 namespace {
 
 constexpr int kVtkHexahedron = 12;
+constexpr int kVtkPolyhedron = 42;
 constexpr double kAutoScaleFraction = 0.05;  // of the bounding-box diagonal
 // Octahedron radius, of the shortest element edge: neighbouring nodes' glyphs stay apart.
 constexpr double kGlyphFraction = 0.25;
@@ -136,88 +136,179 @@ NodeContacts node_contacts(const FeaMesh& mesh, const FeaResult& result,
   return sums;
 }
 
-// Writes an XML DataArray of `count` tuples; `tuple(out, i)` writes tuple i.
-template <typename WriteTuple>
-void data_array(std::ostream& out, const char* type, const std::string& name, int components,
-                size_t count, const std::string& extra_attributes, WriteTuple tuple) {
-  out << "        <DataArray type=\"" << type << "\"";
-  if (!name.empty()) out << " Name=\"" << name << "\"";
-  if (components > 1) out << " NumberOfComponents=\"" << components << "\"";
-  out << extra_attributes << " format=\"ascii\">\n";
-  for (size_t i = 0; i < count; ++i) {
-    out << "          ";
-    tuple(out, i);
-    out << '\n';
-  }
-  out << "        </DataArray>\n";
+void append_vec3(std::vector<double>& values, const Vec3& v) {
+  values.insert(values.end(), {v.x(), v.y(), v.z()});
 }
 
-void write_vec3(std::ostream& out, const Vec3& v) { out << v.x() << ' ' << v.y() << ' ' << v.z(); }
+// Support blocks as cells: a hexahedron (8 corners joined like a cube's,
+// not folded) as VTK_HEXAHEDRON, any other block as VTK_POLYHEDRON with its
+// faces (outward, as Block keeps them).
+struct SupportCells {
+  std::vector<Vec3> points;
+  std::vector<int> point_block, cell_block;
+  std::vector<std::int64_t> connectivity, offsets, types;
+  std::vector<std::int64_t> faces, face_offsets;  // face_offsets -1 for non-polyhedra
+  bool polyhedra = false;
+};
 
-std::string vtu_text(const FeaMesh& mesh, const FeaResult& result, const NodeContacts& contacts) {
+SupportCells support_cells(const Structure& structure, std::int64_t first_point,
+                           std::int64_t first_connectivity) {
+  SupportCells cells;
+  for (int b = 0; b < structure.size(); ++b) {
+    if (!structure.is_support(b)) continue;
+    const Block& block = structure.block(b);
+    const auto base = static_cast<std::int64_t>(first_point + cells.points.size());
+    std::optional<HexNodes> corners;
+    try {
+      corners = hexahedron_corners(block, structure.label(b));
+      if (!(hex_min_jacobian(*corners) > 0)) corners.reset();
+    } catch (const InvalidArgument&) {
+      // Not a hexahedron: written as a polyhedron below.
+    }
+    if (corners) {
+      for (int a = 0; a < 8; ++a) {
+        cells.points.push_back((*corners)[a]);
+        cells.connectivity.push_back(base + a);
+      }
+      cells.types.push_back(kVtkHexahedron);
+      cells.face_offsets.push_back(-1);
+    } else {
+      const std::vector<Vec3>& vertices = block.vertices();
+      for (size_t v = 0; v < vertices.size(); ++v) {
+        cells.points.push_back(vertices[v]);
+        cells.connectivity.push_back(base + static_cast<std::int64_t>(v));
+      }
+      cells.types.push_back(kVtkPolyhedron);
+      cells.faces.push_back(static_cast<std::int64_t>(block.faces().size()));
+      for (const FaceLoop& face : block.faces()) {
+        cells.faces.push_back(static_cast<std::int64_t>(face.size()));
+        for (int v : face) cells.faces.push_back(base + v);
+      }
+      cells.face_offsets.push_back(static_cast<std::int64_t>(cells.faces.size()));
+      cells.polyhedra = true;
+    }
+    cells.point_block.resize(cells.points.size(), b);
+    cells.cell_block.push_back(b);
+    cells.offsets.push_back(first_connectivity + static_cast<std::int64_t>(cells.connectivity.size()));
+  }
+  return cells;
+}
+
+// Stress holds xx yy zz yz xz xy; VTK's symmetric tensors are xx yy zz xy yz xz.
+constexpr std::array<int, 6> kVtkTensorOrder = {0, 1, 2, 5, 3, 4};
+const char* const kTensorComponentNames =
+    " ComponentName0=\"XX\" ComponentName1=\"YY\" ComponentName2=\"ZZ\""
+    " ComponentName3=\"XY\" ComponentName4=\"YZ\" ComponentName5=\"XZ\"";
+
+void append_stress(std::vector<double>& values, const Stress& stress) {
+  for (int k : kVtkTensorOrder) values.push_back(stress(k));
+}
+
+// The grid as written: the mesh's nodes and elements first (point n is node
+// n, cell e element e), then each support block's corners and cell.
+VtuGrid vtu_grid(const Structure& structure, const FeaMesh& mesh, const FeaResult& result,
+                 const NodeContacts& contacts) {
   const auto& nodes = mesh.nodes();
   const auto& elements = mesh.elements();
-  std::ostringstream out;
-  // A user's locale must not turn decimal points into commas.
-  out.imbue(std::locale::classic());
-  out << std::setprecision(17);
-  out << "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << nodes.size() << "\" NumberOfCells=\"" << elements.size()
-      << "\">\n";
-
-  out << "      <PointData Vectors=\"displacement\" Scalars=\"contact_normal_force\">\n";
-  data_array(out, "Float64", "displacement", 3, nodes.size(), "",
-             [&](std::ostream& o, size_t n) { write_vec3(o, result.displacements[n]); });
-  data_array(out, "Float64", "contact_force", 3, nodes.size(), "",
-             [&](std::ostream& o, size_t n) { write_vec3(o, contacts.force[n]); });
-  data_array(out, "Float64", "contact_normal_force", 1, nodes.size(), "",
-             [&](std::ostream& o, size_t n) { o << contacts.normal_force[n]; });
-  data_array(out, "Int32", "released", 1, nodes.size(), "",
-             [&](std::ostream& o, size_t n) { o << contacts.released[n]; });
-  data_array(out, "Int32", "block", 1, nodes.size(), "",
-             [&](std::ostream& o, size_t n) { o << mesh.node_block(static_cast<int>(n)) + 1; });
-  out << "      </PointData>\n";
-
+  const size_t node_count = nodes.size(), element_count = elements.size();
+  const SupportCells supports = support_cells(structure, static_cast<std::int64_t>(node_count),
+                                              8 * static_cast<std::int64_t>(element_count));
+  VtuGrid grid;
+  grid.points = node_count + supports.points.size();
+  grid.cells = element_count + supports.types.size();
   const bool stresses = !result.stresses.empty();
-  out << "      <CellData Scalars=\"" << (stresses ? "von_mises" : "block") << "\""
-      << (stresses ? " Tensors=\"stress\"" : "") << ">\n";
-  data_array(out, "Int32", "block", 1, elements.size(), "",
-             [&](std::ostream& o, size_t e) { o << mesh.element_block(static_cast<int>(e)) + 1; });
-  if (stresses) {
-    // Stress holds xx yy zz yz xz xy; VTK's symmetric tensors are xx yy zz xy yz xz.
-    constexpr std::array<int, 6> kVtkOrder = {0, 1, 2, 5, 3, 4};
-    data_array(out, "Float64", "stress", 6, elements.size(),
-               " ComponentName0=\"XX\" ComponentName1=\"YY\" ComponentName2=\"ZZ\""
-               " ComponentName3=\"XY\" ComponentName4=\"YZ\" ComponentName5=\"XZ\"",
-               [&](std::ostream& o, size_t e) {
-                 for (int k = 0; k < 6; ++k)
-                   o << (k ? " " : "") << result.stresses[e](kVtkOrder[k]);
-               });
-    data_array(out, "Float64", "von_mises", 1, elements.size(), "",
-               [&](std::ostream& o, size_t e) { o << von_mises(result.stresses[e]); });
+
+  // Point data; support points neither move nor touch a contact.
+  std::vector<double> displacement, contact_force, normal_force;
+  std::vector<std::int64_t> released, point_block;
+  for (size_t n = 0; n < node_count; ++n) {
+    append_vec3(displacement, result.displacements[n]);
+    append_vec3(contact_force, contacts.force[n]);
+    normal_force.push_back(contacts.normal_force[n]);
+    released.push_back(contacts.released[n]);
+    point_block.push_back(mesh.node_block(static_cast<int>(n)) + 1);
   }
-  out << "      </CellData>\n";
+  displacement.resize(3 * grid.points, 0.0);
+  contact_force.resize(3 * grid.points, 0.0);
+  normal_force.resize(grid.points, 0.0);
+  released.resize(grid.points, 0);
+  for (int b : supports.point_block) point_block.push_back(b + 1);
+  grid.point_attributes = " Vectors=\"displacement\" Scalars=\"contact_normal_force\"";
+  grid.point_data.push_back(real_array("displacement", 3, std::move(displacement)));
+  grid.point_data.push_back(real_array("contact_force", 3, std::move(contact_force)));
+  grid.point_data.push_back(real_array("contact_normal_force", 1, std::move(normal_force)));
+  grid.point_data.push_back(integer_array("released", VtuType::Int32, std::move(released)));
+  grid.point_data.push_back(integer_array("block", VtuType::Int32, std::move(point_block)));
+  if (stresses) {
+    // Each node's mean of the stresses of the elements around it; blocks
+    // keep their own nodes, so the mean stays within the node's block.
+    std::vector<Stress> sum(node_count, Stress::Zero());
+    std::vector<int> count(node_count, 0);
+    for (size_t e = 0; e < element_count; ++e) {
+      for (int node : elements[e]) {
+        sum[node] += result.stresses[e];
+        ++count[node];
+      }
+    }
+    std::vector<double> nodal, nodal_mises;
+    for (size_t n = 0; n < node_count; ++n) {
+      const Stress mean = sum[n] / count[n];  // every node is a corner of an element of its block
+      append_stress(nodal, mean);
+      nodal_mises.push_back(von_mises(mean));
+    }
+    nodal.resize(6 * grid.points, 0.0);
+    nodal_mises.resize(grid.points, 0.0);
+    grid.point_attributes += " Tensors=\"nodal_stress\"";
+    grid.point_data.push_back(real_array("nodal_stress", 6, std::move(nodal), kTensorComponentNames));
+    grid.point_data.push_back(real_array("nodal_von_mises", 1, std::move(nodal_mises)));
+  }
 
-  out << "      <Points>\n";
-  data_array(out, "Float64", "", 3, nodes.size(), "",
-             [&](std::ostream& o, size_t n) { write_vec3(o, nodes[n]); });
-  out << "      </Points>\n";
+  // Cell data; supports are rigid ground, with no stress computed.
+  std::vector<std::int64_t> cell_block, support;
+  for (size_t e = 0; e < element_count; ++e)
+    cell_block.push_back(mesh.element_block(static_cast<int>(e)) + 1);
+  for (int b : supports.cell_block) cell_block.push_back(b + 1);
+  support.assign(grid.cells, 0);
+  std::fill(support.begin() + static_cast<std::ptrdiff_t>(element_count), support.end(), 1);
+  grid.cell_attributes = stresses ? " Scalars=\"von_mises\" Tensors=\"stress\"" : " Scalars=\"block\"";
+  grid.cell_data.push_back(integer_array("block", VtuType::Int32, std::move(cell_block)));
+  grid.cell_data.push_back(integer_array("support", VtuType::Int32, std::move(support)));
+  if (stresses) {
+    std::vector<double> stress, mises;
+    for (const Stress& s : result.stresses) {
+      append_stress(stress, s);
+      mises.push_back(von_mises(s));
+    }
+    stress.resize(6 * grid.cells, 0.0);
+    mises.resize(grid.cells, 0.0);
+    grid.cell_data.push_back(real_array("stress", 6, std::move(stress), kTensorComponentNames));
+    grid.cell_data.push_back(real_array("von_mises", 1, std::move(mises)));
+  }
 
-  out << "      <Cells>\n";
-  data_array(out, "Int64", "connectivity", 1, elements.size(), "", [&](std::ostream& o, size_t e) {
-    for (int a = 0; a < 8; ++a) o << (a ? " " : "") << elements[e][a];
-  });
-  data_array(out, "Int64", "offsets", 1, elements.size(), "",
-             [&](std::ostream& o, size_t e) { o << 8 * (e + 1); });
-  data_array(out, "UInt8", "types", 1, elements.size(), "",
-             [&](std::ostream& o, size_t) { o << kVtkHexahedron; });
-  out << "      </Cells>\n"
-         "    </Piece>\n"
-         "  </UnstructuredGrid>\n"
-         "</VTKFile>\n";
-  return out.str();
+  std::vector<double> xyz;
+  xyz.reserve(3 * grid.points);
+  for (const Vec3& p : nodes) append_vec3(xyz, p);
+  for (const Vec3& p : supports.points) append_vec3(xyz, p);
+  grid.coordinates = real_array("", 3, std::move(xyz));
+
+  std::vector<std::int64_t> connectivity, offsets, types;
+  connectivity.reserve(8 * element_count + supports.connectivity.size());
+  for (const auto& element : elements) connectivity.insert(connectivity.end(), element.begin(), element.end());
+  connectivity.insert(connectivity.end(), supports.connectivity.begin(), supports.connectivity.end());
+  for (size_t e = 0; e < element_count; ++e) offsets.push_back(8 * static_cast<std::int64_t>(e + 1));
+  offsets.insert(offsets.end(), supports.offsets.begin(), supports.offsets.end());
+  types.assign(element_count, kVtkHexahedron);
+  types.insert(types.end(), supports.types.begin(), supports.types.end());
+  grid.cell_arrays.push_back(integer_array("connectivity", VtuType::Int64, std::move(connectivity)));
+  grid.cell_arrays.push_back(integer_array("offsets", VtuType::Int64, std::move(offsets)));
+  grid.cell_arrays.push_back(integer_array("types", VtuType::UInt8, std::move(types)));
+  if (supports.polyhedra) {
+    std::vector<std::int64_t> face_offsets(element_count, -1);
+    face_offsets.insert(face_offsets.end(), supports.face_offsets.begin(), supports.face_offsets.end());
+    grid.cell_arrays.push_back(integer_array("faces", VtuType::Int64, supports.faces));
+    grid.cell_arrays.push_back(integer_array("faceoffsets", VtuType::Int64, std::move(face_offsets)));
+  }
+  return grid;
 }
 
 // ---------------------------------------------------------------------------
@@ -355,7 +446,8 @@ void add_contact_glyphs(const FeaMesh& mesh, const FeaResult& result,
 }  // namespace
 
 void export_fea_vtu(const Structure& structure, const FeaMesh& mesh, const FeaResult& result,
-                    const std::vector<Interface>& interfaces, const std::string& path) {
+                    const std::vector<Interface>& interfaces, const std::string& path,
+                    const FeaVtuOptions& options) {
   const std::string caller = "export_fea_vtu";
   if (file_extension(path) != "vtu") {
     throw InvalidArgument(caller + ": '" + path +
@@ -363,7 +455,7 @@ void export_fea_vtu(const Structure& structure, const FeaMesh& mesh, const FeaRe
   }
   check_mesh_and_result(structure, mesh, result, caller);
   const NodeContacts contacts = node_contacts(mesh, result, interfaces, caller);
-  write_file_atomically(path, vtu_text(mesh, result, contacts));
+  write_file_atomically(path, vtu_text(vtu_grid(structure, mesh, result, contacts), options.format));
 }
 
 void export_fea_mesh(const Structure& structure, const FeaMesh& mesh, const FeaResult& result,

@@ -9,12 +9,22 @@
 #include "fea/fea_mesh.hpp"
 #include "structure/interface.hpp"
 #include "structure/structure.hpp"
+#include "io/vtu_file.hpp"
 
 namespace ashlar {
 
-// Writes mesh and result as a VTK XML UnstructuredGrid: ASCII, file format
-// version 0.1, for ParaView and other VTK readers. The grid is undeformed;
+struct FeaVtuOptions {
+  // Binary files are about a fifth of the size of ASCII ones and take half
+  // the time to write; ASCII is for reading by eye or by simple tools.
+  VtuFormat format = VtuFormat::Binary;
+};
+
+// Writes mesh and result as a VTK XML UnstructuredGrid (file format
+// version 1.0), for ParaView and other VTK readers. The grid is undeformed;
 // ParaView's "Warp By Vector" on `displacement` draws the deformed shape.
+//
+// Binary (the default): zlib-compressed raw appended data, as VTK writes
+// it; ASCII: every array inline (vtu_text, vtu_file.hpp).
 //
 // Inputs:
 //   structure   the analysed structure (free blocks meshed by `mesh`)
@@ -24,13 +34,19 @@ namespace ashlar {
 //               indexes it, and it tells which block of a contact is b
 //   path        ending in .vtu (VTK readers pick the reader by extension)
 //
-// Points: #N, node n is point n, m. Cells: #E, element e is cell e, type
-// VTK_HEXAHEDRON (12). Our hexahedron order (hex_element.hpp) is VTK's:
-// 0-3 the base, right-handed about the direction to 4-7, each of 4-7
+// Points: the #N nodes first, node n is point n; then each support block's
+// corners, supports in block order. Cells: the #E elements first, element e
+// is cell e, type VTK_HEXAHEDRON (12); then one cell per support block in
+// block order: VTK_HEXAHEDRON for a hexahedron (8 corners, 6 four-sided
+// faces joined like a cube's, not folded), otherwise VTK_POLYHEDRON (42)
+// with its faces (the <Cells> then also hold `faces` and `faceoffsets`,
+// -1 for every other cell). Our hexahedron order (hex_element.hpp) is
+// VTK's: 0-3 the base, right-handed about the direction to 4-7, each of 4-7
 // above its base corner, so connectivity is each element's nodes as they
 // are.
 //
-// Point data, one tuple per node:
+// Point data, one tuple per point; 0 on support points (the fixed ground)
+// except `block`:
 //   displacement          3 x Float64, m
 //   contact_force         3 x Float64, N: the sum over the node's contacts of
 //                         the force on the node's block (force_on_b when the
@@ -41,8 +57,16 @@ namespace ashlar {
 //   released              Int32, 1 when relaxation released a contact of the
 //                         node, else 0
 //   block                 Int32, 1-based block index
-// Cell data, one tuple per element:
+//   nodal_stress          6 x Float64, Pa, only when result.stresses is
+//                         filled: the mean of the stresses of the elements
+//                         that have the node as a corner (all within its
+//                         block: blocks keep their own nodes); tensor order
+//                         as `stress` below
+//   nodal_von_mises       Float64, Pa, von_mises() of nodal_stress; with it
+// Cell data, one tuple per cell; 0 on support cells except `block` and
+// `support` (a support is rigid: no stress is computed in it):
 //   block                 Int32, 1-based block index
+//   support               Int32, 1 for a support block's cell, 0 for an element
 //   stress                6 x Float64, Pa, at the element centre; only when
 //                         result.stresses is filled. Components in VTK's
 //                         symmetric-tensor order xx yy zz xy yz xz, which
@@ -51,15 +75,16 @@ namespace ashlar {
 //                         xy). Each component's name is in the file.
 //   von_mises             Float64, Pa, von_mises() of the stress; with it
 //
-// Numbers carry 17 significant digits, so doubles read back exactly. The
-// file is written whole or not at all.
+// Doubles are written exactly in both formats (ASCII with 17 significant
+// digits). The file is written whole or not at all.
 //
 // Throws InvalidArgument when the path does not end in .vtu, when mesh,
 // result or interfaces are not of this structure (counts or indices out of
 // range, a node of a support block) or a displacement or stress is not
 // finite; IoError when the file cannot be written.
 void export_fea_vtu(const Structure& structure, const FeaMesh& mesh, const FeaResult& result,
-                    const std::vector<Interface>& interfaces, const std::string& path);
+                    const std::vector<Interface>& interfaces, const std::string& path,
+                    const FeaVtuOptions& options = {});
 
 struct FeaMeshExportOptions {
   // Displacement magnification: a node is drawn at position + scale *

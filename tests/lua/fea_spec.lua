@@ -195,12 +195,26 @@ describe("ashlar.fea", function()
     local dir = os.tmpname()
     os.remove(dir)
     assert(os.execute("mkdir -p " .. support.quote(dir)))
-    local fe = ashlar.fea(figure14_posts(), { stresses = true })
+    local fe_structure = figure14_posts()
+    local fe = ashlar.fea(fe_structure, { stresses = true })
     fe:export(dir .. "/posts.vtu")
     fe:export(dir .. "/posts.glb", { scale = 2000, undeformed = true })
-    local vtu = assert(io.open(dir .. "/posts.vtu")):read("a")
-    assert.is_truthy(vtu:find('NumberOfCells="' .. fe.element_count .. '"', 1, true))
-    assert.is_truthy(vtu:find('Name="displacement"', 1, true))
+    fe:export(dir .. "/posts_ascii.vtu", { format = "ascii" })
+    local vtu = assert(io.open(dir .. "/posts.vtu", "rb")):read("a")
+    local ascii = assert(io.open(dir .. "/posts_ascii.vtu", "rb")):read("a")
+    -- The elements and one cell per support block (the ground).
+    local supports = 0
+    for i = 1, #fe_structure do if fe_structure:is_support(i) then supports = supports + 1 end end
+    for _, text in ipairs{ vtu, ascii } do
+      assert.is_truthy(text:find('NumberOfCells="' .. fe.element_count + supports .. '"', 1, true))
+      assert.is_truthy(text:find('Name="displacement"', 1, true))
+      assert.is_truthy(text:find('Name="nodal_stress"', 1, true))
+    end
+    -- Binary by default, compressed; ASCII on request.
+    assert.is_truthy(vtu:find('compressor="vtkZLibDataCompressor"', 1, true))
+    assert.is_truthy(vtu:find('<AppendedData encoding="raw">', 1, true))
+    assert.is_falsy(ascii:find("AppendedData", 1, true))
+    assert.is_true(#vtu < #ascii / 2)
     assert.is_truthy(io.open(dir .. "/posts.glb"))
     os.execute("rm -rf " .. support.quote(dir))
   end)
@@ -217,6 +231,10 @@ describe("ashlar.fea", function()
                  models.dome{ meridians = 8, parallels = 3 })
     local fe = ashlar.fea(s)
     expect_error({ "scale" }, function() fe:export(os.tmpname() .. ".vtu", { scale = 2 }) end)
+    expect_error({ "format: 'text' is not one of binary, ascii" },
+                 function() fe:export(os.tmpname() .. ".vtu", { format = "text" }) end)
+    expect_error({ "format: applies to .vtu files" },
+                 function() fe:export(os.tmpname() .. ".glb", { format = "ascii" }) end)
     expect_error({ "export_fea_mesh" }, function() fe:export(os.tmpname() .. ".glb", { color = "pink" }) end)
   end)
 end)

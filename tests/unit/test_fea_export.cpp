@@ -3,6 +3,7 @@
 // contacts and stresses), so these tests do not depend on the analysis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include "fea/fea.hpp"
 #include "fea/fea_mesh.hpp"
 #include "fea/hex_element.hpp"
+#include "geometry/block_builders.hpp"
 #include "core/atomic_file.hpp"
 #include "io/fea_export.hpp"
 #include "io/mesh_io.hpp"
@@ -188,15 +190,17 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
   const HandMade made;
   const FeaMesh& mesh = made.mesh;
   TempDir dir;
-  export_fea_vtu(made.structure, mesh, made.result, *made.structure.interfaces(), dir.file("r.vtu"));
+  export_fea_vtu(made.structure, mesh, made.result, *made.structure.interfaces(), dir.file("r.vtu"),
+                 {VtuFormat::Ascii});
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"r.vtu"});
   const std::string text = read_file(dir.file("r.vtu"));
 
   EXPECT_TRUE(contains(text,
-                       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+                       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
                        "byte_order=\"LittleEndian\">"));
-  const int points = 2 * 27, cells = 2 * 8;
-  ASSERT_EQ(static_cast<int>(mesh.nodes().size()), points);
+  // The mesh's nodes and elements, then the ground slab's 8 corners and its cell.
+  const int nodes = 2 * 27, elements = 2 * 8, points = nodes + 8, cells = elements + 1;
+  ASSERT_EQ(static_cast<int>(mesh.nodes().size()), nodes);
   EXPECT_EQ(attribute(text, "NumberOfPoints"), points);
   EXPECT_EQ(attribute(text, "NumberOfCells"), cells);
 
@@ -204,10 +208,11 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
   // (type 12) of positive volume in VTK's corner order.
   const std::vector<double> xyz = array_values(section(text, "Points"), "");
   ASSERT_EQ(xyz.size(), 3u * points);
-  for (int n = 0; n < points; ++n) EXPECT_EQ(tuple3(xyz, n), mesh.nodes()[n]) << n;
+  for (int n = 0; n < nodes; ++n) EXPECT_EQ(tuple3(xyz, n), mesh.nodes()[n]) << n;
   const std::string cell_section = section(text, "Cells");
   const std::vector<double> connectivity = array_values(cell_section, "connectivity");
   ASSERT_EQ(connectivity.size(), 8u * cells);
+  EXPECT_FALSE(contains(cell_section, "faces"));  // no polyhedron
   const std::vector<double> offsets = array_values(cell_section, "offsets");
   const std::vector<double> types = array_values(cell_section, "types");
   ASSERT_EQ(offsets.size(), static_cast<size_t>(cells));
@@ -217,7 +222,8 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
     EXPECT_EQ(offsets[e], 8 * (e + 1));
     std::array<Vec3, 8> corner;
     for (int a = 0; a < 8; ++a) {
-      EXPECT_EQ(connectivity[8 * e + a], mesh.elements()[e][a]);
+      if (e < elements) EXPECT_EQ(connectivity[8 * e + a], mesh.elements()[e][a]);
+      else EXPECT_EQ(connectivity[8 * e + a], nodes + a);
       corner[a] = tuple3(xyz, static_cast<int>(connectivity[8 * e + a]));
     }
     EXPECT_GT((corner[1] - corner[0]).cross(corner[3] - corner[0]).dot(corner[4] - corner[0]), 0)
@@ -228,8 +234,15 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
   const std::string point_data = section(text, "PointData");
   const std::vector<double> displacement = array_values(point_data, "displacement");
   ASSERT_EQ(displacement.size(), 3u * points);
-  for (int n = 0; n < points; ++n)
+  for (int n = 0; n < nodes; ++n)
     EXPECT_EQ(tuple3(displacement, n), made.result.displacements[n]) << n;
+  // The ground slab's corners, in the support cell, do not move.
+  std::vector<Vec3> slab_corners;
+  for (int n = nodes; n < points; ++n) {
+    EXPECT_EQ(tuple3(displacement, n), Vec3::Zero()) << n;
+    slab_corners.push_back(tuple3(xyz, n));
+  }
+  for (const Vec3& v : made.structure.block(0).vertices()) EXPECT_EQ(nearest(slab_corners, v), 0) << v.transpose();
   EXPECT_TRUE(contains(array_tag(point_data, "displacement"), "NumberOfComponents=\"3\""));
 
   // Contact forces act on the node's own block: + force_on_b on block b, - on block a.
@@ -258,11 +271,16 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
 
   // Blocks are 1-based, per node and per cell.
   const std::vector<double> node_block = array_values(point_data, "block");
-  for (int n = 0; n < points; ++n) EXPECT_EQ(node_block[n], mesh.node_block(n) + 1);
+  for (int n = 0; n < points; ++n) EXPECT_EQ(node_block[n], n < nodes ? mesh.node_block(n) + 1 : 1);
   const std::string cell_data = section(text, "CellData");
   const std::vector<double> cell_block = array_values(cell_data, "block");
+  const std::vector<double> support = array_values(cell_data, "support");
   ASSERT_EQ(cell_block.size(), static_cast<size_t>(cells));
-  for (int e = 0; e < cells; ++e) EXPECT_EQ(cell_block[e], mesh.element_block(e) + 1);
+  ASSERT_EQ(support.size(), static_cast<size_t>(cells));
+  for (int e = 0; e < cells; ++e) {
+    EXPECT_EQ(cell_block[e], e < elements ? mesh.element_block(e) + 1 : 1);
+    EXPECT_EQ(support[e], e < elements ? 0 : 1);
+  }
 
   // Stress in VTK's tensor order xx yy zz xy yz xz, named; von Mises with it.
   const std::vector<double> stress = array_values(cell_data, "stress");
@@ -273,12 +291,113 @@ TEST(FeaExportVtu, GridFieldsRoundTripAtFullPrecision) {
   EXPECT_TRUE(contains(stress_tag, "NumberOfComponents=\"6\"")) << stress_tag;
   EXPECT_TRUE(contains(stress_tag, "ComponentName3=\"XY\"")) << stress_tag;
   EXPECT_TRUE(contains(stress_tag, "ComponentName5=\"XZ\"")) << stress_tag;
-  for (int e = 0; e < cells; ++e) {
+  for (int e = 0; e < elements; ++e) {
     const Stress& s = made.result.stresses[e];
     const std::array<double, 6> vtk_order = {s(0), s(1), s(2), s(5), s(3), s(4)};
     for (int k = 0; k < 6; ++k) EXPECT_EQ(stress[6 * e + k], vtk_order[k]) << e << " " << k;
     EXPECT_EQ(mises[e], von_mises(s));
   }
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(stress[6 * elements + k], 0);  // the rigid support
+  EXPECT_EQ(mises[elements], 0);
+}
+
+// Element e has stress (1 + e / 3) S, so a node's mean is (1 + m / 3) S
+// with m the mean index of the elements that have it as a corner: of a
+// refine-2 block, a corner node is in 1 element, a face centre in 4 and the
+// centre in all 8.
+TEST(FeaExportVtu, NodalStressesAreTheMeansOfTheElementsAroundEachNode) {
+  const HandMade made;
+  const FeaMesh& mesh = made.mesh;
+  TempDir dir;
+  export_fea_vtu(made.structure, mesh, made.result, *made.structure.interfaces(), dir.file("r.vtu"),
+                 {VtuFormat::Ascii});
+  const std::string point_data = section(read_file(dir.file("r.vtu")), "PointData");
+  EXPECT_TRUE(contains(point_data, "Tensors=\"nodal_stress\""));
+  const std::vector<double> nodal = array_values(point_data, "nodal_stress");
+  const std::vector<double> mises = array_values(point_data, "nodal_von_mises");
+  ASSERT_EQ(nodal.size(), 6u * (mesh.nodes().size() + 8));
+  ASSERT_EQ(mises.size(), mesh.nodes().size() + 8);
+  Stress base;
+  base << 1.1e5, -2.2e5, 3.3e5, 4.4e4, -5.5e4, 6.6e4;
+  auto expect_mean = [&](int node, int around) {
+    double index_sum = 0;
+    int count = 0;
+    for (size_t e = 0; e < mesh.elements().size(); ++e) {
+      const auto& corners = mesh.elements()[e];
+      if (std::find(corners.begin(), corners.end(), node) == corners.end()) continue;
+      index_sum += static_cast<double>(e);
+      ++count;
+    }
+    EXPECT_EQ(count, around) << node;
+    const Stress s = base * (1.0 + index_sum / count / 3.0);
+    const std::array<double, 6> vtk_order = {s(0), s(1), s(2), s(5), s(3), s(4)};
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NEAR(nodal[6 * node + k], vtk_order[k], 1e-12 * std::abs(vtk_order[k])) << node << " " << k;
+    EXPECT_NEAR(mises[node], von_mises(s), 1e-12 * von_mises(s)) << node;
+  };
+  expect_mean(node_at(mesh, 1, {-0.5, -0.5, 0}), 1);  // the cube's corner
+  expect_mean(node_at(mesh, 1, {0, 0, 0.5}), 8);      // its centre
+  expect_mean(node_at(mesh, 2, {0.5, 0.5, 1.5}), 1);  // the cap's corner
+  // The cube's top-face centre and the cap's bottom-face centre share a
+  // position but not their nodes: each mean stays within its block.
+  const int cube_top = node_at(mesh, 1, {0, 0, 1}), cap_bottom = node_at(mesh, 2, {0, 0, 1});
+  expect_mean(cube_top, 4);
+  expect_mean(cap_bottom, 4);
+  EXPECT_GT(nodal[6 * cap_bottom], nodal[6 * cube_top] + 1e5);  // the cap's elements come later: larger stresses
+  for (size_t n = mesh.nodes().size(); n < mesh.nodes().size() + 8; ++n) {
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(nodal[6 * n + k], 0) << n;  // the support's corners
+  }
+}
+
+// A support that is not a hexahedron (a pentagonal slab) is one
+// VTK_POLYHEDRON: its 10 vertices, its 7 faces outward in `faces`, the end
+// of its face stream in `faceoffsets`, -1 for the elements.
+TEST(FeaExportVtu, SupportsThatAreNoHexahedraArePolyhedra) {
+  Structure s;
+  std::vector<Vec3> pentagon;
+  for (int k = 0; k < 5; ++k) pentagon.emplace_back(std::cos(0.4 * M_PI * k), std::sin(0.4 * M_PI * k), 0);
+  s.add(std::make_shared<const Block>(make_prism(pentagon, {0, 0, -0.2})), true, "ground");
+  s.add(box({0.5, 0.5, 0.5}, {0, 0, 0.25}), false, "cube");
+  const FeaMesh mesh(s, 1);
+  FeaResult result;
+  result.displacements.assign(mesh.nodes().size(), Vec3(0, 0, -1e-6));
+  TempDir dir;
+  export_fea_vtu(s, mesh, result, *s.interfaces(), dir.file("r.vtu"), {VtuFormat::Ascii});
+  const std::string cell_section = section(read_file(dir.file("r.vtu")), "Cells");
+  EXPECT_EQ(array_values(cell_section, "types"), (std::vector<double>{12, 42}));
+  EXPECT_EQ(array_values(cell_section, "offsets"), (std::vector<double>{8, 18}));
+  std::vector<double> connectivity = array_values(cell_section, "connectivity");
+  EXPECT_EQ(std::vector<double>(connectivity.begin() + 8, connectivity.end()),
+            (std::vector<double>{8, 9, 10, 11, 12, 13, 14, 15, 16, 17}));
+  const std::vector<double> faces = array_values(cell_section, "faces");
+  // 7 faces: two pentagons and five quadrilaterals, each with its size.
+  ASSERT_EQ(faces.size(), 1u + 2 * 6 + 5 * 5);
+  EXPECT_EQ(faces[0], 7);
+  EXPECT_EQ(array_values(cell_section, "faceoffsets"), (std::vector<double>{-1, 38}));
+  const Block& ground = s.block(0);
+  size_t at = 1;
+  for (const FaceLoop& face : ground.faces()) {
+    EXPECT_EQ(faces[at], static_cast<double>(face.size()));
+    for (size_t k = 0; k < face.size(); ++k) EXPECT_EQ(faces[at + 1 + k], 8 + face[k]);
+    at += 1 + face.size();
+  }
+}
+
+// Binary is the default: VTK's compressed appended layout, and far smaller.
+TEST(FeaExportVtu, BinaryIsTheDefault) {
+  const HandMade made;
+  TempDir dir;
+  const auto& interfaces = *made.structure.interfaces();
+  export_fea_vtu(made.structure, made.mesh, made.result, interfaces, dir.file("b.vtu"));
+  export_fea_vtu(made.structure, made.mesh, made.result, interfaces, dir.file("a.vtu"), {VtuFormat::Ascii});
+  const std::string binary = read_file(dir.file("b.vtu")), ascii = read_file(dir.file("a.vtu"));
+  EXPECT_TRUE(contains(binary, "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\""));
+  EXPECT_TRUE(contains(binary, "<AppendedData encoding=\"raw\">"));
+  EXPECT_FALSE(contains(binary, "format=\"ascii\""));
+  EXPECT_FALSE(contains(ascii, "AppendedData"));
+  EXPECT_LT(binary.size(), ascii.size() / 2);
+  EXPECT_EQ(kVtuFormatNames.parse("ascii"), VtuFormat::Ascii);
+  EXPECT_EQ(kVtuFormatNames.parse("binary"), VtuFormat::Binary);
 }
 
 TEST(FeaExportVtu, StressesOnlyWhenComputed) {
@@ -286,9 +405,11 @@ TEST(FeaExportVtu, StressesOnlyWhenComputed) {
   made.result.stresses.clear();
   TempDir dir;
   export_fea_vtu(made.structure, made.mesh, made.result, *made.structure.interfaces(),
-                 dir.file("r.vtu"));
+                 dir.file("r.vtu"), {VtuFormat::Ascii});
   const std::string text = read_file(dir.file("r.vtu"));
   EXPECT_FALSE(contains(text, "Name=\"stress\""));
+  EXPECT_FALSE(contains(text, "Name=\"nodal_stress\""));
+  EXPECT_FALSE(contains(text, "Name=\"nodal_von_mises\""));
   EXPECT_FALSE(contains(text, "Name=\"von_mises\""));
   EXPECT_TRUE(contains(section(text, "CellData"), "Name=\"block\""));
 }

@@ -19,6 +19,7 @@
 #include "analysis/weight_analysis.hpp"
 #include "fea/fea.hpp"
 #include "fea/fea_mesh.hpp"
+#include "io/fea_export.hpp"
 
 using namespace ashlar;
 
@@ -140,6 +141,10 @@ TEST(DocumentedDefaults, Refine) {
   EXPECT_EQ(number_in(documented(kRefine, "growth")), settings.growth);
   EXPECT_EQ(number_in(documented(kRefine, "max")), settings.max);
   EXPECT_EQ(number_in(documented(kRefine, "confirm")), settings.confirm);
+}
+
+TEST(DocumentedDefaults, FeaVtuExport) {
+  EXPECT_EQ(documented(kFea, "format"), std::string("`\"") + kVtuFormatNames.name(FeaVtuOptions{}.format) + "\"`");
 }
 
 TEST(DocumentedDefaults, LoadCapacityAndImportantWeights) {
