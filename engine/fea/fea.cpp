@@ -324,6 +324,10 @@ TiedSolution solve_tied(TiedSystem& system, const std::vector<FeaContact>& ties,
                         const std::vector<Hold>& holds, const Eigen::VectorXd& loads, std::vector<Vec3>& multipliers) {
   TiedSolution out;
   for (size_t t = 0; t < ties.size(); ++t) multipliers[t] = held_part(holds[t], normals[t], multipliers[t]);
+  if (stop_requested()) {
+    out.interrupted = true;
+    return out;
+  }
   out.factorized = system.factorize(holds);
   if (!out.factorized) return out;
   for (out.steps = 1; out.steps <= 100; ++out.steps) {
@@ -393,8 +397,20 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   const int dofs = 3 * static_cast<int>(mesh.nodes().size());
   result.dofs = dofs;
   result.total_weight = assembly.total_weight;
+  // Stop points between the long steps (CHOLMOD's analysis and each
+  // factorisation run to their end): an interrupt waits one of them at most.
+  const auto interrupted_before_solving = [&] {
+    if (!stop_requested()) return false;
+    result.status = FeaStatus::Interrupted;
+    result.displacements.assign(mesh.nodes().size(), Vec3::Zero());
+    result.max_displacement = result.max_penetration = std::numeric_limits<double>::quiet_NaN();
+    result.seconds = seconds_since(start);
+    return true;
+  };
+  if (interrupted_before_solving()) return result;
   TiedSystem system(assembly, ties, normals, dofs);
   result.factor_nonzeros = static_cast<long>(system.factor_nonzeros());
+  if (interrupted_before_solving()) return result;
 
   Eigen::VectorXd displacements;
   std::vector<Vec3> multipliers(ties.size(), Vec3::Zero());

@@ -301,4 +301,6 @@ TEST(FeaUnilateral, AnInterruptedOrUnfinishedAnalysisHasNoVerdict) {
   EXPECT_EQ(interrupted.status, FeaStatus::Interrupted);
   EXPECT_FALSE(interrupted.compression_only);
   EXPECT_TRUE(std::isnan(interrupted.max_displacement));
+  // What it has can still be exported: every node with a displacement.
+  EXPECT_EQ(interrupted.displacements.size(), mesh.nodes().size());
 }
