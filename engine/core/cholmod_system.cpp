@@ -2,13 +2,70 @@
 
 #include <cholmod.h>
 
+#include <pthread.h>
+
 #include <algorithm>
+#include <csignal>
 #include <cstddef>
+#include <mutex>
 
 #include "core/blas.hpp"
 #include "core/error.hpp"
 
 namespace ashlar {
+
+namespace {
+
+// Every call into CHOLMOD that may reach METIS (cholmod_analyze with its
+// default methods, cholmod_bisect, cholmod_metis) runs inside one
+// MetisCall, one at a time in the whole process, because METIS is not
+// thread-safe in two ways:
+// - its random number generator (GKlib's Mersenne twister) is one process
+//   global, reseeded at every call: two threads ordering at once draw from
+//   each other's sequence, so the orderings, and the round-off of every
+//   factorisation after them, changed from run to run (a 2-worker FEA study
+//   differed in 37-50 of 150 rows between runs). One at a time, each call
+//   draws its own seeded sequence: the orderings are those of a serial run;
+// - it swaps the process's SIGABRT and SIGTERM handlers for its own (a
+//   longjmp back into the call) with SysV signal(), saving the old ones per
+//   thread: overlapping calls put back each other's, and even one call puts
+//   the host's handler back as a one-shot, SysV-style handler.
+// So the call runs with SIGTERM blocked in its thread (a SIGTERM aimed at it
+// waits instead of unwinding METIS), and on exit the handlers of its start
+// are put back exactly as they were (sigaction), before SIGTERM is
+// unblocked: one that came meanwhile is then taken by the host's handler.
+class MetisCall {
+public:
+  MetisCall() {
+    sigset_t terminate;
+    sigemptyset(&terminate);
+    sigaddset(&terminate, SIGTERM);
+    // Blocked before waiting for the lock: a thread waiting here holds no
+    // METIS handler, but the one it is about to get must not take a SIGTERM.
+    pthread_sigmask(SIG_BLOCK, &terminate, &mask_);
+    lock_ = std::unique_lock<std::mutex>(mutex());
+    for (int k = 0; k < 2; ++k) sigaction(kSignals[k], nullptr, &saved_[k]);
+  }
+  ~MetisCall() {
+    for (int k = 0; k < 2; ++k) sigaction(kSignals[k], &saved_[k], nullptr);
+    lock_.unlock();
+    pthread_sigmask(SIG_SETMASK, &mask_, nullptr);
+  }
+  MetisCall(const MetisCall&) = delete;
+  MetisCall& operator=(const MetisCall&) = delete;
+
+private:
+  static std::mutex& mutex() {
+    static std::mutex process_wide;
+    return process_wide;
+  }
+  static constexpr int kSignals[2] = {SIGABRT, SIGTERM};
+  sigset_t mask_;
+  std::unique_lock<std::mutex> lock_;
+  struct sigaction saved_[2];
+};
+
+}  // namespace
 
 struct CholmodSystem::Impl {
   Impl(int n, const int* column_starts, const int* row_indices, Triangle stored) {
@@ -48,16 +105,24 @@ struct CholmodSystem::Impl {
     cholmod_free_sparse(&matrix_, &common_);
     cholmod_finish(&common_);
   }
+  // CHOLMOD's default methods try METIS where AMD's ordering fills much.
   void analyze() {
-    factor_ = cholmod_analyze(matrix_, &common_);
-    if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
+    {
+      const MetisCall metis;
+      factor_ = cholmod_analyze(matrix_, &common_);
+    }
+    check_analysed();
   }
   void analyze_as_ordered() {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_NATURAL;
     common_.postorder = 0;
-    analyze();
+    factor_ = cholmod_analyze(matrix_, &common_);
+    check_analysed();
     prepare_numeric();
+  }
+  void check_analysed() const {
+    if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
   }
 
   int rows() const { return static_cast<int>(matrix_->nrow); }
@@ -310,6 +375,7 @@ std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std:
   const bool ok = with_cholmod_pattern(n, column_starts.data(), row_indices.data(),
                                        [&](cholmod_sparse* pattern, cholmod_common* common) {
     // compress: rows of one body share their pattern and stay together.
+    const MetisCall metis;
     return cholmod_bisect(pattern, nullptr, 0, /*compress=*/1, part.data(), common) >= 0;
   });
   if (!ok) part.clear();
@@ -344,6 +410,7 @@ std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_star
     }
     const bool leading = with_cholmod_pattern(first_last, column_starts.data(), row_indices.data(),
                                               [&](cholmod_sparse* lead, cholmod_common* lead_common) {
+      const MetisCall metis;
       return cholmod_metis(lead, nullptr, 0, /*postorder=*/1, dissected.data(), lead_common) != 0;
     });
     if (leading) {
