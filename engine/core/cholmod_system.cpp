@@ -2,6 +2,7 @@
 
 #include <cholmod.h>
 
+#include <dlfcn.h>
 #include <pthread.h>
 
 #include <algorithm>
@@ -29,24 +30,36 @@ namespace {
 // - it swaps the process's SIGABRT and SIGTERM handlers for its own (a
 //   longjmp back into the call) with SysV signal(), saving the old ones per
 //   thread: overlapping calls put back each other's, and even one call puts
-//   the host's handler back as a one-shot, SysV-style handler.
-// So the call runs with SIGTERM blocked in its thread (a SIGTERM aimed at it
-// waits instead of unwinding METIS), and on exit the handlers of its start
-// are put back exactly as they were (sigaction), before SIGTERM is
-// unblocked: one that came meanwhile is then taken by the host's handler.
+//   the host's handler back as a one-shot, SysV-style handler. And a
+//   SIGTERM sent to the process while METIS's handler is installed goes to
+//   the main thread, or to any thread that does not block it (OpenBLAS's
+//   pool, started before main, blocks nothing), which runs METIS's handler:
+//   a longjmp to a jump buffer that only the thread inside METIS has, a
+//   SIGSEGV elsewhere (7 of 30 SIGTERMs sent to the 10,051-block wall
+//   during its orderings ended with exit 139; one was caught by METIS in
+//   the ordering thread and lost).
+// So in a MetisCall METIS's handler for SIGTERM is never installed (see
+// __sysv_signal below): SIGTERM keeps the process's handler throughout,
+// whichever thread takes it. The call's own thread blocks SIGTERM, so that
+// one sent to it waits for the end of the call instead of running the
+// handler inside METIS; on exit the SIGABRT and SIGTERM handlers of its
+// start are put back exactly as they were (sigaction), and then SIGTERM is
+// unblocked.
+thread_local bool t_in_metis_call = false;
+
 class MetisCall {
 public:
   MetisCall() {
     sigset_t terminate;
     sigemptyset(&terminate);
     sigaddset(&terminate, SIGTERM);
-    // Blocked before waiting for the lock: a thread waiting here holds no
-    // METIS handler, but the one it is about to get must not take a SIGTERM.
     pthread_sigmask(SIG_BLOCK, &terminate, &mask_);
     lock_ = std::unique_lock<std::mutex>(mutex());
     for (int k = 0; k < 2; ++k) sigaction(kSignals[k], nullptr, &saved_[k]);
+    t_in_metis_call = true;
   }
   ~MetisCall() {
+    t_in_metis_call = false;
     for (int k = 0; k < 2; ++k) sigaction(kSignals[k], &saved_[k], nullptr);
     lock_.unlock();
     pthread_sigmask(SIG_SETMASK, &mask_, nullptr);
@@ -66,6 +79,32 @@ private:
 };
 
 }  // namespace
+
+}  // namespace ashlar
+
+// METIS sets its handlers with SysV signal(), which is glibc's
+// __sysv_signal (libmetis.so.5 as Debian builds it); defined here, in the
+// executable (exported, engine/core/CMakeLists.txt), it comes first for
+// libmetis. Inside a MetisCall, SIGTERM's handler is left as it is: METIS's
+// signal(SIGTERM, ...) calls change nothing and return the current handler,
+// which METIS then "puts back" the same way. Its SIGABRT handler, its way
+// out of a failed allocation, is installed as before. METIS raises SIGTERM
+// itself only for errors in its input, which CHOLMOD checks first. Every
+// other call goes to the next definition (glibc's). In the C module for
+// stock lua5.4, loaded RTLD_LOCAL, libmetis finds glibc's first: there the
+// calls are still one at a time and the handlers put back.
+extern "C" __sighandler_t __sysv_signal(int signal_number, __sighandler_t handler) noexcept {
+  using Signal = __sighandler_t (*)(int, __sighandler_t);
+  static const Signal next = reinterpret_cast<Signal>(dlsym(RTLD_NEXT, "__sysv_signal"));
+  if (signal_number == SIGTERM && ashlar::t_in_metis_call) {
+    struct sigaction current {};
+    sigaction(SIGTERM, nullptr, &current);
+    return current.sa_handler;
+  }
+  return next(signal_number, handler);
+}
+
+namespace ashlar {
 
 struct CholmodSystem::Impl {
   Impl(int n, const int* column_starts, const int* row_indices, Triangle stored) {

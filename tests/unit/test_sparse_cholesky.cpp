@@ -7,7 +7,11 @@
 
 #include <pthread.h>
 
+#include <unistd.h>
+
 #include <Eigen/Cholesky>
+#include <atomic>
+#include <chrono>
 #include <csignal>
 #include <random>
 #include <thread>
@@ -203,6 +207,9 @@ Orderings metis_orderings(const GridMatrix& m) {
 
 void on_test_signal(int) {}
 
+std::atomic<int> g_sigterms_taken{0};
+void count_sigterm(int) { ++g_sigterms_taken; }
+
 }  // namespace
 
 TEST(MetisOrderings, FromTwoThreadsAtOnceAreThoseOfASerialRun) {
@@ -263,4 +270,34 @@ TEST(MetisOrderings, LeaveTheSigtermHandlerOfTheirStartExactlyAsItWas) {
   struct sigaction abort_after {};
   sigaction(SIGABRT, nullptr, &abort_after);
   EXPECT_EQ(abort_after.sa_handler, SIG_DFL);
+}
+
+TEST(MetisOrderings, ASigtermSentToTheProcessDuringThemReachesTheProcessHandler) {
+  // SIGTERMs sent to the process while another thread orders: this thread
+  // takes them (it blocks nothing), with the handler of the process, never
+  // METIS's (a longjmp to a jump buffer only the ordering thread has: a
+  // SIGSEGV here).
+  struct sigaction counting {};
+  counting.sa_handler = count_sigterm;
+  sigemptyset(&counting.sa_mask);
+  counting.sa_flags = SA_RESTART;
+  struct sigaction saved {};
+  ASSERT_EQ(sigaction(SIGTERM, &counting, &saved), 0);
+  g_sigterms_taken = 0;
+  const GridMatrix m = grid_matrix(30, 30, 3, 13);
+  std::atomic<bool> ordering{true};
+  std::thread orderer([&] {
+    for (int k = 0; k < 10; ++k) metis_orderings(m);
+    ordering = false;
+  });
+  int sent = 0;
+  while (ordering) {
+    kill(getpid(), SIGTERM);
+    ++sent;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  orderer.join();
+  sigaction(SIGTERM, &saved, nullptr);
+  EXPECT_GT(sent, 0);
+  EXPECT_GT(g_sigterms_taken.load(), 0);
 }
