@@ -342,11 +342,28 @@ public:
   // interior: the equilibrium solver's questions (InteriorCapacity), or null.
   BlockPrograms(const ClpSimplex& capacity, const ClpSimplex& rays, const AsBuiltProgram& as_built, bool planar,
                 std::unique_ptr<InteriorCapacity> interior)
-      : capacity_(capacity), rays_(rays), interior_(std::move(interior)), as_built_(as_built), planar_(planar) {}
+      : initial_capacity_(capacity), initial_rays_(rays), capacity_(capacity), rays_(rays),
+        interior_(std::move(interior)), as_built_(as_built), planar_(planar) {}
+
+  // Back to the state of construction before a chunk of blocks: the Clp
+  // models as copied (no simplex basis of an earlier block, no previous ray
+  // to warm-start from) and no guess that the next block is unbounded.
+  // The equilibrium solver's questions start from the as-built forces, or
+  // cold, every time, and keep nothing of earlier blocks to restore.
+  void restart() {
+    if (!used_) return;
+    capacity_ = initial_capacity_;
+    rays_ = initial_rays_;
+    solved_copy_ = false;
+    ray_column_ = -1;
+    last_unbounded_ = false;
+    used_ = false;
+  }
 
   // The bounds of the multiple in `column` (fixed at 1 between calls) of
   // `weight` (scaled) on the block whose first balance row is `row`.
   BlockBounds solve(int column, int row, double weight) {
+    used_ = true;
     BlockBounds bounds;
     bounds.solved = true;
     int iterations = 0;
@@ -490,6 +507,8 @@ private:
     bounds.pivots += iterations;
   }
 
+  const ClpSimplex initial_capacity_;  // as built, unsolved: the capacity program's copy at a restart
+  const ClpSimplex& initial_rays_;
   ClpSimplex capacity_, rays_;
   std::unique_ptr<InteriorCapacity> interior_;
   BarrierSolver barrier_;  // its normal equations analysed once for all blocks
@@ -498,7 +517,21 @@ private:
   bool planar_;
   int ray_column_ = -1;
   bool last_unbounded_ = false;  // whether this worker's last block was proven unbounded by the solver
+  bool used_ = false;            // a block solved since construction or the last restart
 };
+
+// Blocks per chunk: a chunk's blocks (consecutive in block order) are
+// solved by one worker, each warm from the one before (the simplex bases,
+// the previous ray, the guess that a run of unbounded blocks goes on), and
+// every chunk starts afresh (BlockPrograms::restart). A block's bounds then
+// depend on its chunk alone, not on the thread that took it or on what that
+// thread solved before: the same, to the bit, in every run and for any
+// number of threads. When workers took blocks one at a time and each went
+// on warm from its own last, the 16 x 18 dome's bounds changed between
+// 2-thread runs (a block's largest multiple 20546.2 in one run and
+// unbounded in another; the planar arches' in the last digits). A dome's
+// course has 16-32 blocks: a chunk holds most of a run of unbounded ones.
+constexpr size_t kChunkBlocks = 16;
 
 }  // namespace
 
@@ -538,7 +571,8 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   std::vector<BlockBounds> bounds(blocks.size());
   // The copies are made here, one thread reading the models at a time.
   std::vector<BlockPrograms> programs;
-  const int workers = worker_count(threads, static_cast<int>(blocks.size()));
+  const size_t chunks = (blocks.size() + kChunkBlocks - 1) / kChunkBlocks;
+  const int workers = worker_count(threads, static_cast<int>(chunks));
   programs.reserve(workers);
   // The as-built forces for the equilibrium solver's warm starts; none
   // when it finds no optimum (the simplex and the barrier answer alone).
@@ -568,16 +602,20 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
     programs.emplace_back(capacity, rays, as_built, problem.block_rows == 3, std::move(interior_capacity));
   }
   as_built_analysis.reset();
-  std::atomic<size_t> next{0};
+  std::atomic<size_t> next{0};  // the next chunk to take
   std::atomic<int> done{0};
   const int total = static_cast<int>(blocks.size());
   auto work = [&](BlockPrograms& mine, bool tells) {
-    for (size_t k = next++; k < blocks.size() && !stop_requested(); k = next++) {
-      const int j = blocks[k];
-      bounds[k] = mine.solve(multiplier_column[j], problem.row_of_block[j],
-                             structure.block(j).mass() * kGravity / problem.weight_unit);
-      const int now = ++done;
-      if (tells && progress) progress(now, total);
+    for (size_t chunk = next++; chunk < chunks && !stop_requested(); chunk = next++) {
+      mine.restart();
+      const size_t end = std::min(blocks.size(), (chunk + 1) * kChunkBlocks);
+      for (size_t k = chunk * kChunkBlocks; k < end && !stop_requested(); ++k) {
+        const int j = blocks[k];
+        bounds[k] = mine.solve(multiplier_column[j], problem.row_of_block[j],
+                               structure.block(j).mass() * kGravity / problem.weight_unit);
+        const int now = ++done;
+        if (tells && progress) progress(now, total);
+      }
     }
   };
   if (progress) progress(0, total);

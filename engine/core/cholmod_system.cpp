@@ -2,11 +2,107 @@
 
 #include <cholmod.h>
 
+#include <dlfcn.h>
+#include <pthread.h>
+
 #include <algorithm>
+#include <csignal>
 #include <cstddef>
+#include <mutex>
 
 #include "core/blas.hpp"
 #include "core/error.hpp"
+
+namespace ashlar {
+
+namespace {
+
+// Every call into CHOLMOD that may reach METIS (cholmod_analyze with its
+// default methods, cholmod_bisect, cholmod_metis) runs inside one
+// MetisCall, one at a time in the whole process, because METIS is not
+// thread-safe in two ways:
+// - its random number generator (GKlib's Mersenne twister) is one process
+//   global, reseeded at every call: two threads ordering at once draw from
+//   each other's sequence, so the orderings, and the round-off of every
+//   factorisation after them, changed from run to run (a 2-worker FEA study
+//   differed in 37-50 of 150 rows between runs). One at a time, each call
+//   draws its own seeded sequence: the orderings are those of a serial run;
+// - it swaps the process's SIGABRT and SIGTERM handlers for its own (a
+//   longjmp back into the call) with SysV signal(), saving the old ones per
+//   thread: overlapping calls put back each other's, and even one call puts
+//   the host's handler back as a one-shot, SysV-style handler. And a
+//   SIGTERM sent to the process while METIS's handler is installed goes to
+//   the main thread, or to any thread that does not block it (OpenBLAS's
+//   pool, started before main, blocks nothing), which runs METIS's handler:
+//   a longjmp to a jump buffer that only the thread inside METIS has, a
+//   SIGSEGV elsewhere (7 of 30 SIGTERMs sent to the 10,051-block wall
+//   during its orderings ended with exit 139; one was caught by METIS in
+//   the ordering thread and lost).
+// So in a MetisCall METIS's handler for SIGTERM is never installed (see
+// __sysv_signal below): SIGTERM keeps the process's handler throughout,
+// whichever thread takes it. The call's own thread blocks SIGTERM, so that
+// one sent to it waits for the end of the call instead of running the
+// handler inside METIS; on exit the SIGABRT and SIGTERM handlers of its
+// start are put back exactly as they were (sigaction), and then SIGTERM is
+// unblocked.
+thread_local bool t_in_metis_call = false;
+
+class MetisCall {
+public:
+  MetisCall() {
+    sigset_t terminate;
+    sigemptyset(&terminate);
+    sigaddset(&terminate, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &terminate, &mask_);
+    lock_ = std::unique_lock<std::mutex>(mutex());
+    for (int k = 0; k < 2; ++k) sigaction(kSignals[k], nullptr, &saved_[k]);
+    t_in_metis_call = true;
+  }
+  ~MetisCall() {
+    t_in_metis_call = false;
+    for (int k = 0; k < 2; ++k) sigaction(kSignals[k], &saved_[k], nullptr);
+    lock_.unlock();
+    pthread_sigmask(SIG_SETMASK, &mask_, nullptr);
+  }
+  MetisCall(const MetisCall&) = delete;
+  MetisCall& operator=(const MetisCall&) = delete;
+
+private:
+  static std::mutex& mutex() {
+    static std::mutex process_wide;
+    return process_wide;
+  }
+  static constexpr int kSignals[2] = {SIGABRT, SIGTERM};
+  sigset_t mask_;
+  std::unique_lock<std::mutex> lock_;
+  struct sigaction saved_[2];
+};
+
+}  // namespace
+
+}  // namespace ashlar
+
+// METIS sets its handlers with SysV signal(), which is glibc's
+// __sysv_signal (libmetis.so.5 as Debian builds it); defined here, in the
+// executable (exported, engine/core/CMakeLists.txt), it comes first for
+// libmetis. Inside a MetisCall, SIGTERM's handler is left as it is: METIS's
+// signal(SIGTERM, ...) calls change nothing and return the current handler,
+// which METIS then "puts back" the same way. Its SIGABRT handler, its way
+// out of a failed allocation, is installed as before. METIS raises SIGTERM
+// itself only for errors in its input, which CHOLMOD checks first. Every
+// other call goes to the next definition (glibc's). In the C module for
+// stock lua5.4, loaded RTLD_LOCAL, libmetis finds glibc's first: there the
+// calls are still one at a time and the handlers put back.
+extern "C" __sighandler_t __sysv_signal(int signal_number, __sighandler_t handler) noexcept {
+  using Signal = __sighandler_t (*)(int, __sighandler_t);
+  static const Signal next = reinterpret_cast<Signal>(dlsym(RTLD_NEXT, "__sysv_signal"));
+  if (signal_number == SIGTERM && ashlar::t_in_metis_call) {
+    struct sigaction current {};
+    sigaction(SIGTERM, nullptr, &current);
+    return current.sa_handler;
+  }
+  return next(signal_number, handler);
+}
 
 namespace ashlar {
 
@@ -48,16 +144,24 @@ struct CholmodSystem::Impl {
     cholmod_free_sparse(&matrix_, &common_);
     cholmod_finish(&common_);
   }
+  // CHOLMOD's default methods try METIS where AMD's ordering fills much.
   void analyze() {
-    factor_ = cholmod_analyze(matrix_, &common_);
-    if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
+    {
+      const MetisCall metis;
+      factor_ = cholmod_analyze(matrix_, &common_);
+    }
+    check_analysed();
   }
   void analyze_as_ordered() {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_NATURAL;
     common_.postorder = 0;
-    analyze();
+    factor_ = cholmod_analyze(matrix_, &common_);
+    check_analysed();
     prepare_numeric();
+  }
+  void check_analysed() const {
+    if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
   }
 
   int rows() const { return static_cast<int>(matrix_->nrow); }
@@ -310,6 +414,7 @@ std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std:
   const bool ok = with_cholmod_pattern(n, column_starts.data(), row_indices.data(),
                                        [&](cholmod_sparse* pattern, cholmod_common* common) {
     // compress: rows of one body share their pattern and stay together.
+    const MetisCall metis;
     return cholmod_bisect(pattern, nullptr, 0, /*compress=*/1, part.data(), common) >= 0;
   });
   if (!ok) part.clear();
@@ -344,6 +449,7 @@ std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_star
     }
     const bool leading = with_cholmod_pattern(first_last, column_starts.data(), row_indices.data(),
                                               [&](cholmod_sparse* lead, cholmod_common* lead_common) {
+      const MetisCall metis;
       return cholmod_metis(lead, nullptr, 0, /*postorder=*/1, dissected.data(), lead_common) != 0;
     });
     if (leading) {

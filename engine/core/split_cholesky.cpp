@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <csignal>
 #include <cstddef>
 
 #include "core/blas.hpp"
@@ -10,32 +9,6 @@
 #include "core/sourced_pattern.hpp"
 
 namespace ashlar {
-
-namespace {
-
-// METIS (under cholmod_metis) installs handlers of its own for SIGABRT and
-// SIGTERM with signal() on entry and puts back what it found on exit, per
-// thread: two threads ordering at once leave its handler, which longjmps to
-// a buffer long gone, installed for the whole process (a SIGTERM then
-// crashed the host). This puts back, at the end of its scope, the handlers
-// of its start.
-class MetisSignalsKept {
-public:
-  MetisSignalsKept() {
-    for (int k = 0; k < 2; ++k) sigaction(kSignals[k], nullptr, &saved_[k]);
-  }
-  ~MetisSignalsKept() {
-    for (int k = 0; k < 2; ++k) sigaction(kSignals[k], &saved_[k], nullptr);
-  }
-  MetisSignalsKept(const MetisSignalsKept&) = delete;
-  MetisSignalsKept& operator=(const MetisSignalsKept&) = delete;
-
-private:
-  static constexpr int kSignals[2] = {SIGABRT, SIGTERM};
-  struct sigaction saved_[2];
-};
-
-}  // namespace
 
 // One side of the split: the rows of part A (or B) followed by the
 // separator's, factored with the separator last.
@@ -166,9 +139,9 @@ bool SplitCholesky::split(int n, const std::vector<int>& column_starts, const st
       }
     }
   }
-  // The two sides' orderings and analyses, each on its own core.
+  // The two sides' orderings and analyses, each on its own core (their
+  // METIS calls one at a time, core/cholmod_system.cpp).
   bool ordered[2] = {false, false};
-  const MetisSignalsKept metis_signals;
   loop_.run_parts(2, [&](int p) {
     Side& side = *sides_[p];
     const int rows = side.own + s;

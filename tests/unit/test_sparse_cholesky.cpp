@@ -5,11 +5,19 @@
 // definite is reported, split or not.
 #include <gtest/gtest.h>
 
+#include <pthread.h>
+
+#include <unistd.h>
+
 #include <Eigen/Cholesky>
+#include <atomic>
+#include <chrono>
 #include <csignal>
 #include <random>
+#include <thread>
 #include <vector>
 
+#include "core/cholmod_system.hpp"
 #include "core/sparse_cholesky.hpp"
 
 using ashlar::SparseCholesky;
@@ -181,4 +189,115 @@ TEST(SparseCholesky, SplitOrderingLeavesTheProcessSignalHandlersAsTheyWere) {
     sigaction(signal_number, nullptr, &after);
     EXPECT_EQ(after.sa_handler, SIG_DFL) << "signal " << signal_number;
   }
+}
+
+namespace {
+
+// The METIS orderings of a 30 x 30 grid: its bisection and the order that
+// puts the last 90 rows last.
+struct Orderings {
+  std::vector<int> part, order;
+  bool operator==(const Orderings& other) const { return part == other.part && order == other.order; }
+};
+
+Orderings metis_orderings(const GridMatrix& m) {
+  return {ashlar::bisect(m.n, m.column_starts, m.row_indices),
+          ashlar::order_with_last_rows(m.n, m.column_starts, m.row_indices, m.n - 90)};
+}
+
+void on_test_signal(int) {}
+
+std::atomic<int> g_sigterms_taken{0};
+void count_sigterm(int) { ++g_sigterms_taken; }
+
+}  // namespace
+
+TEST(MetisOrderings, FromTwoThreadsAtOnceAreThoseOfASerialRun) {
+  // METIS's random number generator is one for the process, reseeded at
+  // every call: calls at once drew from each other's sequence. They run
+  // one at a time, so each thread gets the serial orderings.
+  const GridMatrix m = grid_matrix(30, 30, 3, 11);
+  const Orderings serial = metis_orderings(m);
+  ASSERT_EQ(static_cast<int>(serial.part.size()), m.n);
+  ASSERT_EQ(static_cast<int>(serial.order.size()), m.n);
+  int differing = 0;
+  for (int round = 0; round < 8; ++round) {
+    Orderings other;
+    std::thread second([&] { other = metis_orderings(m); });
+    const Orderings own = metis_orderings(m);
+    second.join();
+    differing += (own == serial ? 0 : 1) + (other == serial ? 0 : 1);
+  }
+  EXPECT_EQ(differing, 0);
+}
+
+TEST(MetisOrderings, LeaveTheSigtermHandlerOfTheirStartExactlyAsItWas) {
+  // METIS installs its own SIGABRT and SIGTERM handlers with SysV signal()
+  // and, at its end, puts the old ones back the same way: as one-shot
+  // handlers (SA_RESETHAND) with no mask. The host's handler, its flags and
+  // its mask must come through orderings on this thread and on two at once,
+  // and SIGTERM must not stay blocked in the ordering threads.
+  struct sigaction host {};
+  host.sa_handler = on_test_signal;
+  sigemptyset(&host.sa_mask);
+  sigaddset(&host.sa_mask, SIGUSR2);
+  host.sa_flags = SA_RESTART;
+  struct sigaction saved {};
+  ASSERT_EQ(sigaction(SIGTERM, &host, &saved), 0);
+  const GridMatrix m = grid_matrix(30, 30, 3, 12);
+  auto sigterm_blocked = [] {
+    sigset_t mask;
+    pthread_sigmask(SIG_SETMASK, nullptr, &mask);
+    return sigismember(&mask, SIGTERM) == 1;
+  };
+  bool blocked_after[2] = {true, true};
+  metis_orderings(m);
+  std::thread second([&] {
+    metis_orderings(m);
+    blocked_after[1] = sigterm_blocked();
+  });
+  metis_orderings(m);
+  blocked_after[0] = sigterm_blocked();
+  second.join();
+  struct sigaction after {};
+  sigaction(SIGTERM, nullptr, &after);
+  sigaction(SIGTERM, &saved, nullptr);
+  EXPECT_EQ(after.sa_handler, on_test_signal);
+  EXPECT_EQ(after.sa_flags & (SA_RESTART | SA_RESETHAND | SA_NODEFER), SA_RESTART);
+  EXPECT_EQ(sigismember(&after.sa_mask, SIGUSR2), 1);
+  EXPECT_FALSE(blocked_after[0]);
+  EXPECT_FALSE(blocked_after[1]);
+  struct sigaction abort_after {};
+  sigaction(SIGABRT, nullptr, &abort_after);
+  EXPECT_EQ(abort_after.sa_handler, SIG_DFL);
+}
+
+TEST(MetisOrderings, ASigtermSentToTheProcessDuringThemReachesTheProcessHandler) {
+  // SIGTERMs sent to the process while another thread orders: this thread
+  // takes them (it blocks nothing), with the handler of the process, never
+  // METIS's (a longjmp to a jump buffer only the ordering thread has: a
+  // SIGSEGV here).
+  struct sigaction counting {};
+  counting.sa_handler = count_sigterm;
+  sigemptyset(&counting.sa_mask);
+  counting.sa_flags = SA_RESTART;
+  struct sigaction saved {};
+  ASSERT_EQ(sigaction(SIGTERM, &counting, &saved), 0);
+  g_sigterms_taken = 0;
+  const GridMatrix m = grid_matrix(30, 30, 3, 13);
+  std::atomic<bool> ordering{true};
+  std::thread orderer([&] {
+    for (int k = 0; k < 10; ++k) metis_orderings(m);
+    ordering = false;
+  });
+  int sent = 0;
+  while (ordering) {
+    kill(getpid(), SIGTERM);
+    ++sent;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  orderer.join();
+  sigaction(SIGTERM, &saved, nullptr);
+  EXPECT_GT(sent, 0);
+  EXPECT_GT(g_sigterms_taken.load(), 0);
 }
