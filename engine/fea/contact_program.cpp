@@ -161,9 +161,10 @@ ContactProgramResult solve_contact_program(const SparseMatrix& stiffness, const 
   app->Options()->SetStringValue("hessian_constant", "yes");
   app->Options()->SetStringValue("jac_c_constant", "yes");
   app->Options()->SetStringValue("jac_d_constant", "yes");
-  // METIS's nested dissection, as in cra.cpp: MUMPS's default ordering
-  // gives 3D meshes fronts that are slow to factorise densely.
-  app->Options()->SetIntegerValue("mumps_pivot_order", 5);
+  // PORD, MUMPS's own nested dissection: good on 3D meshes like METIS's
+  // (cra.cpp), without METIS, whose calls must pass core/cholmod_system's
+  // guard (one at a time, SIGTERM kept) and MUMPS's would not.
+  app->Options()->SetIntegerValue("mumps_pivot_order", 4);
   // No options file: an ipopt.opt in the working directory would change the answer unseen.
   if (app->Initialize("") != Ipopt::Solve_Succeeded) throw std::runtime_error("IPOPT failed to initialise");
   const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(program);
