@@ -30,7 +30,62 @@ OptimizeSettings optimize_settings(const OptionTable& options) {
   settings.gradient_tolerance = options.positive("gradient_tolerance", settings.gradient_tolerance);
   settings.value_tolerance = options.positive("value_tolerance", settings.value_tolerance);
   settings.initial_step = options.positive("initial_step", settings.initial_step, true);
+  if (options.has("bracket_tolerance")) settings.bracket_tolerance = options.positive("bracket_tolerance", 0.0);
   return settings;
+}
+
+// opts.target: exactly one of stable = true, load_factor = f, geometric_factor
+// = g, with the load factor's load and direction, or the geometric factor's
+// parameter (a name; by default the only one).
+MarginTarget margin_target(lua_State* L, const OptionTable& options, const std::vector<std::string>& names) {
+  MarginTarget target;
+  if (options.push("target") != LUA_TTABLE) {
+    if (lua_type(L, -1) != LUA_TNIL) {
+      throw ArgError(2, "target: expected a table such as { load_factor = 0.2 }, got " + type_name(L, -1));
+    }
+    lua_pop(L, 1);
+    return target;
+  }
+  const OptionTable t(L, lua_gettop(L), 2, "target.",
+                      {"stable", "load_factor", "geometric_factor", "load", "direction", "parameter"});
+  const int kinds = t.has("stable") + t.has("load_factor") + t.has("geometric_factor");
+  if (kinds != 1) {
+    throw ArgError(2, "target: give exactly one of stable = true, load_factor = f, geometric_factor = g; got " +
+                          std::to_string(kinds));
+  }
+  if (t.has("stable") && !t.boolean("stable").value_or(false)) {
+    throw ArgError(2, "target.stable: only true is a target");
+  }
+  if (t.has("load_factor")) {
+    target.kind = MarginKind::load_factor;
+    target.value = t.positive("load_factor", 0.0, true);
+    target.load.pattern = t.choice("load", kLoadPatternNames).value_or(target.load.pattern);
+    if (const std::optional<Vec3> direction = t.vec3("direction")) {
+      if (target.load.pattern == LoadPattern::point_loads) {
+        throw ArgError(2, "target.direction: not with load = 'point_loads' (the loads have their own)");
+      }
+      target.load.direction = *direction;
+    }
+  } else {
+    for (const char* key : {"load", "direction"}) {
+      if (t.has(key)) throw ArgError(2, std::string("target.") + key + ": only with target.load_factor");
+    }
+  }
+  if (t.has("geometric_factor")) {
+    target.kind = MarginKind::geometric_factor;
+    target.value = t.positive("geometric_factor", 1.0);
+    if (const std::optional<std::string> name = t.string("parameter")) {
+      const auto it = std::find(names.begin(), names.end(), *name);
+      if (it == names.end()) throw ArgError(2, "target.parameter: '" + *name + "' is not one of params");
+      target.parameter = static_cast<int>(it - names.begin());
+    } else if (names.size() != 1) {
+      throw ArgError(2, "target.parameter: required with several params, the one the geometric factor divides");
+    }
+  } else if (t.has("parameter")) {
+    throw ArgError(2, "target.parameter: only with target.geometric_factor");
+  }
+  lua_pop(L, 1);
+  return target;
 }
 
 // The analysis options in opts.analysis.
@@ -51,6 +106,7 @@ AnalysisSettings nested_analysis_settings(lua_State* L, const OptionTable& optio
 // standard output is a terminal), and keeps the history for Lua.
 struct Progress {
   bool print = false;
+  const char* material = nullptr;  // optimisation to a target: the objective's name
   struct Entry {
     OptimizeStep step;
     double infeasibility = 0.0;
@@ -73,7 +129,12 @@ struct Progress {
       }
     }
     history.push_back(entry);
-    if (print) {
+    if (print && material) {
+      std::printf("optimize: iteration %3d  %s %.6g  margin %.6g  step %.3g  %.2f s%s\n", step.iteration,
+                  material, step.value, step.margin, step.step, step.seconds,
+                  step.stable ? "  reaches the target" : "");
+      std::fflush(stdout);
+    } else if (print) {
       std::printf("optimize: iteration %3d  penalty %.6g  infeasibility %.6g  step %.3g m  %.2f s%s\n",
                   step.iteration, step.value, entry.infeasibility, step.step, step.seconds,
                   step.stable ? "  stable" : "");
@@ -306,7 +367,7 @@ int optimize_parameters_of(lua_State* L) {
   const int generator = 1;
   const OptionTable options(L, 2, {"params", "lower", "upper", "method", "max_iterations",
                                    "gradient_tolerance", "value_tolerance", "initial_step",
-                                   "analysis", "progress"});
+                                   "analysis", "progress", "objective", "target", "bracket_tolerance"});
   std::vector<std::string> names;
   std::vector<double> initial;
   if (options.push("params") != LUA_TTABLE) {
@@ -351,19 +412,42 @@ int optimize_parameters_of(lua_State* L) {
   }
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
+  // objective "penalty" (the default without a target) descends until it
+  // stands; "volume" or "weight" (the default with one) minimises material
+  // subject to the target (stable = true by default).
+  const std::optional<std::string> objective = options.string("objective");
+  const bool to_target = options.has("target") || (objective && *objective != "penalty");
+  std::optional<Material> material;
+  if (objective && *objective != "penalty") material = options.choice("objective", kMaterialNames);
+  if (!to_target && options.has("bracket_tolerance")) {
+    throw ArgError(2, "bracket_tolerance: only with a target or objective = \"volume\" or \"weight\"");
+  }
+  if (to_target && options.has("method")) {
+    throw ArgError(2, "method: not with a target or a material objective, whose search has one method "
+                      "(steepest descent to the target, then along the margin's boundary)");
+  }
+  if (to_target && objective && *objective == "penalty") {
+    throw ArgError(2, "objective: 'penalty' has no target; with a target it is 'volume' or 'weight'");
+  }
+  const MarginTarget target = margin_target(L, options, sorted_names);
   Progress progress;
   progress.print = wants_progress(options);
+  if (to_target) progress.material = kMaterialNames.name(material.value_or(Material::volume));
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
   const StructureGenerator generator_of = [&](const Eigen::VectorXd& values) {
     return generate(L, generator, sorted_names, values);
   };
-  const GeneratedOptimization optimized = optimize_generated(
-      generator_of, sorted_names, lower, upper, start, analysis, settings,
-      [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
+  const GeneratedOptimization optimized =
+      to_target ? optimize_generated_to_target(generator_of, sorted_names, lower, upper, start, analysis, target,
+                                               material.value_or(Material::volume), settings)
+                : optimize_generated(generator_of, sorted_names, lower, upper, start, analysis, settings,
+                                     [&](double penalty, double infeasibility) {
+                                       progress.evaluated(penalty, infeasibility);
+                                     });
   const ParameterResult& result = optimized.result;
   luax_pushStructure(L, optimized.structure);
   return call_protected(L, 1, [&](lua_State* L) {
-    lua_createtable(L, 0, 8);
+    lua_createtable(L, 0, 12);
     lua_createtable(L, 0, n);
     for (int j = 0; j < n; ++j) {
       lua_pushnumber(L, result.parameters(j));
@@ -372,7 +456,34 @@ int optimize_parameters_of(lua_State* L) {
     lua_setfield(L, -2, "params");
     lua_pushvalue(L, 1);
     lua_setfield(L, -2, "structure");
+    lua_createtable(L, 0, 0);
+    for (int j = 0; j < n; ++j) {
+      if (result.active_bounds[j] == BoundSide::none) continue;
+      set_string(L, sorted_names[j].c_str(), kBoundSideNames.name(result.active_bounds[j]));
+    }
+    lua_setfield(L, -2, "active_bounds");
     push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+    if (to_target) {
+      set_string(L, "objective", kMaterialNames.name(material.value_or(Material::volume)));
+      set_field(L, "value", result.history.empty() ? std::nan("") : result.history.back().value);
+      if (!std::isnan(result.margin)) set_field(L, "margin", result.margin);
+      set_boolean(L, "on_boundary", result.on_boundary);
+      // The history of an optimisation to a target: the objective and the margin.
+      lua_createtable(L, static_cast<int>(result.history.size()), 0);
+      for (size_t k = 0; k < result.history.size(); ++k) {
+        const OptimizeStep& step = result.history[k];
+        lua_createtable(L, 0, 6);
+        lua_pushinteger(L, step.iteration);
+        lua_setfield(L, -2, "iteration");
+        set_field(L, "value", step.value);
+        if (!std::isnan(step.margin)) set_field(L, "margin", step.margin);
+        set_field(L, "step", step.step);
+        set_field(L, "seconds", step.seconds);
+        set_boolean(L, "stable", step.stable);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "history");
+    }
     return 1;
   });
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/load_factor.hpp"
 #include "optimize/design_space.hpp"
 #include "optimize/optimizer.hpp"
 #include "structure/structure.hpp"
@@ -71,5 +72,58 @@ GeneratedOptimization optimize_generated(const StructureGenerator& generate, con
                                          const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                          const Eigen::VectorXd& start, const AnalysisSettings& analysis,
                                          const OptimizeSettings& settings, const EvaluationReport& report = {});
+
+// ----------------------------------------------------------------------------
+// Optimisation to a margin: the least material whose margin reaches a target.
+
+// What must reach the target.
+enum class MarginKind {
+  stable,            // the equilibrium analysis's verdict
+  load_factor,       // ashlar.load_factor's factor >= the value, and stable unloaded
+  geometric_factor,  // still stable with one parameter divided by the value
+};
+inline constexpr EnumNames<MarginKind, 3> kMarginKindNames{{{{MarginKind::stable, "stable"},
+                                                            {MarginKind::load_factor, "load_factor"},
+                                                            {MarginKind::geometric_factor, "geometric_factor"}}}};
+
+struct MarginTarget {
+  MarginKind kind = MarginKind::stable;
+  // load_factor: the factor (>= 0); geometric_factor: the factor (> 0).
+  double value = 0.0;
+  // load_factor: the pattern and direction; its `problem` is replaced by the
+  // analysis settings' problem.
+  LoadFactorSettings load;
+  // geometric_factor: the parameter divided by the value (the thickness of
+  // an arch: Heyman's geometric factor is the thickness over the least that
+  // stands).
+  int parameter = 0;
+};
+
+// The material minimised (free blocks only: supports are ground).
+enum class Material {
+  volume,  // m^3
+  weight,  // N: mass x 9.81
+};
+inline constexpr EnumNames<Material, 2> kMaterialNames{{{{Material::volume, "volume"}, {Material::weight, "weight"}}}};
+
+// The free blocks' volume or weight.
+double material_of(const Structure& s, Material material);
+
+// Minimises the material of generate(p) over lower <= p <= upper among the
+// parameters whose margin reaches `target` (optimize_parameters_to_target):
+// the material's gradient by central differences of the generator (no
+// analysis); the margin's violation where it falls short is the analysis
+// penalty (stable, geometric_factor) with its structural gradient chained
+// through the generator, or the target less the load factor, its gradient
+// by central differences of load factors (step 1e-5 x max(1, |p|)). The
+// verdicts of the bisection's probes are the analysis's with verdict_only.
+// Throws InvalidArgument for a bad target (a negative load factor, a
+// geometric factor <= 0, a parameter out of range) and as optimize_generated.
+GeneratedOptimization optimize_generated_to_target(const StructureGenerator& generate,
+                                                   const std::vector<std::string>& names,
+                                                   const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                                   const Eigen::VectorXd& start, const AnalysisSettings& analysis,
+                                                   const MarginTarget& target, Material material,
+                                                   const OptimizeSettings& settings);
 
 }  // namespace ashlar
