@@ -34,9 +34,54 @@ OptimizeSettings optimize_settings(const OptionTable& options) {
   return settings;
 }
 
+// opts.objective: "penalty" (the default without a target) descends until
+// the structure stands; "volume" or "weight" (the default with a target)
+// minimises material subject to the target. Returns the material, or
+// nothing for "penalty"; checks the options that go only with one of them.
+std::optional<Material> material_objective(const OptionTable& options) {
+  const std::optional<std::string> objective = options.string("objective");
+  const bool to_target = options.has("target") || (objective && *objective != "penalty");
+  if (!to_target) {
+    if (options.has("bracket_tolerance")) {
+      throw ArgError(2, "bracket_tolerance: only with a target or objective = \"volume\" or \"weight\"");
+    }
+    return std::nullopt;
+  }
+  if (objective && *objective == "penalty") {
+    throw ArgError(2, "objective: 'penalty' has no target; with a target it is 'volume' or 'weight'");
+  }
+  if (options.has("method")) {
+    throw ArgError(2, "method: not with a target or a material objective, whose search has one method "
+                      "(steepest descent to the target, then along the margin's boundary)");
+  }
+  return options.choice("objective", kMaterialNames).value_or(Material::volume);
+}
+
+// The fields of an optimisation to a target: the objective's name and
+// value, and the history of the objective and the margin.
+void push_target_fields(lua_State* L, Material material, const std::vector<OptimizeStep>& history) {
+  set_string(L, "objective", kMaterialNames.name(material));
+  set_field(L, "value", history.empty() ? std::nan("") : history.back().value);
+  lua_createtable(L, static_cast<int>(history.size()), 0);
+  for (size_t k = 0; k < history.size(); ++k) {
+    const OptimizeStep& step = history[k];
+    lua_createtable(L, 0, 6);
+    lua_pushinteger(L, step.iteration);
+    lua_setfield(L, -2, "iteration");
+    set_field(L, "value", step.value);
+    if (!std::isnan(step.margin)) set_field(L, "margin", step.margin);
+    set_field(L, "step", step.step);
+    set_field(L, "seconds", step.seconds);
+    set_boolean(L, "stable", step.stable);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  lua_setfield(L, -2, "history");
+}
+
 // opts.target: exactly one of stable = true, load_factor = f, geometric_factor
 // = g, with the load factor's load and direction, or the geometric factor's
 // parameter (a name; by default the only one).
+// `names`: the parameters; none when a structure's vertices are optimised.
 MarginTarget margin_target(lua_State* L, const OptionTable& options, const std::vector<std::string>& names) {
   MarginTarget target;
   if (options.push("target") != LUA_TTABLE) {
@@ -55,6 +100,10 @@ MarginTarget margin_target(lua_State* L, const OptionTable& options, const std::
   }
   if (t.has("stable") && !t.boolean("stable").value_or(false)) {
     throw ArgError(2, "target.stable: only true is a target");
+  }
+  if (names.empty() && !t.has("stable")) {
+    throw ArgError(2, "target: a structure's vertices are optimised to stable = true only; load_factor and "
+                      "geometric_factor need a parametric model");
   }
   if (t.has("load_factor")) {
     target.kind = MarginKind::load_factor;
@@ -323,23 +372,62 @@ int optimize_structure(lua_State* L) {
       L, 2, {"method", "max_iterations", "gradient_tolerance", "value_tolerance", "initial_step",
              "analysis", "progress", "fixed", "fixed_names", "fixed_vertices", "fixed_cables",
              "together", "symmetry", "keep_normal", "max_displacement", "min_volume",
-             "slide_on_fixed"});
+             "slide_on_fixed", "objective", "target", "bracket_tolerance", "smooth", "min_thickness"});
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
+  const std::optional<Material> material = material_objective(options);
+  if (!material) {
+    for (const char* key : {"smooth", "min_thickness"}) {
+      if (options.has(key)) throw ArgError(2, std::string(key) + ": only with objective = \"volume\" or \"weight\"");
+    }
+  }
+  if (material) margin_target(L, options, {});  // checks it: stable = true only
   const DesignConstraints constraints = design_constraints(L, s, options);
+  ShapeFabrication fabrication;
+  if (options.push("smooth") != LUA_TNIL) {
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      throw ArgError(2, "smooth: expected { weight = w, curves = { {{block = i, vertex = k}, ...}, ... } }, got " +
+                            type_name(L, -1));
+    }
+    const OptionTable smooth(L, lua_gettop(L), 2, "smooth.", {"weight", "curves"});
+    fabrication.smooth_weight = smooth.positive("weight", 0.0, true);
+    if (smooth.push("curves") != LUA_TTABLE) throw ArgError(2, "smooth.curves: required, a list of lists of {block = i, vertex = k}");
+    const lua_Integer curves = luaL_len(L, -1);
+    for (lua_Integer c = 1; c <= curves; ++c) {
+      lua_geti(L, -1, c);
+      const std::string what = "smooth.curves[" + std::to_string(c) + "]";
+      if (lua_type(L, -1) != LUA_TTABLE) throw ArgError(2, what + ": expected a list of {block = i, vertex = k}");
+      std::vector<PositionRef> curve;
+      const lua_Integer members = luaL_len(L, -1);
+      for (lua_Integer m = 1; m <= members; ++m) {
+        lua_geti(L, -1, m);
+        curve.push_back(vertex_ref(L, s, 2, what + "[" + std::to_string(m) + "]"));
+        lua_pop(L, 1);
+      }
+      fabrication.smooth_curves.push_back(std::move(curve));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  fabrication.min_thickness = options.positive("min_thickness", 0.0, true);
   Progress progress;
   progress.print = wants_progress(options);
+  if (material) progress.material = kMaterialNames.name(*material);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
-  const StructureOptimization optimized = optimize_structure(
-      s, constraints, analysis, settings,
-      [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
+  const StructureOptimization optimized =
+      material ? optimize_structure_to_target(s, constraints, analysis, *material, fabrication, settings)
+               : optimize_structure(s, constraints, analysis, settings, [&](double penalty, double infeasibility) {
+                   progress.evaluated(penalty, infeasibility);
+                 });
   const OptimizeResult& result = optimized.result;
   luax_pushStructure(L, optimized.structure);
   return call_protected(L, 1, [&](lua_State* L) {
-    lua_createtable(L, 0, 7);
+    lua_createtable(L, 0, 9);
     lua_pushvalue(L, 1);
     lua_setfield(L, -2, "structure");
     push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+    if (material) push_target_fields(L, *material, result.history);
     return 1;
   });
 }
@@ -412,34 +500,19 @@ int optimize_parameters_of(lua_State* L) {
   }
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
-  // objective "penalty" (the default without a target) descends until it
-  // stands; "volume" or "weight" (the default with one) minimises material
-  // subject to the target (stable = true by default).
-  const std::optional<std::string> objective = options.string("objective");
-  const bool to_target = options.has("target") || (objective && *objective != "penalty");
-  std::optional<Material> material;
-  if (objective && *objective != "penalty") material = options.choice("objective", kMaterialNames);
-  if (!to_target && options.has("bracket_tolerance")) {
-    throw ArgError(2, "bracket_tolerance: only with a target or objective = \"volume\" or \"weight\"");
-  }
-  if (to_target && options.has("method")) {
-    throw ArgError(2, "method: not with a target or a material objective, whose search has one method "
-                      "(steepest descent to the target, then along the margin's boundary)");
-  }
-  if (to_target && objective && *objective == "penalty") {
-    throw ArgError(2, "objective: 'penalty' has no target; with a target it is 'volume' or 'weight'");
-  }
+  const std::optional<Material> material = material_objective(options);
+  const bool to_target = material.has_value();
   const MarginTarget target = margin_target(L, options, sorted_names);
   Progress progress;
   progress.print = wants_progress(options);
-  if (to_target) progress.material = kMaterialNames.name(material.value_or(Material::volume));
+  if (to_target) progress.material = kMaterialNames.name(*material);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
   const StructureGenerator generator_of = [&](const Eigen::VectorXd& values) {
     return generate(L, generator, sorted_names, values);
   };
   const GeneratedOptimization optimized =
       to_target ? optimize_generated_to_target(generator_of, sorted_names, lower, upper, start, analysis, target,
-                                               material.value_or(Material::volume), settings)
+                                               *material, settings)
                 : optimize_generated(generator_of, sorted_names, lower, upper, start, analysis, settings,
                                      [&](double penalty, double infeasibility) {
                                        progress.evaluated(penalty, infeasibility);
@@ -464,25 +537,9 @@ int optimize_parameters_of(lua_State* L) {
     lua_setfield(L, -2, "active_bounds");
     push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
     if (to_target) {
-      set_string(L, "objective", kMaterialNames.name(material.value_or(Material::volume)));
-      set_field(L, "value", result.history.empty() ? std::nan("") : result.history.back().value);
+      push_target_fields(L, *material, result.history);
       if (!std::isnan(result.margin)) set_field(L, "margin", result.margin);
       set_boolean(L, "on_boundary", result.on_boundary);
-      // The history of an optimisation to a target: the objective and the margin.
-      lua_createtable(L, static_cast<int>(result.history.size()), 0);
-      for (size_t k = 0; k < result.history.size(); ++k) {
-        const OptimizeStep& step = result.history[k];
-        lua_createtable(L, 0, 6);
-        lua_pushinteger(L, step.iteration);
-        lua_setfield(L, -2, "iteration");
-        set_field(L, "value", step.value);
-        if (!std::isnan(step.margin)) set_field(L, "margin", step.margin);
-        set_field(L, "step", step.step);
-        set_field(L, "seconds", step.seconds);
-        set_boolean(L, "stable", step.stable);
-        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-      }
-      lua_setfield(L, -2, "history");
     }
     return 1;
   });

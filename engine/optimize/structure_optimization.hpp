@@ -126,4 +126,39 @@ GeneratedOptimization optimize_generated_to_target(const StructureGenerator& gen
                                                    const MarginTarget& target, Material material,
                                                    const OptimizeSettings& settings);
 
+// Fabrication conditions of a shape optimised to a target.
+struct ShapeFabrication {
+  // Curves of positions in order (e.g. an arch's intrados, one position per
+  // joint): smooth_weight x the sum over each curve of the squared second
+  // differences |x[k-1] - 2 x[k] + x[k+1]|^2 (m^2) is added to the objective
+  // (smooth_weight in the objective's units per m^2). 0: none.
+  double smooth_weight = 0.0;
+  std::vector<std::vector<PositionRef>> smooth_curves;
+  // Every contact between blocks at least this wide (m; least_joint_width):
+  // a narrower design is rejected. 0: none.
+  double min_thickness = 0.0;
+};
+
+// The sum over the curves of the squared second differences (m^2).
+double second_differences(const DesignPoint& design, const std::vector<std::vector<PositionRef>>& curves);
+
+// The least width of the contacts of s (m): contact_width of each contact
+// polygon, its least caliper width (a rectangular joint's shorter side: an
+// arch's thickness at the joint when the arch is deeper than thick).
+// Infinite when there is no contact.
+double least_joint_width(const Structure& s, const ContactOptions& contact);
+
+// Minimises the material (plus the smoothing penalty) over the vertices of
+// `s` within `constraints` among the designs that stand, by
+// optimize_parameters_to_target in the design space's reduced variables
+// through one chart centred at the start (a design that cannot be made
+// planar, or that the design space or min_thickness rejects, counts as not
+// standing). The margin's normal is the analysis penalty's structural
+// gradient. Throws as optimize_structure, and InvalidArgument for a curve
+// position out of range or a start narrower than min_thickness.
+StructureOptimization optimize_structure_to_target(const Structure& s, const DesignConstraints& constraints,
+                                                   const AnalysisSettings& analysis, Material material,
+                                                   const ShapeFabrication& fabrication,
+                                                   const OptimizeSettings& settings);
+
 }  // namespace ashlar

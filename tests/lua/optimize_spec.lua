@@ -254,4 +254,87 @@ describe("ashlar.optimize", function()
       ashlar.optimize, arch16, with{ objective = "volume", bracket_tolerance = 2 })
     expect_error({ "bracket_tolerance: only with a target" }, ashlar.optimize, arch16, with{ bracket_tolerance = 0.01 })
   end)
+  it("minimises a standing arch's volume over its vertices, with a smooth intrados and a minimum thickness", function()
+    local arch = models.arch{ radius = 5, thickness = 0.8, voussoirs = 12 }
+    -- The intrados at the front face: one position per joint, in order of angle.
+    local ymin = math.huge
+    for i = 1, #arch do for _, p in ipairs(arch:block(i):vertices()) do ymin = math.min(ymin, p[2]) end end
+    local curve, seen = {}, {}
+    for i = 1, #arch do
+      if not arch:is_support(i) then
+        for k, p in ipairs(arch:block(i):vertices()) do
+          local key = ("%.9f %.9f"):format(p[1], p[3])
+          if math.abs(p[2] - ymin) < 1e-9 and math.sqrt(p[1] ^ 2 + p[3] ^ 2) < 5 and not seen[key] then
+            seen[key] = true
+            curve[#curve + 1] = { block = i, vertex = k, angle = math.atan(p[3], p[1]) }
+          end
+        end
+      end
+    end
+    table.sort(curve, function(a, b) return a.angle < b.angle end)
+    for _, ref in ipairs(curve) do ref.angle = nil end
+    assert.are.equal(13, #curve)
+    local function at(s, ref) return s:block(ref.block):vertices()[ref.vertex] end
+    local function roughness(s)  -- the sum of squared second differences (m^2)
+      local sum = 0
+      for k = 2, #curve - 1 do
+        local a, b, c = at(s, curve[k - 1]), at(s, curve[k]), at(s, curve[k + 1])
+        for axis = 1, 3 do sum = sum + (a[axis] - 2 * b[axis] + c[axis]) ^ 2 end
+      end
+      return sum
+    end
+    local function volume(s)
+      local sum = 0
+      for i = 1, #s do if not s:is_support(i) then sum = sum + s:block(i):volume() end end
+      return sum
+    end
+    local function least_width(s)  -- of the contact polygons: least over edges of the farthest vertex
+      local least = math.huge
+      for _, f in ipairs(s:interfaces()) do
+        local p, n = f.vertices, f.normal
+        for e = 1, #p do
+          local q = p[e % #p + 1]
+          local edge = { q[1] - p[e][1], q[2] - p[e][2], q[3] - p[e][3] }
+          local across = { n[2] * edge[3] - n[3] * edge[2], n[3] * edge[1] - n[1] * edge[3], n[1] * edge[2] - n[2] * edge[1] }
+          local length = math.sqrt(across[1] ^ 2 + across[2] ^ 2 + across[3] ^ 2)
+          local farthest = 0
+          for _, r in ipairs(p) do
+            local d = ((r[1] - p[e][1]) * across[1] + (r[2] - p[e][2]) * across[2] + (r[3] - p[e][3]) * across[3]) / length
+            farthest = math.max(farthest, math.abs(d))
+          end
+          least = math.min(least, farthest)
+        end
+      end
+      return least
+    end
+    local function optimized(extra)
+      local options = { objective = "volume", analysis = NO_SLIDING, max_iterations = 10, progress = false,
+                        symmetry = { point = { 0, 0, 0 }, normal = { 1, 0, 0 } } }
+      for k, v in pairs(extra) do options[k] = v end
+      local r = ashlar.optimize(arch, options)
+      assert.is_true(r.stable, r.message)
+      assert.is_true(ashlar.analyze(r.structure, NO_SLIDING).stable)
+      -- The objective: the volume, plus the smoothing weight times the roughness.
+      near(r.value, volume(r.structure) + (extra.smooth and extra.smooth.weight * roughness(r.structure) or 0), 1e-9,
+        "value")
+      return r
+    end
+    assert.is_true(ashlar.analyze(arch, NO_SLIDING).stable)  -- it stands as built: no first-stable stop
+    local plain = optimized{}
+    assert.is_true(volume(plain.structure) < 0.5 * volume(arch), "volume " .. volume(plain.structure))
+    for k = 2, #plain.history do assert.is_true(plain.history[k].value < plain.history[k - 1].value) end
+    local smooth = optimized{ smooth = { weight = 10, curves = { curve } } }
+    assert.is_true(roughness(smooth.structure) < 0.6 * roughness(plain.structure),
+      ("smoothed %g against %g"):format(roughness(smooth.structure), roughness(plain.structure)))
+    assert.is_true(volume(smooth.structure) < volume(arch))
+    assert.is_true(least_width(plain.structure) < 0.6)
+    local thick = optimized{ min_thickness = 0.6 }
+    assert.is_true(least_width(thick.structure) >= 0.6 - 1e-9, "least width " .. least_width(thick.structure))
+    assert.is_true(volume(thick.structure) < volume(arch))
+    expect_error({ "target: a structure's vertices are optimised to stable = true only" },
+      ashlar.optimize, arch, { target = { load_factor = 0.1 } })
+    expect_error({ "min_thickness: only with objective" }, ashlar.optimize, arch, { min_thickness = 0.5 })
+    expect_error({ "min_thickness: the structure's narrowest joint is 0.8" },
+      ashlar.optimize, arch, { objective = "volume", min_thickness = 0.9, progress = false })
+  end)
 end)
