@@ -1,5 +1,6 @@
 // ashlar.optimize: moves a structure's vertices (or a generator's parameters)
-// down the structural gradient until the structure stands.
+// down the structural gradient until the structure stands, or to the least
+// material whose margin reaches a target.
 #include "wrap_optimize.hpp"
 
 #include <unistd.h>
