@@ -144,11 +144,10 @@ StructureOptimization optimize_structure_to_target(const Structure& s, const Des
       return m;
     }
     const StructuralGradient g = structural_gradient(analyses.set_up(*current), *current);
-    if (!g.valid) {
-      throw Error("the structure has no equilibrium at all (" + std::string(status_name(g.analysis.status)) + ")");
-    }
     m.feasible = g.analysis.stable;
     m.violation = g.analysis.stable ? 0.0 : g.analysis.penalty;
+    // No equilibrium at all (an infinite penalty): short of the target, with no gradient.
+    if (!g.valid) return m;
     DesignPoint d;
     d.block_vertices = g.block_vertices;
     for (size_t c = 0; c < g.cable_from.size(); ++c) {

@@ -222,10 +222,11 @@ GeneratedOptimization optimize_generated_to_target(const StructureGenerator& gen
       m.violation = r.stable ? 0.0 : r.penalty;
       return m;
     }
-    const StructuralGradient g = gradient_of(analyses, *base, {});
+    const StructuralGradient g = structural_gradient(analyses.set_up(*base), *base);
     m.feasible = g.analysis.stable;
     m.violation = g.analysis.stable ? 0.0 : g.analysis.penalty;
-    m.violation_gradient = parameter_gradient(generate, names, values, *base, g);
+    // No equilibrium at all (an infinite penalty): short of the target, with no gradient.
+    if (g.valid) m.violation_gradient = parameter_gradient(generate, names, values, *base, g);
     return m;
   };
   LoadFactorSettings load = target.load;
