@@ -3,6 +3,7 @@
 // whose constrained minimisers are known in closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -1024,4 +1025,35 @@ TEST(StructureOptimization, LeastThicknessThatStandsIsTheArchsMinimum) {
       OptimizeSettings{});
   EXPECT_EQ(g.result.status, OptimizeStatus::converged) << g.result.message;
   EXPECT_NEAR(g.result.parameters(0) / 1.5, minimum, 1.2e-3);
+}
+
+TEST(StructureOptimization, JointWidthsAndSecondDifferencesOfAnArch) {
+  // Depth 1 m, thickness 0.4 m: every joint (and springing) is a 0.4 x 1
+  // rectangle, so the least width is the thickness.
+  const Structure arch = semicircular_arch(8, 0.4);
+  EXPECT_NEAR(least_joint_width(arch, ContactOptions{}), 0.4, 1e-12);
+  // The intrados's joint corners at y = -0.5: points of a circle of radius
+  // 4.8 at angles k pi / 8, whose second differences are the chord polygon's
+  // 2 r (cos(pi / 8) - 1) towards the centre, each.
+  const DesignPoint design = design_of(arch);
+  std::vector<PositionRef> intrados;
+  for (int b = 0; b < arch.size(); ++b) {
+    if (arch.is_support(b)) continue;
+    const std::vector<Vec3>& v = arch.block(b).vertices();
+    for (size_t k = 0; k < v.size(); ++k) {
+      if (std::abs(v[k].y() + 0.5) < 1e-12 && std::hypot(v[k].x(), v[k].z()) < 4.9 &&
+          std::none_of(intrados.begin(), intrados.end(),
+                       [&](const PositionRef& r) { return (position(design, r) - v[k]).norm() < 1e-9; })) {
+        intrados.push_back(PositionRef::vertex(b, static_cast<int>(k)));
+      }
+    }
+  }
+  ASSERT_EQ(intrados.size(), 9u);
+  std::sort(intrados.begin(), intrados.end(), [&](const PositionRef& a, const PositionRef& b) {
+    return std::atan2(position(design, a).z(), position(design, a).x()) >
+           std::atan2(position(design, b).z(), position(design, b).x());
+  });
+  const double each = 2 * 4.8 * (1 - std::cos(M_PI / 8));
+  EXPECT_NEAR(second_differences(design, {intrados}), 7 * each * each, 1e-12);
+  EXPECT_EQ(second_differences(design, {{intrados[0], intrados[1]}}), 0.0);
 }
