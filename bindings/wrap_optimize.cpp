@@ -1,5 +1,6 @@
 // ashlar.optimize: moves a structure's vertices (or a generator's parameters)
-// down the structural gradient until the structure stands.
+// down the structural gradient until the structure stands, or to the least
+// material whose margin reaches a target.
 #include "wrap_optimize.hpp"
 
 #include <unistd.h>
@@ -30,7 +31,111 @@ OptimizeSettings optimize_settings(const OptionTable& options) {
   settings.gradient_tolerance = options.positive("gradient_tolerance", settings.gradient_tolerance);
   settings.value_tolerance = options.positive("value_tolerance", settings.value_tolerance);
   settings.initial_step = options.positive("initial_step", settings.initial_step, true);
+  if (options.has("bracket_tolerance")) settings.bracket_tolerance = options.positive("bracket_tolerance", 0.0);
   return settings;
+}
+
+// opts.objective: "penalty" (the default without a target) descends until
+// the structure stands; "volume" or "weight" (the default with a target)
+// minimises material subject to the target. Returns the material, or
+// nothing for "penalty"; checks the options that go only with one of them.
+std::optional<Material> material_objective(const OptionTable& options) {
+  const std::optional<std::string> objective = options.string("objective");
+  const bool to_target = options.has("target") || (objective && *objective != "penalty");
+  if (!to_target) {
+    if (options.has("bracket_tolerance")) {
+      throw ArgError(2, "bracket_tolerance: only with a target or objective = \"volume\" or \"weight\"");
+    }
+    return std::nullopt;
+  }
+  if (objective && *objective == "penalty") {
+    throw ArgError(2, "objective: 'penalty' has no target; with a target it is 'volume' or 'weight'");
+  }
+  if (options.has("method")) {
+    throw ArgError(2, "method: not with a target or a material objective, whose search has one method "
+                      "(steepest descent to the target, then along the margin's boundary)");
+  }
+  return options.choice("objective", kMaterialNames).value_or(Material::volume);
+}
+
+// The fields of an optimisation to a target: the objective's name and
+// value, and the history of the objective and the margin.
+void push_target_fields(lua_State* L, Material material, const std::vector<OptimizeStep>& history) {
+  set_string(L, "objective", kMaterialNames.name(material));
+  set_field(L, "value", history.empty() ? std::nan("") : history.back().value);
+  lua_createtable(L, static_cast<int>(history.size()), 0);
+  for (size_t k = 0; k < history.size(); ++k) {
+    const OptimizeStep& step = history[k];
+    lua_createtable(L, 0, 6);
+    lua_pushinteger(L, step.iteration);
+    lua_setfield(L, -2, "iteration");
+    set_field(L, "value", step.value);
+    if (!std::isnan(step.margin)) set_field(L, "margin", step.margin);
+    set_field(L, "step", step.step);
+    set_field(L, "seconds", step.seconds);
+    set_boolean(L, "stable", step.stable);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  lua_setfield(L, -2, "history");
+}
+
+// opts.target: exactly one of stable = true, load_factor = f, geometric_factor
+// = g, with the load factor's load and direction, or the geometric factor's
+// parameter (a name; by default the only one).
+// `names`: the parameters; none when a structure's vertices are optimised.
+MarginTarget margin_target(lua_State* L, const OptionTable& options, const std::vector<std::string>& names) {
+  MarginTarget target;
+  if (options.push("target") != LUA_TTABLE) {
+    if (lua_type(L, -1) != LUA_TNIL) {
+      throw ArgError(2, "target: expected a table such as { load_factor = 0.2 }, got " + type_name(L, -1));
+    }
+    lua_pop(L, 1);
+    return target;
+  }
+  const OptionTable t(L, lua_gettop(L), 2, "target.",
+                      {"stable", "load_factor", "geometric_factor", "load", "direction", "parameter"});
+  const int kinds = t.has("stable") + t.has("load_factor") + t.has("geometric_factor");
+  if (kinds != 1) {
+    throw ArgError(2, "target: give exactly one of stable = true, load_factor = f, geometric_factor = g; got " +
+                          std::to_string(kinds));
+  }
+  if (t.has("stable") && !t.boolean("stable").value_or(false)) {
+    throw ArgError(2, "target.stable: only true is a target");
+  }
+  if (names.empty() && !t.has("stable")) {
+    throw ArgError(2, "target: a structure's vertices are optimised to stable = true only; load_factor and "
+                      "geometric_factor need a parametric model");
+  }
+  if (t.has("load_factor")) {
+    target.kind = MarginKind::load_factor;
+    target.value = t.positive("load_factor", 0.0, true);
+    target.load.pattern = t.choice("load", kLoadPatternNames).value_or(target.load.pattern);
+    if (const std::optional<Vec3> direction = t.vec3("direction")) {
+      if (target.load.pattern == LoadPattern::point_loads) {
+        throw ArgError(2, "target.direction: not with load = 'point_loads' (the loads have their own)");
+      }
+      target.load.direction = *direction;
+    }
+  } else {
+    for (const char* key : {"load", "direction"}) {
+      if (t.has(key)) throw ArgError(2, std::string("target.") + key + ": only with target.load_factor");
+    }
+  }
+  if (t.has("geometric_factor")) {
+    target.kind = MarginKind::geometric_factor;
+    target.value = t.positive("geometric_factor", 1.0);
+    if (const std::optional<std::string> name = t.string("parameter")) {
+      const auto it = std::find(names.begin(), names.end(), *name);
+      if (it == names.end()) throw ArgError(2, "target.parameter: '" + *name + "' is not one of params");
+      target.parameter = static_cast<int>(it - names.begin());
+    } else if (names.size() != 1) {
+      throw ArgError(2, "target.parameter: required with several params, the one the geometric factor divides");
+    }
+  } else if (t.has("parameter")) {
+    throw ArgError(2, "target.parameter: only with target.geometric_factor");
+  }
+  lua_pop(L, 1);
+  return target;
 }
 
 // The analysis options in opts.analysis.
@@ -51,6 +156,7 @@ AnalysisSettings nested_analysis_settings(lua_State* L, const OptionTable& optio
 // standard output is a terminal), and keeps the history for Lua.
 struct Progress {
   bool print = false;
+  const char* material = nullptr;  // optimisation to a target: the objective's name
   struct Entry {
     OptimizeStep step;
     double infeasibility = 0.0;
@@ -73,7 +179,12 @@ struct Progress {
       }
     }
     history.push_back(entry);
-    if (print) {
+    if (print && material) {
+      std::printf("optimize: iteration %3d  %s %.6g  margin %.6g  step %.3g  %.2f s%s\n", step.iteration,
+                  material, step.value, step.margin, step.step, step.seconds,
+                  step.stable ? "  reaches the target" : "");
+      std::fflush(stdout);
+    } else if (print) {
       std::printf("optimize: iteration %3d  penalty %.6g  infeasibility %.6g  step %.3g m  %.2f s%s\n",
                   step.iteration, step.value, entry.infeasibility, step.step, step.seconds,
                   step.stable ? "  stable" : "");
@@ -262,23 +373,62 @@ int optimize_structure(lua_State* L) {
       L, 2, {"method", "max_iterations", "gradient_tolerance", "value_tolerance", "initial_step",
              "analysis", "progress", "fixed", "fixed_names", "fixed_vertices", "fixed_cables",
              "together", "symmetry", "keep_normal", "max_displacement", "min_volume",
-             "slide_on_fixed"});
+             "slide_on_fixed", "objective", "target", "bracket_tolerance", "smooth", "min_thickness"});
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
+  const std::optional<Material> material = material_objective(options);
+  if (!material) {
+    for (const char* key : {"smooth", "min_thickness"}) {
+      if (options.has(key)) throw ArgError(2, std::string(key) + ": only with objective = \"volume\" or \"weight\"");
+    }
+  }
+  if (material) margin_target(L, options, {});  // checks it: stable = true only
   const DesignConstraints constraints = design_constraints(L, s, options);
+  ShapeFabrication fabrication;
+  if (options.push("smooth") != LUA_TNIL) {
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      throw ArgError(2, "smooth: expected { weight = w, curves = { {{block = i, vertex = k}, ...}, ... } }, got " +
+                            type_name(L, -1));
+    }
+    const OptionTable smooth(L, lua_gettop(L), 2, "smooth.", {"weight", "curves"});
+    fabrication.smooth_weight = smooth.positive("weight", 0.0, true);
+    if (smooth.push("curves") != LUA_TTABLE) throw ArgError(2, "smooth.curves: required, a list of lists of {block = i, vertex = k}");
+    const lua_Integer curves = luaL_len(L, -1);
+    for (lua_Integer c = 1; c <= curves; ++c) {
+      lua_geti(L, -1, c);
+      const std::string what = "smooth.curves[" + std::to_string(c) + "]";
+      if (lua_type(L, -1) != LUA_TTABLE) throw ArgError(2, what + ": expected a list of {block = i, vertex = k}");
+      std::vector<PositionRef> curve;
+      const lua_Integer members = luaL_len(L, -1);
+      for (lua_Integer m = 1; m <= members; ++m) {
+        lua_geti(L, -1, m);
+        curve.push_back(vertex_ref(L, s, 2, what + "[" + std::to_string(m) + "]"));
+        lua_pop(L, 1);
+      }
+      fabrication.smooth_curves.push_back(std::move(curve));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  fabrication.min_thickness = options.positive("min_thickness", 0.0, true);
   Progress progress;
   progress.print = wants_progress(options);
+  if (material) progress.material = kMaterialNames.name(*material);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
-  const StructureOptimization optimized = optimize_structure(
-      s, constraints, analysis, settings,
-      [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
+  const StructureOptimization optimized =
+      material ? optimize_structure_to_target(s, constraints, analysis, *material, fabrication, settings)
+               : optimize_structure(s, constraints, analysis, settings, [&](double penalty, double infeasibility) {
+                   progress.evaluated(penalty, infeasibility);
+                 });
   const OptimizeResult& result = optimized.result;
   luax_pushStructure(L, optimized.structure);
   return call_protected(L, 1, [&](lua_State* L) {
-    lua_createtable(L, 0, 7);
+    lua_createtable(L, 0, 9);
     lua_pushvalue(L, 1);
     lua_setfield(L, -2, "structure");
     push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+    if (material) push_target_fields(L, *material, result.history);
     return 1;
   });
 }
@@ -306,7 +456,7 @@ int optimize_parameters_of(lua_State* L) {
   const int generator = 1;
   const OptionTable options(L, 2, {"params", "lower", "upper", "method", "max_iterations",
                                    "gradient_tolerance", "value_tolerance", "initial_step",
-                                   "analysis", "progress"});
+                                   "analysis", "progress", "objective", "target", "bracket_tolerance"});
   std::vector<std::string> names;
   std::vector<double> initial;
   if (options.push("params") != LUA_TTABLE) {
@@ -351,19 +501,27 @@ int optimize_parameters_of(lua_State* L) {
   }
   const AnalysisSettings analysis = nested_analysis_settings(L, options);
   OptimizeSettings settings = optimize_settings(options);
+  const std::optional<Material> material = material_objective(options);
+  const bool to_target = material.has_value();
+  const MarginTarget target = margin_target(L, options, sorted_names);
   Progress progress;
   progress.print = wants_progress(options);
+  if (to_target) progress.material = kMaterialNames.name(*material);
   settings.on_step = [&](const OptimizeStep& step) { progress.accepted(step); };
   const StructureGenerator generator_of = [&](const Eigen::VectorXd& values) {
     return generate(L, generator, sorted_names, values);
   };
-  const GeneratedOptimization optimized = optimize_generated(
-      generator_of, sorted_names, lower, upper, start, analysis, settings,
-      [&](double penalty, double infeasibility) { progress.evaluated(penalty, infeasibility); });
+  const GeneratedOptimization optimized =
+      to_target ? optimize_generated_to_target(generator_of, sorted_names, lower, upper, start, analysis, target,
+                                               *material, settings)
+                : optimize_generated(generator_of, sorted_names, lower, upper, start, analysis, settings,
+                                     [&](double penalty, double infeasibility) {
+                                       progress.evaluated(penalty, infeasibility);
+                                     });
   const ParameterResult& result = optimized.result;
   luax_pushStructure(L, optimized.structure);
   return call_protected(L, 1, [&](lua_State* L) {
-    lua_createtable(L, 0, 8);
+    lua_createtable(L, 0, 12);
     lua_createtable(L, 0, n);
     for (int j = 0; j < n; ++j) {
       lua_pushnumber(L, result.parameters(j));
@@ -372,7 +530,18 @@ int optimize_parameters_of(lua_State* L) {
     lua_setfield(L, -2, "params");
     lua_pushvalue(L, 1);
     lua_setfield(L, -2, "structure");
+    lua_createtable(L, 0, 0);
+    for (int j = 0; j < n; ++j) {
+      if (result.active_bounds[j] == BoundSide::none) continue;
+      set_string(L, sorted_names[j].c_str(), kBoundSideNames.name(result.active_bounds[j]));
+    }
+    lua_setfield(L, -2, "active_bounds");
     push_outcome(L, result.status, result.stable, result.message, result.evaluations, progress);
+    if (to_target) {
+      push_target_fields(L, *material, result.history);
+      if (!std::isnan(result.margin)) set_field(L, "margin", result.margin);
+      set_boolean(L, "on_boundary", result.on_boundary);
+    }
     return 1;
   });
 }

@@ -1,5 +1,7 @@
 #include "optimize/optimizer.hpp"
 
+#include "optimize/optimizer_checks.hpp"
+
 #include <LBFGSB.h>
 
 #include <cmath>
@@ -257,15 +259,22 @@ private:
     const std::string after = " after " + std::to_string(step.iteration) + " iterations";
     if (trial.stable) throw Stop{OptimizeStatus::stable, "stable" + after};
     const double norm = free_gradient_norm();
-    if (norm <= settings_.gradient_tolerance) {
-      throw Stop{OptimizeStatus::converged, "converged" + after + ": the gradient norm " +
-                                                message_number(norm, kGivenValueDigits) + " is within gradient_tolerance"};
-    }
     const double change = std::abs(previous - trial.value);
-    if (!first && change <= settings_.value_tolerance * std::max(1.0, std::abs(trial.value))) {
-      throw Stop{OptimizeStatus::converged, "converged" + after +
-                                                ": the last step changed the value by " +
-                                                message_number(change, kGivenValueDigits) + ", within value_tolerance"};
+    std::string reason;
+    if (norm <= settings_.gradient_tolerance) {
+      reason = "the gradient norm " + message_number(norm, kGivenValueDigits) + " in the free variables is within gradient_tolerance";
+    } else if (!first && change <= settings_.value_tolerance * std::max(1.0, std::abs(trial.value))) {
+      reason = "the last step changed the value by " + message_number(change, kGivenValueDigits) + ", within value_tolerance";
+    }
+    if (!reason.empty()) {
+      // Stationary because bounds hold variables the gradient pushes past them.
+      const double held = std::sqrt(std::max(0.0, current_.gradient.squaredNorm() - norm * norm));
+      if (held > settings_.gradient_tolerance) {
+        throw Stop{OptimizeStatus::at_bound, "stopped at a bound" + after + ": " + reason +
+                                                 "; bounds hold variables against a gradient of norm " +
+                                                 message_number(held, kGivenValueDigits)};
+      }
+      throw Stop{OptimizeStatus::converged, "converged" + after + ": " + reason};
     }
     if (step.iteration >= settings_.max_iterations) {
       throw Stop{OptimizeStatus::max_iterations,
@@ -422,7 +431,19 @@ private:
   std::exception_ptr callback_error_;
 };
 
-void check_settings(const OptimizeSettings& settings) {
+// The parts of a design's and a parameter run's results that are alike.
+template <class Result>
+void report_outcome(Outcome&& outcome, int evaluations, Result& result) {
+  result.status = outcome.status;
+  result.stable = outcome.status == OptimizeStatus::stable;
+  result.history = std::move(outcome.history);
+  result.evaluations = evaluations;
+  result.message = std::move(outcome.message);
+}
+
+}  // namespace
+
+void check_optimize_settings(const OptimizeSettings& settings) {
   if (settings.method != OptimizeMethod::lbfgs && settings.method != OptimizeMethod::gradient) {
     throw InvalidArgument("optimize: method must be lbfgs or gradient");
   }
@@ -439,19 +460,50 @@ void check_settings(const OptimizeSettings& settings) {
   check(settings.gradient_tolerance, "gradient_tolerance", "");
   check(settings.value_tolerance, "value_tolerance", "");
   check(settings.initial_step, "initial_step", " (m; 0 for automatic)");
+  if (!(settings.bracket_tolerance > 0.0 && settings.bracket_tolerance < 1.0)) {
+    throw InvalidArgument("optimize: bracket_tolerance must be in (0, 1), got " +
+                          message_number(settings.bracket_tolerance, kGivenValueDigits));
+  }
 }
 
-// The parts of a design's and a parameter run's results that are alike.
-template <class Result>
-void report_outcome(Outcome&& outcome, int evaluations, Result& result) {
-  result.status = outcome.status;
-  result.stable = outcome.status == OptimizeStatus::stable;
-  result.history = std::move(outcome.history);
-  result.evaluations = evaluations;
-  result.message = std::move(outcome.message);
+// Checks parameter bounds and the start; returns each parameter's scale:
+// its range where finite, else max(1, |initial|).
+Eigen::VectorXd parameter_scales(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                 const Eigen::VectorXd& initial) {
+  const Eigen::Index n = initial.size();
+  if (lower.size() != n || upper.size() != n) {
+    throw InvalidArgument(
+        "optimize parameters: lower, upper and initial must have equal sizes, got " +
+        std::to_string(lower.size()) + ", " + std::to_string(upper.size()) + " and " +
+        std::to_string(n));
+  }
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::string which = "optimize parameters: parameter " + std::to_string(i + 1);
+    if (std::isnan(lower[i]) || std::isnan(upper[i]) || lower[i] > upper[i]) {
+      throw InvalidArgument(which + ": its bounds [" + message_number(lower[i], kGivenValueDigits) + ", " + message_number(upper[i], kGivenValueDigits) +
+                            "] are not an interval");
+    }
+    if (!std::isfinite(initial[i]) || initial[i] < lower[i] || initial[i] > upper[i]) {
+      throw InvalidArgument(which + ": its initial value " + message_number(initial[i], kGivenValueDigits) +
+                            " is not within its bounds [" + message_number(lower[i], kGivenValueDigits) + ", " +
+                            message_number(upper[i], kGivenValueDigits) + "]");
+    }
+    const double range = upper[i] - lower[i];
+    scale[i] = std::isfinite(range) && range > 0.0 ? range : std::max(1.0, std::abs(initial[i]));
+  }
+  return scale;
 }
 
-}  // namespace
+std::vector<BoundSide> active_bounds(const Eigen::VectorXd& p, const Eigen::VectorXd& lower,
+                                     const Eigen::VectorXd& upper) {
+  std::vector<BoundSide> sides(static_cast<size_t>(p.size()), BoundSide::none);
+  for (Eigen::Index i = 0; i < p.size(); ++i) {
+    if (p[i] <= lower[i]) sides[i] = BoundSide::lower;
+    else if (p[i] >= upper[i]) sides[i] = BoundSide::upper;
+  }
+  return sides;
+}
 
 const char* status_name(OptimizeStatus status) {
   return kOptimizeStatusNames.name(status);
@@ -459,7 +511,7 @@ const char* status_name(OptimizeStatus status) {
 
 OptimizeResult optimize_design(const DesignSpace& space, const DesignObjective& objective,
                                const OptimizeSettings& settings) {
-  check_settings(settings);
+  check_optimize_settings(settings);
   if (!objective) throw InvalidArgument("optimize: no objective given");
   DesignProblem problem(space, objective);
   const double initial_step =
@@ -475,27 +527,12 @@ ParameterResult optimize_parameters(const Eigen::VectorXd& lower, const Eigen::V
                                     const Eigen::VectorXd& initial,
                                     const ParameterObjective& objective,
                                     const OptimizeSettings& settings) {
-  check_settings(settings);
+  check_optimize_settings(settings);
   if (!objective) throw InvalidArgument("optimize parameters: no objective given");
   const Eigen::Index n = initial.size();
-  if (lower.size() != n || upper.size() != n) {
-    throw InvalidArgument(
-        "optimize parameters: lower, upper and initial must have equal sizes, got " +
-        std::to_string(lower.size()) + ", " + std::to_string(upper.size()) + " and " +
-        std::to_string(n));
-  }
+  parameter_scales(lower, upper, initial);
   double widest = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const std::string which = "optimize parameters: parameter " + std::to_string(i + 1);
-    if (std::isnan(lower[i]) || std::isnan(upper[i]) || lower[i] > upper[i]) {
-      throw InvalidArgument(which + ": its bounds [" + message_number(lower[i], kGivenValueDigits) + ", " + message_number(upper[i], kGivenValueDigits) +
-                            "] are not an interval");
-    }
-    if (!std::isfinite(initial[i]) || initial[i] < lower[i] || initial[i] > upper[i]) {
-      throw InvalidArgument(which + ": its initial value " + message_number(initial[i], kGivenValueDigits) +
-                            " is not within its bounds [" + message_number(lower[i], kGivenValueDigits) + ", " +
-                            message_number(upper[i], kGivenValueDigits) + "]");
-    }
     if (std::isfinite(upper[i] - lower[i])) widest = std::max(widest, upper[i] - lower[i]);
   }
   if (widest == 0.0) widest = std::max(1.0, n ? initial.cwiseAbs().maxCoeff() : 0.0);
@@ -505,6 +542,7 @@ ParameterResult optimize_parameters(const Eigen::VectorXd& lower, const Eigen::V
   Outcome outcome = Driver(problem, settings, initial_step).run();
   ParameterResult result;
   result.parameters = std::move(outcome.point);
+  result.active_bounds = active_bounds(result.parameters, lower, upper);
   report_outcome(std::move(outcome), problem.evaluations(), result);
   return result;
 }

@@ -4,8 +4,10 @@
 #include <cmath>
 
 #include "analysis/equilibrium_analysis.hpp"
+#include "analysis/load_factor.hpp"
 #include "analysis/structural_gradient.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace ashlar {
 
@@ -46,6 +48,21 @@ double parameter_derivative(const Structure& base, const Structure& plus, const 
     sum += g.cable_to[c].dot(plus.cables()[c].to.point - minus.cables()[c].to.point);
   }
   return sum / (2.0 * step);
+}
+
+// The penalty's derivative with respect to each parameter at `values`,
+// whose structure `base` has the structural gradient g.
+Eigen::VectorXd parameter_gradient(const StructureGenerator& generate, const std::vector<std::string>& names,
+                                   const Eigen::VectorXd& values, const Structure& base, const StructuralGradient& g) {
+  Eigen::VectorXd gradient(values.size());
+  for (Eigen::Index j = 0; j < values.size(); ++j) {
+    const double step = 1e-6 * std::max(1.0, std::abs(values(j)));
+    Eigen::VectorXd plus = values, minus = values;
+    plus(j) += step;
+    minus(j) -= step;
+    gradient(j) = parameter_derivative(base, *generate(plus), *generate(minus), g, step, names[j]);
+  }
+  return gradient;
 }
 
 }  // namespace
@@ -128,7 +145,6 @@ GeneratedOptimization optimize_generated(const StructureGenerator& generate, con
                                          const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                          const Eigen::VectorXd& start, const AnalysisSettings& analysis,
                                          const OptimizeSettings& settings, const EvaluationReport& report) {
-  const int n = static_cast<int>(start.size());
   AnalysisSequence analyses(analysis, false);
   std::shared_ptr<Structure> base;  // alive while its analysis is
   const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
@@ -137,18 +153,139 @@ GeneratedOptimization optimize_generated(const StructureGenerator& generate, con
     ParameterEvaluation evaluation;
     evaluation.value = g.analysis.penalty;
     evaluation.stable = g.analysis.stable;
-    evaluation.gradient.resize(n);
-    for (int j = 0; j < n; ++j) {
-      const double step = 1e-6 * std::max(1.0, std::abs(values(j)));
-      Eigen::VectorXd plus = values, minus = values;
-      plus(j) += step;
-      minus(j) -= step;
-      evaluation.gradient(j) = parameter_derivative(*base, *generate(plus), *generate(minus), g, step, names[j]);
-    }
+    evaluation.gradient = parameter_gradient(generate, names, values, *base, g);
     return evaluation;
   };
   GeneratedOptimization out;
   out.result = optimize_parameters(lower, upper, start, objective, settings);
+  out.structure = generate(out.result.parameters);
+  return out;
+}
+
+double material_of(const Structure& s, Material material) {
+  double sum = 0.0;
+  for (int i = 0; i < s.size(); ++i) {
+    if (s.is_support(i)) continue;
+    sum += material == Material::weight ? s.block(i).mass() * kGravity : s.block(i).volume();
+  }
+  return sum;
+}
+
+GeneratedOptimization optimize_generated_to_target(const StructureGenerator& generate,
+                                                   const std::vector<std::string>& names,
+                                                   const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                                   const Eigen::VectorXd& start, const AnalysisSettings& analysis,
+                                                   const MarginTarget& target, Material material,
+                                                   const OptimizeSettings& settings) {
+  const Eigen::Index n = start.size();
+  if (target.kind == MarginKind::load_factor && !(std::isfinite(target.value) && target.value >= 0.0)) {
+    throw InvalidArgument("target.load_factor: must be a finite number >= 0, got " +
+                          message_number(target.value, kGivenValueDigits));
+  }
+  if (target.kind == MarginKind::geometric_factor) {
+    if (!(std::isfinite(target.value) && target.value > 0.0)) {
+      throw InvalidArgument("target.geometric_factor: must be a finite number > 0, got " +
+                            message_number(target.value, kGivenValueDigits));
+    }
+    if (target.parameter < 0 || target.parameter >= n) {
+      throw InvalidArgument("target.parameter: " + std::to_string(target.parameter + 1) +
+                            " is out of range (there are " + std::to_string(n) + " parameters)");
+    }
+  }
+  // The material, its gradient by central differences of the generator.
+  const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
+    ParameterEvaluation e;
+    e.value = material_of(*generate(values), material);
+    e.gradient.resize(n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double step = 1e-6 * std::max(1.0, std::abs(values(j)));
+      Eigen::VectorXd plus = values, minus = values;
+      plus(j) += step;
+      minus(j) -= step;
+      e.gradient(j) = (material_of(*generate(plus), material) - material_of(*generate(minus), material)) / (2 * step);
+    }
+    return e;
+  };
+  AnalysisSequence analyses(analysis, false);
+  AnalysisSettings verdict_settings = analysis;
+  verdict_settings.verdict_only = true;
+  AnalysisSequence verdicts(verdict_settings, false);
+  std::shared_ptr<Structure> base;  // alive while its analysis is
+  // Whether generate(values) stands; the penalty as the violation, with its
+  // gradient when asked for.
+  const auto stands = [&](const Eigen::VectorXd& values, bool gradient) {
+    base = generate(values);
+    MarginCheck m;
+    if (!gradient) {
+      const EquilibriumResult r = verdicts.analyze(*base);
+      m.feasible = r.stable;
+      m.violation = r.stable ? 0.0 : r.penalty;
+      return m;
+    }
+    const StructuralGradient g = structural_gradient(analyses.set_up(*base), *base);
+    m.feasible = g.analysis.stable;
+    m.violation = g.analysis.stable ? 0.0 : g.analysis.penalty;
+    // No equilibrium at all (an infinite penalty): short of the target, with no gradient.
+    if (g.valid) m.violation_gradient = parameter_gradient(generate, names, values, *base, g);
+    return m;
+  };
+  LoadFactorSettings load = target.load;
+  load.problem = analysis.problem;
+  // The load factor of generate(values); throws when Clp fails.
+  const auto factor_at = [&](const Eigen::VectorXd& values) {
+    const LoadFactor f = load_factor(*generate(values), load);
+    if (f.status != MarginStatus::optimal && f.status != MarginStatus::unbounded &&
+        f.status != MarginStatus::infeasible) {
+      throw Error(std::string("the load factor failed: ") + kMarginStatusNames.name(f.status));
+    }
+    return f;
+  };
+  MarginFunction margin;
+  switch (target.kind) {
+    case MarginKind::stable:
+      margin = stands;
+      break;
+    case MarginKind::geometric_factor:
+      margin = [&](const Eigen::VectorXd& values, bool gradient) {
+        Eigen::VectorXd scaled = values;
+        scaled(target.parameter) /= target.value;
+        MarginCheck m = stands(scaled, gradient);
+        if (m.violation_gradient.size()) m.violation_gradient(target.parameter) /= target.value;
+        return m;
+      };
+      break;
+    case MarginKind::load_factor:
+      margin = [&](const Eigen::VectorXd& values, bool gradient) {
+        const LoadFactor f = factor_at(values);
+        if (!f.stable) {
+          // It falls unloaded: the target plus the penalty, continuous with
+          // the target less a factor of 0 where it starts to stand.
+          MarginCheck m = stands(values, gradient);
+          m.feasible = false;
+          m.violation += target.value;
+          return m;
+        }
+        MarginCheck m;
+        m.margin = f.factor;
+        m.feasible = f.factor >= target.value;
+        m.violation = m.feasible ? 0.0 : target.value - f.factor;
+        if (gradient) {
+          m.violation_gradient.resize(n);
+          for (Eigen::Index j = 0; j < n; ++j) {
+            const double step = 1e-5 * std::max(1.0, std::abs(values(j)));
+            Eigen::VectorXd plus = values, minus = values;
+            plus(j) += step;
+            minus(j) -= step;
+            const double up = factor_at(plus).factor, down = factor_at(minus).factor;
+            m.violation_gradient(j) = std::isfinite(up - down) ? -(up - down) / (2 * step) : 0.0;
+          }
+        }
+        return m;
+      };
+      break;
+  }
+  GeneratedOptimization out;
+  out.result = optimize_parameters_to_target(lower, upper, start, objective, margin, settings);
   out.structure = generate(out.result.parameters);
   return out;
 }

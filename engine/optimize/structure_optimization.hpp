@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/load_factor.hpp"
 #include "optimize/design_space.hpp"
 #include "optimize/optimizer.hpp"
 #include "structure/structure.hpp"
@@ -71,5 +72,93 @@ GeneratedOptimization optimize_generated(const StructureGenerator& generate, con
                                          const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                          const Eigen::VectorXd& start, const AnalysisSettings& analysis,
                                          const OptimizeSettings& settings, const EvaluationReport& report = {});
+
+// ----------------------------------------------------------------------------
+// Optimisation to a margin: the least material whose margin reaches a target.
+
+// What must reach the target.
+enum class MarginKind {
+  stable,            // the equilibrium analysis's verdict
+  load_factor,       // ashlar.load_factor's factor >= the value, and stable unloaded
+  geometric_factor,  // still stable with one parameter divided by the value
+};
+inline constexpr EnumNames<MarginKind, 3> kMarginKindNames{{{{MarginKind::stable, "stable"},
+                                                            {MarginKind::load_factor, "load_factor"},
+                                                            {MarginKind::geometric_factor, "geometric_factor"}}}};
+
+struct MarginTarget {
+  MarginKind kind = MarginKind::stable;
+  // load_factor: the factor (>= 0); geometric_factor: the factor (> 0).
+  double value = 0.0;
+  // load_factor: the pattern and direction; its `problem` is replaced by the
+  // analysis settings' problem.
+  LoadFactorSettings load;
+  // geometric_factor: the parameter divided by the value (the thickness of
+  // an arch: Heyman's geometric factor is the thickness over the least that
+  // stands).
+  int parameter = 0;
+};
+
+// The material minimised (free blocks only: supports are ground).
+enum class Material {
+  volume,  // m^3
+  weight,  // N: mass x 9.81
+};
+inline constexpr EnumNames<Material, 2> kMaterialNames{{{{Material::volume, "volume"}, {Material::weight, "weight"}}}};
+
+// The free blocks' volume or weight.
+double material_of(const Structure& s, Material material);
+
+// Minimises the material of generate(p) over lower <= p <= upper among the
+// parameters whose margin reaches `target` (optimize_parameters_to_target):
+// the material's gradient by central differences of the generator (no
+// analysis); the margin's violation where it falls short is the analysis
+// penalty (stable, geometric_factor) with its structural gradient chained
+// through the generator, or the target less the load factor, its gradient
+// by central differences of load factors (step 1e-5 x max(1, |p|)). The
+// verdicts of the bisection's probes are the analysis's with verdict_only.
+// Throws InvalidArgument for a bad target (a negative load factor, a
+// geometric factor <= 0, a parameter out of range) and as optimize_generated.
+GeneratedOptimization optimize_generated_to_target(const StructureGenerator& generate,
+                                                   const std::vector<std::string>& names,
+                                                   const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                                   const Eigen::VectorXd& start, const AnalysisSettings& analysis,
+                                                   const MarginTarget& target, Material material,
+                                                   const OptimizeSettings& settings);
+
+// Fabrication conditions of a shape optimised to a target.
+struct ShapeFabrication {
+  // Curves of positions in order (e.g. an arch's intrados, one position per
+  // joint): smooth_weight x the sum over each curve of the squared second
+  // differences |x[k-1] - 2 x[k] + x[k+1]|^2 (m^2) is added to the objective
+  // (smooth_weight in the objective's units per m^2). 0: none.
+  double smooth_weight = 0.0;
+  std::vector<std::vector<PositionRef>> smooth_curves;
+  // Every contact between blocks at least this wide (m; least_joint_width):
+  // a narrower design is rejected. 0: none.
+  double min_thickness = 0.0;
+};
+
+// The sum over the curves of the squared second differences (m^2).
+double second_differences(const DesignPoint& design, const std::vector<std::vector<PositionRef>>& curves);
+
+// The least width of the contacts of s (m): contact_width of each contact
+// polygon, its least caliper width (a rectangular joint's shorter side: an
+// arch's thickness at the joint when the arch is deeper than thick).
+// Infinite when there is no contact.
+double least_joint_width(const Structure& s, const ContactOptions& contact);
+
+// Minimises the material (plus the smoothing penalty) over the vertices of
+// `s` within `constraints` among the designs that stand, by
+// optimize_parameters_to_target in the design space's reduced variables
+// through one chart centred at the start (a design that cannot be made
+// planar, or that the design space or min_thickness rejects, counts as not
+// standing). The margin's normal is the analysis penalty's structural
+// gradient. Throws as optimize_structure, and InvalidArgument for a curve
+// position out of range or a start narrower than min_thickness.
+StructureOptimization optimize_structure_to_target(const Structure& s, const DesignConstraints& constraints,
+                                                   const AnalysisSettings& analysis, Material material,
+                                                   const ShapeFabrication& fabrication,
+                                                   const OptimizeSettings& settings);
 
 }  // namespace ashlar
