@@ -25,7 +25,6 @@ namespace {
 OptimizeSettings optimize_settings(const OptionTable& options) {
   OptimizeSettings settings;
   settings.method = options.choice("method", kOptimizeMethodNames).value_or(settings.method);
-  lua_State* L = options.state();
   settings.max_iterations = static_cast<int>(
       options.whole("max_iterations", 0, std::numeric_limits<int>::max(), "an integer from 0 to 2^31 - 1").value_or(settings.max_iterations));
   settings.gradient_tolerance = options.positive("gradient_tolerance", settings.gradient_tolerance);
