@@ -127,15 +127,16 @@ bool parse_option(int argc, char** argv, int& i, ProcessOptions& options, std::s
 
 void complete_settings(ProcessOptions& options, const char* script) {
   namespace fs = std::filesystem;
-  if (options.folders_given) return;
   const fs::path folder = script ? fs::path(script).parent_path() : fs::path();
+  options.settings.base_folder = folder.string();
+  if (options.folders_given) return;
   options.settings.read_folders.push_back(folder.empty() ? "." : folder.string());
+  const fs::path output = folder / kDefaultOutputFolder;
   std::error_code error;
-  fs::create_directories(kDefaultOutputFolder, error);
+  fs::create_directories(output, error);
   if (error)
-    throw Error(std::string("sandbox: cannot create the output folder '") + kDefaultOutputFolder +
-                "': " + error.message());
-  options.settings.write_folders.emplace_back(kDefaultOutputFolder);
+    throw Error("sandbox: cannot create the output folder '" + output.string() + "': " + error.message());
+  options.settings.write_folders.push_back(output.string());
 }
 
 void limit_process(const ProcessOptions& options) {

@@ -32,8 +32,9 @@ bool takes_value(const char* option);
 bool parse_option(int argc, char** argv, int& i, ProcessOptions& options, std::string& error);
 
 // Completes the settings for `script` (nullptr: stdin or -e chunks): the
-// script's folder (else the current folder) to read, ./out (created) to
-// write unless folders were given. Throws ashlar::Error.
+// script's folder (else the current folder) is the base folder and, unless
+// folders were given, the folder to read, and its subfolder out (created)
+// the folder to write. Throws ashlar::Error.
 void complete_settings(ProcessOptions& options, const char* script);
 
 // Caps the process's data segment and starts the hard deadline: past the
