@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "sandbox.hpp"
@@ -22,6 +23,11 @@ struct ProcessOptions {
   // start, enforced as RLIMIT_DATA; 0: no limit.
   std::size_t engine_memory_bytes = std::size_t{4} << 30;
 };
+
+// Command-line values, also `ashlar test`'s: a whole number >= 0 ("1e9"
+// too), a number of seconds >= 0. False when `text` is not one.
+bool parse_count(const char* text, std::uint64_t& count);
+bool parse_seconds(const char* text, double& seconds);
 
 // Whether `option` is a sandbox option followed by a value (--read DIR, ...).
 bool takes_value(const char* option);
