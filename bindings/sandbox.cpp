@@ -207,7 +207,9 @@ PathCheck check_path_at(lua_State* L, int index, Access access) {
   index = lua_absindex(L, index);
   bool allowed = false;
   {
-    const std::string path = lua_tostring(L, index);
+    std::size_t length = 0;
+    const char* text = lua_tolstring(L, index, &length);
+    const std::string path(text, length);  // with any zero byte, which access_problem refuses
     const std::string problem = access_problem(L, path, access);
     allowed = problem.empty();
     if (!lua::push_message(L, (allowed ? script_path(L, path) : problem).c_str())) return PathCheck::raise;

@@ -3,7 +3,7 @@
 #include "regression_runner.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
