@@ -455,6 +455,12 @@ for case in suite.findall("testcase"):
       for _, option in ipairs{ "%-%-update", "%-%-timeout S", "%-j N, %-%-jobs N", "%-%-junit FILE" } do
         assert.matches("\n  " .. option .. " ", output)
       end
+      -- The defaults the help gives are those docs/api.md gives.
+      local docs = read_file(support.script_folder(1) .. "/../../docs/api.md")
+      local timeout = assert(docs:match("\n| `%-%-timeout S` | (%d+) |"))
+      local jobs = assert(docs:match("\n| `%-j N`, `%-%-jobs N` | (%d+) |"))
+      assert.matches("%(default " .. timeout .. "; 0: no limit%)", output)
+      assert.matches("run N scripts at once %(default " .. jobs .. "%)", output)
     end)
   end)
 end)
