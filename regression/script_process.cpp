@@ -284,7 +284,7 @@ int run_child(const char* program, const std::string& path) {
   return EXIT_SUCCESS;
 }
 
-ScriptProcess::ScriptProcess(const char* program, const std::string& path) : started_(Clock::now()) {
+ScriptProcess::ScriptProcess(const char* program, const std::string& path) : path_(path), started_(Clock::now()) {
   output_ = temporary_file();
   error_output_ = temporary_file();
   result_ = temporary_file();
@@ -347,13 +347,13 @@ ScriptOutcome ScriptProcess::outcome(bool timed_out) {
   try {
     read_result(read_all(result_), outcome);
   } catch (const std::exception&) {
-    outcome = ScriptOutcome{{}, "the script's process " + how_it_ended(status_) + " before it handed back a result",
+    outcome = ScriptOutcome{{}, path_ + ": its process " + how_it_ended(status_) + " before it handed back a result",
                             false, seconds(), std::move(outcome.output), std::move(outcome.error_output)};
     return outcome;
   }
   // After the script: e.g. the leak check of a sanitizer build.
   if (!clean) {
-    const std::string ended = "the script's process " + how_it_ended(status_) + " after the script ran";
+    const std::string ended = path_ + ": its process " + how_it_ended(status_) + " after the script ran";
     outcome.error = outcome.error ? *outcome.error + "\n" + ended : ended;
   }
   return outcome;

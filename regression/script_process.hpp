@@ -55,6 +55,7 @@ public:
   ScriptOutcome outcome(bool timed_out);
 
 private:
+  std::string path_;
   pid_t pid_ = -1;
   int status_ = 0;  // of waitpid, once ended
   Clock::time_point started_;

@@ -269,6 +269,18 @@ check("status", "unbounded", { reference = "optimal" })
       assert.are.equal("1 passed, 2 failed", last_line(output))
     end)
 
+    it("include a crash of the script's process, which fails that script alone", function()
+      -- The shell's parent is the process running the script.
+      script("crashes.lua", "check('x', 1)\nos.execute('kill -KILL $PPID')\n")
+      script("later.lua", "check('y', 2)\n")
+      local output, code = ashlar_test("--update")
+      assert.are.equal(1, code)
+      assert.is_true(has_line(output, "  ERROR " .. folder .. "/crashes.lua: its process was killed by signal 9 "
+                                      .. "(Killed) before it handed back a result"), output)
+      assert.is_true(has_line(output, '  added "y": 2'), output)
+      assert.are.equal("1 passed, 1 failed", last_line(output))
+    end)
+
     it("fail a script that records no checks", function()
       local path = script("empty.lua", "local unused = 1\n")
       local output, code = ashlar_test()
