@@ -5,6 +5,7 @@
 #include "sandbox.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -28,8 +29,13 @@ namespace {
 // every thread (coroutine) of the state finds it with lua_getallocf.
 struct Box {
   Settings settings;
+  fs::path base;                   // absolute: where relative paths start
   std::vector<fs::path> readable;  // canonical; the write folders too
   std::vector<fs::path> writable;  // canonical
+  lua_State* main = nullptr;       // the main thread, once the state exists
+  // "chunk:line:" of the main thread's Lua code at the last refused
+  // allocation (a fixed buffer: the allocator must not allocate).
+  char refused_at[LUA_IDSIZE + 24] = "";
   Clock::time_point deadline = Clock::time_point::max();
   std::size_t used = 0;
   std::size_t peak = 0;
@@ -44,6 +50,22 @@ struct Box {
   };
   std::unordered_map<const char*, Watched> watched;
 };
+
+// Notes where the main thread's Lua code is (the innermost Lua function's
+// line: past C functions, such as string.rep, or coroutine.resume while a
+// coroutine runs). Called by the allocator: lua_getstack and lua_getinfo
+// with "Sl" only read the call frames, which are whole at any allocation.
+void note_refused_allocation(Box& box) {
+  box.refused_at[0] = '\0';
+  if (box.main == nullptr) return;  // still making the state
+  lua_Debug frame;
+  for (int level = 0; lua_getstack(box.main, level, &frame) != 0; ++level) {
+    if (lua_getinfo(box.main, "Sl", &frame) != 0 && frame.currentline > 0) {
+      std::snprintf(box.refused_at, sizeof box.refused_at, "%s:%d:", frame.short_src, frame.currentline);
+      return;
+    }
+  }
+}
 
 void* limited_allocate(void* user_data, void* block, std::size_t old_size, std::size_t new_size) {
   Box& box = *static_cast<Box*>(user_data);
@@ -64,6 +86,7 @@ void* limited_allocate(void* user_data, void* block, std::size_t old_size, std::
   if (limit != 0 && new_size > old_bytes && box.used - old_bytes + new_size > limit) {
     ++box.refused_allocations;
     if (box.exceeded == Limit::none) box.exceeded = Limit::memory;
+    note_refused_allocation(box);
     return nullptr;  // Lua collects garbage and tries once more before raising
   }
   void* resized = std::realloc(block, new_size);
@@ -153,36 +176,66 @@ std::string folder_list(const std::vector<fs::path>& folders) {
   return names.empty() ? "none" : join(names, ", ");
 }
 
+// `path` as a script of the box gives it, from the base folder.
+fs::path from_base(const Box& box, const std::string& path) { return box.base / path; }
+
 std::string problem_in_box(const Box& box, const std::string& path, Access access) {
   const char* verb = access == Access::read ? "reading" : "writing";
   if (path.empty()) return std::string("sandbox: ") + verb + " a file needs a non-empty path";
   if (path.find('\0') != std::string::npos) return "sandbox: a path may not contain a zero byte";
   std::error_code error;
   // Resolves symlinks in the part that exists and ".." everywhere.
-  fs::path resolved = fs::absolute(path, error);
-  if (!error) resolved = fs::weakly_canonical(resolved, error);
+  const fs::path resolved = fs::weakly_canonical(from_base(box, path), error);
   const auto& allowed = access == Access::read ? box.readable : box.writable;
   if (!error && std::any_of(allowed.begin(), allowed.end(),
                             [&](const fs::path& folder) { return lies_under(resolved, folder); }))
     return {};
   return std::string("sandbox: ") + verb + " '" + path + "' is not allowed" +
          (error || resolved.string() == path ? "" : " (it resolves to '" + resolved.string() + "')") +
-         "; allowed folders for " + verb + ": " + folder_list(allowed);
+         ": outside the allowed folders for " + verb + ": " + folder_list(allowed);
 }
 
-// Pushes the message of a refused access, with the caller's file:line;
-// false (nothing pushed) when the access is allowed.
-bool push_access_problem(lua_State* L, const char* path, Access access) {
+// What checking a path argument of a wrapped function found.
+enum class PathCheck {
+  allowed,  // the argument is now the file it names (script_path)
+  refused,  // why not is on top of the stack
+  raise,    // no memory for either: the memory error's object is on top
+};
+
+// Checks the string at stack index `index` for `access`.
+PathCheck check_path_at(lua_State* L, int index, Access access) {
+  index = lua_absindex(L, index);
+  bool allowed = false;
   {
+    std::size_t length = 0;
+    const char* text = lua_tolstring(L, index, &length);
+    const std::string path(text, length);  // with any zero byte, which access_problem refuses
     const std::string problem = access_problem(L, path, access);
-    if (problem.empty()) return false;
-    if (!lua::push_message(L, problem.c_str())) return true;  // no memory: that error instead
+    allowed = problem.empty();
+    if (!lua::push_message(L, (allowed ? script_path(L, path) : problem).c_str())) return PathCheck::raise;
   }
-  // The problem is a Lua string now, and no C++ object is alive.
+  // A Lua string now, and no C++ object is alive.
+  if (!allowed) return PathCheck::refused;
+  lua_replace(L, index);
+  return PathCheck::allowed;
+}
+
+// Raises the refusal on top of the stack with the caller's file:line.
+int raise_refusal(lua_State* L) {
   luaL_where(L, 1);
   lua_insert(L, -2);
   lua_concat(L, 2);
-  return true;
+  return lua_error(L);
+}
+
+// Returns what stock Lua returns when the system refuses a file: nil, the
+// message on top of the stack, and an errno (EACCES) when `with_code`.
+int return_refusal(lua_State* L, bool with_code) {
+  lua_pushnil(L);
+  lua_insert(L, -2);
+  if (!with_code) return 2;
+  lua_pushinteger(L, EACCES);
+  return 3;
 }
 
 // Calls the original function (upvalue 1) with the arguments as they are.
@@ -194,30 +247,51 @@ int call_original(lua_State* L) {
 }
 
 int checked_open(lua_State* L) {
-  const char* path = luaL_checkstring(L, 1);
+  luaL_checkstring(L, 1);
   const char* mode = luaL_optstring(L, 2, "r");
   const Access access = mode[0] == 'r' && std::strchr(mode, '+') == nullptr ? Access::read : Access::write;
-  if (push_access_problem(L, path, access)) return lua_error(L);
-  return call_original(L);
+  switch (check_path_at(L, 1, access)) {
+    case PathCheck::allowed: return call_original(L);
+    case PathCheck::refused: return return_refusal(L, true);
+    case PathCheck::raise: break;
+  }
+  return lua_error(L);
 }
 
-// io.lines and io.input read a named file; io.output writes one.
+// io.lines and io.input read a named file; io.output writes one. Stock Lua
+// raises when it cannot open the file, and so do they.
 template <Access kAccess>
 int checked_when_named(lua_State* L) {
-  if (lua_type(L, 1) == LUA_TSTRING && push_access_problem(L, lua_tostring(L, 1), kAccess)) return lua_error(L);
+  if (lua_type(L, 1) == LUA_TSTRING) {
+    switch (check_path_at(L, 1, kAccess)) {
+      case PathCheck::allowed: break;
+      case PathCheck::refused: return raise_refusal(L);
+      case PathCheck::raise: return lua_error(L);
+    }
+  }
   return call_original(L);
 }
 
 int checked_remove(lua_State* L) {
-  if (push_access_problem(L, luaL_checkstring(L, 1), Access::write)) return lua_error(L);
-  return call_original(L);
+  luaL_checkstring(L, 1);
+  switch (check_path_at(L, 1, Access::write)) {
+    case PathCheck::allowed: return call_original(L);
+    case PathCheck::refused: return return_refusal(L, true);
+    case PathCheck::raise: break;
+  }
+  return lua_error(L);
 }
 
 int checked_rename(lua_State* L) {
-  const char* from = luaL_checkstring(L, 1);
-  const char* to = luaL_checkstring(L, 2);
-  if (push_access_problem(L, from, Access::write) || push_access_problem(L, to, Access::write))
-    return lua_error(L);
+  luaL_checkstring(L, 1);
+  luaL_checkstring(L, 2);
+  for (const int index : {1, 2}) {
+    switch (check_path_at(L, index, Access::write)) {
+      case PathCheck::allowed: break;
+      case PathCheck::refused: return return_refusal(L, true);
+      case PathCheck::raise: return lua_error(L);
+    }
+  }
   return call_original(L);
 }
 
@@ -229,9 +303,16 @@ int text_load(lua_State* L) {
   return call_original(L);
 }
 
+// loadfile returns nil and the reason, as stock Lua's does for a file it
+// cannot open.
 int text_loadfile(lua_State* L) {
-  const char* path = luaL_optstring(L, 1, nullptr);
-  if (path != nullptr && push_access_problem(L, path, Access::read)) return lua_error(L);
+  if (luaL_optstring(L, 1, nullptr) != nullptr) {
+    switch (check_path_at(L, 1, Access::read)) {
+      case PathCheck::allowed: break;
+      case PathCheck::refused: return return_refusal(L, false);
+      case PathCheck::raise: return lua_error(L);
+    }
+  }
   if (lua_gettop(L) < 2) lua_settop(L, 2);
   lua_pushliteral(L, "t");
   lua_replace(L, 2);
@@ -239,15 +320,19 @@ int text_loadfile(lua_State* L) {
 }
 
 int text_dofile(lua_State* L) {
-  const char* path = luaL_optstring(L, 1, nullptr);
+  const bool named = luaL_optstring(L, 1, nullptr) != nullptr;
   lua_settop(L, 1);
-  if (path != nullptr && push_access_problem(L, path, Access::read)) return lua_error(L);
-  if (luaL_loadfilex(L, path, "t") != LUA_OK) return lua_error(L);
+  if (named) {
+    switch (check_path_at(L, 1, Access::read)) {
+      case PathCheck::allowed: break;
+      case PathCheck::refused: return raise_refusal(L);
+      case PathCheck::raise: return lua_error(L);
+    }
+  }
+  if (luaL_loadfilex(L, lua_tostring(L, 1), "t") != LUA_OK) return lua_error(L);
   lua_call(L, 0, LUA_MULTRET);
   return lua_gettop(L) - 1;
 }
-
-bool may_read(lua_State* L, const char* path) { return access_problem(L, path, Access::read).empty(); }
 
 // package.searchers' Lua searcher, reading only allowed files as text. Its
 // strings are Lua strings on the stack, as in Lua's own searcher.
@@ -268,18 +353,24 @@ int text_searcher(lua_State* L) {
       lua_pop(L, 1);
       continue;
     }
-    const char* candidate = luaL_gsub(L, lua_tostring(L, -1), "?", file_name);
+    luaL_gsub(L, lua_tostring(L, -1), "?", file_name);
     lua_remove(L, -2);  // the template
-    const bool allowed = may_read(L, candidate);
+    lua_pushvalue(L, -1);  // the candidate, and the file it names once checked
+    const PathCheck check = check_path_at(L, -1, Access::read);
+    if (check == PathCheck::raise) return lua_error(L);
+    const bool allowed = check == PathCheck::allowed;
     if (allowed) {
-      if (FILE* file = std::fopen(candidate, "r")) {
+      const char* file_path = lua_tostring(L, -1);
+      if (FILE* file = std::fopen(file_path, "r")) {
         std::fclose(file);
-        if (luaL_loadfilex(L, candidate, "t") != LUA_OK)
-          return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, candidate, lua_tostring(L, -1));
+        if (luaL_loadfilex(L, file_path, "t") != LUA_OK)
+          return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, file_path,
+                            lua_tostring(L, -1));
         lua_insert(L, -2);  // the chunk, then its file (the loader's second argument)
         return 2;
       }
     }
+    lua_pop(L, 1);  // the file, or why not
     lua_pushvalue(L, tried);
     lua_pushliteral(L, "\n\tno file '");
     lua_pushvalue(L, -3);
@@ -435,12 +526,16 @@ lua_State* new_state(const Settings& settings, Clock::time_point deadline) {
   auto box = std::make_unique<Box>();
   box->settings = settings;
   box->deadline = deadline;
+  std::error_code error;
+  box->base = fs::absolute(settings.base_folder.empty() ? "." : settings.base_folder, error).lexically_normal();
+  if (error) throw Error("sandbox: base folder '" + settings.base_folder + "': " + error.message());
   for (const std::string& folder : settings.write_folders) box->writable.push_back(canonical_folder(folder));
   box->readable = box->writable;
   for (const std::string& folder : settings.read_folders) box->readable.push_back(canonical_folder(folder));
   lua_State* L = lua_newstate(limited_allocate, box.get());
   if (L == nullptr) throw Error("sandbox: not enough memory for a Lua state (memory limit " + megabytes(settings.memory_bytes) + ")");
   Box* kept = box.release();  // close_state frees it after the state
+  kept->main = L;
   lua_pushcfunction(L, open_sandboxed_libraries);
   if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
     const std::string problem = explain_error(L, lua_tostring(L, -1) ? lua_tostring(L, -1) : "an error object");
@@ -513,7 +608,15 @@ std::string explain_error(lua_State* L, const std::string& message) {
   if (box == nullptr || box->refused_allocations == 0) return message;
   const std::size_t at = message.find("not enough memory");
   if (at == std::string::npos) return message;
-  return message.substr(0, at) + limit_message(Limit::memory, box->settings) + message.substr(at + std::strlen("not enough memory"));
+  // Lua's own message, as raised: it has no position, so give the one noted.
+  const std::string where = at == 0 && box->refused_at[0] != '\0' ? std::string(box->refused_at) + " " : "";
+  return message.substr(0, at) + where + limit_message(Limit::memory, box->settings) +
+         message.substr(at + std::strlen("not enough memory"));
+}
+
+std::string script_path(lua_State* L, const std::string& path) {
+  const Box* box = box_of(L);
+  return box ? from_base(*box, path).string() : path;
 }
 
 std::string access_problem(lua_State* L, const std::string& path, Access access) {
@@ -521,15 +624,14 @@ std::string access_problem(lua_State* L, const std::string& path, Access access)
   return box ? problem_in_box(*box, path, access) : std::string();
 }
 
-void require_access(lua_State* L, int arg, const std::string& what, const std::string& path, Access access) {
+std::string require_access(lua_State* L, int arg, const std::string& what, const std::string& path, Access access) {
   const std::string problem = access_problem(L, path, access);
   if (!problem.empty()) throw lua::ArgError(arg, what + ": " + problem);
+  return script_path(L, path);
 }
 
 std::string checked_path(lua_State* L, int arg, const char* what, Access access) {
-  std::string path = lua::check_string(L, arg, what);
-  require_access(L, arg, what, path, access);
-  return path;
+  return require_access(L, arg, what, lua::check_string(L, arg, what), access);
 }
 
 }  // namespace ashlar::sandbox

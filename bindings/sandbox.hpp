@@ -11,6 +11,10 @@
 //   - files (io.open, io.lines, io.input, io.output, os.remove, os.rename,
 //     dofile, loadfile, require and every ashlar function that takes a path)
 //     only under the allowed folders, after symlinks and ".." are resolved;
+//     a relative path is taken from the base folder (the script's), not
+//     from the current folder; a refused io.open, os.remove, os.rename or
+//     loadfile returns nil and the reason as stock Lua does when the system
+//     refuses, the others raise it;
 //   - a cap on its Lua heap, kept by the state's allocator;
 //   - an instruction budget and a wall-clock deadline, checked every
 //     kHookInterval instructions by a count hook and, for the deadline, by
@@ -44,6 +48,9 @@ namespace ashlar::sandbox {
 struct Settings {
   std::vector<std::string> read_folders;   // read-only, besides the write folders
   std::vector<std::string> write_folders;  // read and write
+  // Where the script's relative paths start: the script's folder, or empty
+  // for the current folder (a chunk with no file).
+  std::string base_folder;
   std::size_t memory_bytes = std::size_t{1} << 30;  // Lua heap of each state, bytes
   std::uint64_t instructions = 0;                   // Lua VM instructions of each state
   double seconds = 0;                               // wall-clock seconds from the start
@@ -106,20 +113,30 @@ std::string deadline_problem(lua_State* L);
 bool budget_exhausted(lua_State* L);
 
 // A Lua error message, rewritten to name the limit when one was exceeded
-// (Lua's own message for a refused allocation is only "not enough memory").
+// (Lua's own message for a refused allocation is only "not enough memory";
+// it becomes "chunk:line: sandbox: memory limit ...", the line the main
+// thread's Lua code was running).
 std::string explain_error(lua_State* L, const std::string& message);
 
+// The file that `path`, as a script of L gives it, names: a relative path
+// is taken from the sandbox's base folder (the result is then absolute).
+// `path` itself for a state that is not sandboxed.
+std::string script_path(lua_State* L, const std::string& path);
+
 enum class Access { read, write };
-// Empty when L may access `path`; otherwise why not, naming the path and the
-// allowed folders. Always empty for a state that is not sandboxed.
+// Empty when L may access `path` (as a script of L gives it: see
+// script_path); otherwise why not, naming the path, what it resolves to
+// and the allowed folders. Always empty for a state that is not sandboxed.
 std::string access_problem(lua_State* L, const std::string& path, Access access);
 
-// Throws a lua::ArgError for argument `arg` naming `what` (e.g. "db") when L
-// may not access `path`.
-void require_access(lua_State* L, int arg, const std::string& what, const std::string& path, Access access);
+// The file `path` names (script_path) when L may access it; otherwise
+// throws a lua::ArgError for argument `arg` naming `what` (e.g. "db").
+[[nodiscard]] std::string require_access(lua_State* L, int arg, const std::string& what, const std::string& path,
+                                         Access access);
 
-// A string argument naming a file that L may access; otherwise a
-// lua::ArgError naming the argument (`what`) and the problem.
+// The file that a string argument names (script_path), when L may access
+// it; otherwise a lua::ArgError naming the argument (`what`) and the
+// problem.
 std::string checked_path(lua_State* L, int arg, const char* what, Access access);
 
 }  // namespace ashlar::sandbox

@@ -41,23 +41,6 @@ bool parse_size(const char* text, std::size_t& bytes) {
   return true;
 }
 
-bool parse_count(const char* text, std::uint64_t& count) {
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text, &end);  // "1e9" is allowed
-  if (end == text || *end != '\0' || errno != 0 || !(value >= 0) || value > 1e18 || value != std::floor(value))
-    return false;
-  count = static_cast<std::uint64_t>(value);
-  return true;
-}
-
-bool parse_seconds(const char* text, double& seconds) {
-  char* end = nullptr;
-  errno = 0;
-  seconds = std::strtod(text, &end);
-  return end != text && *end == '\0' && errno == 0 && seconds >= 0 && std::isfinite(seconds);
-}
-
 // Bytes of the data segment now (VmData of /proc/self/status); 0 if unknown.
 std::size_t data_segment_bytes() {
   std::ifstream status("/proc/self/status");
@@ -79,6 +62,23 @@ void write_error(const char* message) {
 }
 
 }  // namespace
+
+bool parse_count(const char* text, std::uint64_t& count) {
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text, &end);  // "1e9" is allowed
+  if (end == text || *end != '\0' || errno != 0 || !(value >= 0) || value > 1e18 || value != std::floor(value))
+    return false;
+  count = static_cast<std::uint64_t>(value);
+  return true;
+}
+
+bool parse_seconds(const char* text, double& seconds) {
+  char* end = nullptr;
+  errno = 0;
+  seconds = std::strtod(text, &end);
+  return end != text && *end == '\0' && errno == 0 && seconds >= 0 && std::isfinite(seconds);
+}
 
 bool takes_value(const char* option) {
   static const char* const kWithValue[] = {"--read", "--write", "--memory", "--engine-memory", "--instructions",
@@ -127,15 +127,16 @@ bool parse_option(int argc, char** argv, int& i, ProcessOptions& options, std::s
 
 void complete_settings(ProcessOptions& options, const char* script) {
   namespace fs = std::filesystem;
-  if (options.folders_given) return;
   const fs::path folder = script ? fs::path(script).parent_path() : fs::path();
+  options.settings.base_folder = folder.string();
+  if (options.folders_given) return;
   options.settings.read_folders.push_back(folder.empty() ? "." : folder.string());
+  const fs::path output = folder / kDefaultOutputFolder;
   std::error_code error;
-  fs::create_directories(kDefaultOutputFolder, error);
+  fs::create_directories(output, error);
   if (error)
-    throw Error(std::string("sandbox: cannot create the output folder '") + kDefaultOutputFolder +
-                "': " + error.message());
-  options.settings.write_folders.emplace_back(kDefaultOutputFolder);
+    throw Error("sandbox: cannot create the output folder '" + output.string() + "': " + error.message());
+  options.settings.write_folders.push_back(output.string());
 }
 
 void limit_process(const ProcessOptions& options) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "sandbox.hpp"
@@ -23,6 +24,11 @@ struct ProcessOptions {
   std::size_t engine_memory_bytes = std::size_t{4} << 30;
 };
 
+// Command-line values, also `ashlar test`'s: a whole number >= 0 ("1e9"
+// too), a number of seconds >= 0. False when `text` is not one.
+bool parse_count(const char* text, std::uint64_t& count);
+bool parse_seconds(const char* text, double& seconds);
+
 // Whether `option` is a sandbox option followed by a value (--read DIR, ...).
 bool takes_value(const char* option);
 
@@ -32,8 +38,9 @@ bool takes_value(const char* option);
 bool parse_option(int argc, char** argv, int& i, ProcessOptions& options, std::string& error);
 
 // Completes the settings for `script` (nullptr: stdin or -e chunks): the
-// script's folder (else the current folder) to read, ./out (created) to
-// write unless folders were given. Throws ashlar::Error.
+// script's folder (else the current folder) is the base folder and, unless
+// folders were given, the folder to read, and its subfolder out (created)
+// the folder to write. Throws ashlar::Error.
 void complete_settings(ProcessOptions& options, const char* script);
 
 // Caps the process's data segment and starts the hard deadline: past the

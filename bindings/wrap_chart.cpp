@@ -129,9 +129,9 @@ int w_chart(lua_State* L) {
                               {"path", "data", "x", "y", "series", "kind", "title", "x_label",
                                "y_label", "log_x", "log_y", "x_range", "y_range", "width",
                                "height"});
-    const std::string path =
-        required_string(options, "path", "the file to write (.png, .svg or .pdf)");
-    sandbox::require_access(L, 1, "path", path, sandbox::Access::write);
+    const std::string path = sandbox::require_access(
+        L, 1, "path", required_string(options, "path", "the file to write (.png, .svg or .pdf)"),
+        sandbox::Access::write);
     const std::vector<ChartRow> rows = chart_rows(options);
     ChartColumns columns;
     columns.x = required_string(options, "x", "the column plotted along x");

@@ -17,7 +17,8 @@ namespace ashlar::lua {
 namespace {
 
 struct SandboxRequest {
-  std::string script;  // a file, or
+  std::string script;       // a file, as given (from the current folder), or
+  std::string script_file;  // the same file, absolute (the base folder is the script's)
   std::string source;  // the chunk itself
   std::vector<std::string> args;
   std::vector<std::string> argv;  // the script's `arg`: "ashlar.sandbox", the script, args
@@ -63,9 +64,11 @@ SandboxRequest read_request(lua_State* L) {
   request.argv.insert(request.argv.end(), request.args.begin(), request.args.end());
   request.settings.read_folders = string_list(options, "read");
   request.settings.write_folders = string_list(options, "write");
-  if (!request.script.empty() && !options.has("read")) {
+  if (!request.script.empty()) {
     const std::filesystem::path folder = std::filesystem::path(request.script).parent_path();
-    request.settings.read_folders.push_back(folder.empty() ? "." : folder.string());
+    request.settings.base_folder = folder.string();
+    request.script_file = std::filesystem::absolute(request.script).string();
+    if (!options.has("read")) request.settings.read_folders.push_back(folder.empty() ? "." : folder.string());
   }
   constexpr lua_Integer kMostBytes = lua_Integer{1} << 50;
   request.settings.memory_bytes = static_cast<std::size_t>(
@@ -90,7 +93,7 @@ int load_request(lua_State* S) {
   } else {
     host::prepend_script_folder_to_path(S, request.script.c_str());
     {
-      const std::string problem = sandbox::access_problem(S, request.script, sandbox::Access::read);
+      const std::string problem = sandbox::access_problem(S, request.script_file, sandbox::Access::read);
       if (!problem.empty()) push_message(S, problem.c_str());  // or, without memory, that error
     }
     if (lua_gettop(S) > 0) return lua_error(S);

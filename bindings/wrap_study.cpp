@@ -144,7 +144,7 @@ int w_study(lua_State* L) {
       run_module = parse_run_module(std::string(text, size));
     }
     job.db = options.string("db").value_or("");
-    if (!job.db.empty()) sandbox::require_access(L, 1, "db", job.db, sandbox::Access::write);
+    if (!job.db.empty()) job.db = sandbox::require_access(L, 1, "db", job.db, sandbox::Access::write);
     job.workers = static_cast<int>(
         options.whole("workers", 0, 4096, "0 (all cores) or a number of workers").value_or(job.workers));
     job.progress = options.boolean("progress").value_or(job.progress);
@@ -201,7 +201,7 @@ int w_load_study(lua_State* L) {
     study.db = options.string("db").value_or("");
     study.name = options.string("name").value_or("");
     if (study.db.empty()) throw ArgError(1, "db: missing (the study database's path)");
-    sandbox::require_access(L, 1, "db", study.db, sandbox::Access::read);
+    study.db = sandbox::require_access(L, 1, "db", study.db, sandbox::Access::read);
     if (study.name.empty()) throw ArgError(1, "name: missing (the study's name)");
     study.table = study::StudyStore(study.db, true).read_study(study.name);
     push_study(L, std::move(study));

@@ -49,7 +49,7 @@ struct CommandLine {
 void print_usage(FILE* out) {
   std::fprintf(out,
       "usage: %s [options] [script [args]]\n"
-      "       %s test [--update] [folder [name ...]]\n"
+      "       %s test [--update] [--timeout S] [-j N] [--junit FILE] [folder [name ...]]\n"
       "Available options are:\n"
       "  -e stat    execute string 'stat'\n"
       "  -i         enter interactive mode after executing 'script'\n"
@@ -59,7 +59,8 @@ void print_usage(FILE* out) {
       "  -W         turn warnings on\n"
       "  --sandbox  run the script as untrusted (see below)\n"
       "  --read DIR, --write DIR   folders a sandboxed script may read, or read and\n"
-      "             write (repeatable; default: read the script's folder, write ./out)\n"
+      "             write (repeatable; default: read the script's folder, write its\n"
+      "             subfolder out); the script's relative paths start in its folder\n"
       "  --memory SIZE             Lua heap limit, e.g. 256M (default 1G)\n"
       "  --engine-memory SIZE      memory the whole process may add (default 4G; 0: none)\n"
       "  --instructions N          Lua instruction budget (default: none)\n"

@@ -269,6 +269,18 @@ check("status", "unbounded", { reference = "optimal" })
       assert.are.equal("1 passed, 2 failed", last_line(output))
     end)
 
+    it("include a crash of the script's process, which fails that script alone", function()
+      -- The shell's parent is the process running the script.
+      script("crashes.lua", "check('x', 1)\nos.execute('kill -KILL $PPID')\n")
+      script("later.lua", "check('y', 2)\n")
+      local output, code = ashlar_test("--update")
+      assert.are.equal(1, code)
+      assert.is_true(has_line(output, "  ERROR " .. folder .. "/crashes.lua: its process was killed by signal 9 "
+                                      .. "(Killed) before it handed back a result"), output)
+      assert.is_true(has_line(output, '  added "y": 2'), output)
+      assert.are.equal("1 passed, 1 failed", last_line(output))
+    end)
+
     it("fail a script that records no checks", function()
       local path = script("empty.lua", "local unused = 1\n")
       local output, code = ashlar_test()
@@ -370,6 +382,70 @@ check("name", "arch")
     end)
   end)
 
+  describe("time limit, parallel runs and JUnit XML", function()
+    -- A passing, a failing and a script that runs until stopped. The limit
+    -- leaves the other two (a process each, slower under the sanitizers)
+    -- ample time.
+    local TIMEOUT = 2
+
+    -- The report without the run times, which vary.
+    local function without_times(output)
+      return (output:gsub("checks, %d+%.%d%d s\n", "checks, T s\n"))
+    end
+
+    it("stop a script at the limit, fail it naming the limit, report alike with -j 2, and write JUnit XML", function()
+      script("a_pass.lua", 'print("a runs")\ncheck("one", 1)\n')
+      script("b_fail.lua", 'check("two", 2, { reference = 3, reference_tolerance = 1e-9 })\n')
+      script("c_slow.lua", 'check("started", true)\nlocal stop = os.clock() + 600\nwhile os.clock() < stop do end\n')
+      assert.are.equal(1, select(2, run(quote(ashlar_bin) .. " test --update " .. quote(folder) .. " a_pass b_fail")))
+      local slow, junit = folder .. "/c_slow.lua", folder .. "/report.xml"
+      local reports = {}
+      for _, jobs in ipairs{ "-j 1", "--jobs 2" } do
+        local output, code = ashlar_test(jobs .. " --timeout " .. TIMEOUT .. " --junit " .. quote(junit))
+        assert.are.equal(1, code, output)
+        assert.are.equal("1 passed, 2 failed", last_line(output))
+        assert.is_true(has_line(output, "  FAIL " .. slow .. ": stopped at the time limit of 2 s (--timeout)"), output)
+        local seconds = tonumber(output:match("\nc_slow%.lua: 0 checks, ([%d.]+) s\n"))
+        assert.is_true(seconds >= TIMEOUT and seconds < TIMEOUT + 10, "stopped after " .. tostring(seconds) .. " s")
+        reports[#reports + 1] = without_times(output)
+        -- Parsed by Python's XML parser: counts, names, the console's failure lines.
+        local parsed = run("/usr/bin/python3 -c " .. quote([[
+import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+suite = root.find("testsuite")
+print(root.tag, root.get("tests"), root.get("failures"), suite.get("tests"), suite.get("failures"))
+for case in suite.findall("testcase"):
+    failure = case.find("failure")
+    out = case.find("system-out")
+    print(case.get("name"), failure.get("message") if failure is not None else "passed",
+          repr(out.text) if out is not None else "")
+]]) .. " " .. quote(junit))
+        assert.are.equal("testsuites 3 2 3 2\n" ..
+          "a_pass.lua passed 'a runs\\n'\n" ..
+          "b_fail.lua FAIL " .. folder .. '/b_fail.lua:2: "two": reference 3, got 2: relative difference 0.333 > ' ..
+          "reference_tolerance 1e-09 \n" ..
+          "c_slow.lua FAIL " .. slow .. ": stopped at the time limit of 2 s (--timeout) \n", parsed)
+      end
+      assert.are.equal(reports[1], reports[2])
+      assert.matches("^a runs\na_pass%.lua: 1 checks, T s\nb_fail%.lua: 1 checks, T s\n  FAIL ", reports[1])
+      assert.is_true(has_line(reports[1], "wrote " .. junit), reports[1])
+    end)
+
+    it("check their options", function()
+      script("a.lua", "check('x', 1)\n")
+      for _, case in ipairs{
+        { "--timeout -1", "--timeout: '-1' is not a number of seconds >= 0 (0: no limit)" },
+        { "-j 0", "-j: '0' is not a number of scripts to run at once from 1 to 1024" },
+        { "--jobs many", "--jobs: 'many' is not a number of scripts to run at once from 1 to 1024" },
+        { "--junit", "'--junit' needs a value" },
+      } do
+        local output, code = run(quote(ashlar_bin) .. " test " .. quote(folder) .. " " .. case[1])
+        assert.are.equal(1, code, case[1])
+        assert.matches("^ashlar: test: " .. escape_pattern(case[2]) .. "\nusage: ashlar test", output)
+      end
+    end)
+  end)
+
   describe("the host", function()
     it("still runs a script named test after -- or as a path", function()
       write_file(folder .. "/test", "print('the script named test', ...)")
@@ -383,11 +459,20 @@ check("name", "arch")
     it("lists the test command in its usage, and test its own", function()
       local output, code = run(quote(ashlar_bin) .. " --help")
       assert.are.equal(0, code)
-      assert.matches("\n       ashlar test %[%-%-update%] %[folder %[name %.%.%.%]%]\n", output)
+      local usage = "ashlar test %[%-%-update%] %[%-%-timeout S%] %[%-j N%] %[%-%-junit FILE%] %[folder %[name %.%.%.%]%]\n"
+      assert.matches("\n       " .. usage, output)
       output, code = run(quote(ashlar_bin) .. " test --help")
       assert.are.equal(0, code)
-      assert.matches("^usage: ashlar test %[%-%-update%] %[folder %[name %.%.%.%]%]\n", output)
-      assert.matches("\n  %-%-update ", output)
+      assert.matches("^usage: " .. usage, output)
+      for _, option in ipairs{ "%-%-update", "%-%-timeout S", "%-j N, %-%-jobs N", "%-%-junit FILE" } do
+        assert.matches("\n  " .. option .. " ", output)
+      end
+      -- The defaults the help gives are those docs/api.md gives.
+      local docs = read_file(support.script_folder(1) .. "/../../docs/api.md")
+      local timeout = assert(docs:match("\n| `%-%-timeout S` | (%d+) |"))
+      local jobs = assert(docs:match("\n| `%-j N`, `%-%-jobs N` | (%d+) |"))
+      assert.matches("%(default " .. timeout .. "; 0: no limit%)", output)
+      assert.matches("run N scripts at once %(default " .. jobs .. "%)", output)
     end)
   end)
 end)

@@ -1,9 +1,10 @@
 -- The sandbox against hostile scripts (tests/sandbox/hostile): each runs
--- under `ashlar --sandbox` in a fresh folder that holds a secret beside the
--- script's folder, symlinks out of the allowed folders and an output folder.
--- Each must end with the message its `-- expect:` line names (and the exit
--- status of `-- exit:`, default 1), never with a crash, and leave everything
--- outside out/ as it was. `-- unless: X` skips a script when `ashlar -v`
+-- under `ashlar --sandbox scripts/name.lua` from a fresh folder that holds a
+-- secret beside the script's folder, symlinks out of the allowed folders
+-- and the script's output folder, scripts/out. Each must end with the
+-- message its `-- expect:` line names (and the exit status of `-- exit:`,
+-- default 1), never with a crash, and leave everything outside scripts/out
+-- as it was. `-- unless: X` skips a script when `ashlar -v`
 -- mentions X (a build that cannot enforce that limit).
 local support = require "spec_support"
 local ashlar = require "ashlar"
@@ -33,23 +34,24 @@ local function hostile_scripts()
   return names
 end
 
--- A listing of every file and link under root except out/, with contents.
+-- A listing of every file and link under root except scripts/out, with
+-- contents.
 local function snapshot(root)
   return support.run("cd " .. quote(root) ..
-    " && find . -path ./out -prune -o -print | sort && cat secret/secret.txt")
+    " && find . -path ./scripts/out -prune -o -print | sort && cat secret/secret.txt")
 end
 
 -- Runs `file` (in scripts/) sandboxed in a fresh folder; returns the
--- output, the exit code and whether everything outside out/ stayed.
+-- output, the exit code and whether everything outside scripts/out stayed.
 local function run_sandboxed(file, options)
   local root = support.temp_folder()
   assert(os.execute(table.concat({
     "cd " .. quote(root),
-    "mkdir scripts secret out",
+    "mkdir -p scripts/out secret",
     "printf %s " .. quote(SECRET) .. " > secret/secret.txt",
     "ln -s ../secret scripts/escape",
     "ln -s /etc/passwd scripts/passwd",
-    "ln -s ../secret out/link",
+    "ln -s ../../secret scripts/out/link",
   }, " && ")))
   assert(os.execute("cp " .. quote(file) .. " " .. quote(root .. "/scripts/")))
   local before = snapshot(root)
@@ -58,6 +60,30 @@ local function run_sandboxed(file, options)
   local untouched = snapshot(root) == before
   support.remove_folder(root)
   return output, code, untouched
+end
+
+-- A script in sub/ with neighbours it reads by relative paths, writing
+-- under its own out/ (sub/out, the default write folder).
+local function script_with_neighbours()
+  local root = support.temp_folder()
+  assert(os.execute("mkdir -p " .. quote(root .. "/sub/lib")))
+  support.write_file(root .. "/sub/data.txt", "beside the script")
+  support.write_file(root .. "/sub/lib/helper.lua", "return { answer = 42 }")
+  support.write_file(root .. "/sub/seven.lua", "return 7")
+  support.write_file(root .. "/sub/main.lua", [[
+local ashlar = require "ashlar"
+local models = require "ashlar.models"
+local text = assert(io.open("data.txt")):read("a")
+local file = assert(io.open("out/note.txt", "w"))
+file:write("written")
+file:close()
+models.arch{ thickness = 1.0, voussoirs = 4 }:save("out/arch.json")
+local values = { text, dofile("seven.lua"), assert(loadfile("seven.lua"))(), require("lib.helper").answer,
+                 #ashlar.load("out/arch.json") }
+print(table.concat(values, ", "))
+return table.unpack(values)
+]])
+  return root
 end
 
 describe("ashlar --sandbox", function()
@@ -80,7 +106,7 @@ describe("ashlar --sandbox", function()
       assert.are.equal(exit, code, name .. " exit status; output:\n" .. output)
       assert.is_falsy(output:find(SECRET, 1, true), name .. " read the secret")
       assert.is_falsy(output:find("root:x:0:0", 1, true), name .. " read /etc/passwd")
-      assert.is_true(untouched, name .. " changed files outside out/")
+      assert.is_true(untouched, name .. " changed files outside scripts/out")
       assert.is_falsy(io.open("/tmp/ashlar-sandbox-pwned.txt"), name .. " wrote into /tmp")
     end)
   end
@@ -115,6 +141,21 @@ print(("stable %s, %d blocks back"):format(tostring(r.stable), #ashlar.load("out
     saved:close()
   end)
 
+  it("resolves relative paths from the script's folder, wherever it is run from", function()
+    local root = script_with_neighbours()
+    local output, code = support.run("cd " .. quote(root) .. " && " .. quote(ASHLAR) .. " --sandbox sub/main.lua")
+    local note = support.read_file(root .. "/sub/out/note.txt")
+    local saved = io.open(root .. "/sub/out/arch.json")
+    local stray = io.open(root .. "/out")
+    support.remove_folder(root)
+    assert.are.equal(0, code, output)
+    assert.are.equal("beside the script, 7, 7, 42, 6\n", output)
+    assert.are.equal("written", note)
+    assert.is_truthy(saved)
+    saved:close()
+    assert.is_nil(stray)
+  end)
+
   it("checks its options", function()
     local cases = {
       { "--read /nonexistent-folder", "allowed folder '/nonexistent-folder' is not an existing folder" },
@@ -145,9 +186,11 @@ describe("ashlar.sandbox", function()
   end)
 
   it("reports each limit as a status", function()
-    local memory = ashlar.sandbox{ source = "local t = {} for i = 1, 1e9 do t[i] = i end", memory = 16 * 2^20 }
+    local memory = ashlar.sandbox{ source = "local t = {}\nfor i = 1, 1e9 do t[i] = i end", memory = 16 * 2^20 }
     assert.are.equal("memory", memory.status)
-    assert.truthy(memory.message:find("sandbox: memory limit of 16 MiB exceeded", 1, true))
+    -- Where it ran out, as Lua gives the place of an error.
+    assert.are.equal("(sandbox source):2: sandbox: memory limit of 16 MiB exceeded (the script's Lua heap)",
+      memory.message)
     assert.is_true(memory.memory_peak <= 16 * 2^20)
     local time = ashlar.sandbox{ source = "while true do end", time = 0.2 }
     assert.are.equal("time", time.status)
@@ -166,10 +209,14 @@ describe("ashlar.sandbox", function()
     local o = ashlar.sandbox{ source = "return io.open(...):read('a')", args = { folder .. "/inside.txt" },
       read = { folder } }
     assert.are.same({ "inside" }, o.results)
+    -- Refused as stock Lua's io.open refuses: nil, the reason, an errno (EACCES).
     local refused = ashlar.sandbox{ source = "return io.open(..., 'w')", args = { folder .. "/new.txt" },
       read = { folder } }
-    assert.are.equal("error", refused.status)
-    assert.truthy(refused.message:find("writing '" .. folder .. "/new.txt' is not allowed", 1, true))
+    assert.are.equal("ok", refused.status)
+    assert.is_nil(refused.results[1])
+    assert.are.equal("sandbox: writing '" .. folder .. "/new.txt' is not allowed: outside the allowed folders " ..
+      "for writing: none", refused.results[2])
+    assert.are.equal(13, refused.results[3])
     local written = ashlar.sandbox{ source = "assert(io.open(..., 'w')):write('made') return 1",
       args = { folder .. "/new.txt" }, write = { folder } }
     assert.are.equal("ok", written.status)
@@ -185,6 +232,17 @@ describe("ashlar.sandbox", function()
     support.remove_folder(folder)
     assert.are.equal("ok", o.status, o.message)
     assert.are.same({ 42, folder .. "/main.lua", "a" }, o.results)
+  end)
+
+  it("resolves a script's relative paths from its folder", function()
+    local root = script_with_neighbours()
+    assert(os.execute("mkdir " .. quote(root .. "/sub/out")))
+    local o = ashlar.sandbox{ script = root .. "/sub/main.lua", write = { root .. "/sub/out" } }
+    local note = support.read_file(root .. "/sub/out/note.txt")
+    support.remove_folder(root)
+    assert.are.equal("ok", o.status, o.message)
+    assert.are.same({ "beside the script", 7, 7, 42, 6 }, o.results)
+    assert.are.equal("written", note)
   end)
 
   it("checks its options", function()

@@ -1,2 +1,2 @@
 -- expect: reading '../secret/secret.txt' is not allowed
-print(loadfile("../secret/secret.txt"))
+assert(loadfile("../secret/secret.txt"))

@@ -1,2 +1,3 @@
--- expect: reading 'scripts/../secret/secret.txt' is not allowed
-print(assert(io.open("scripts/../secret/secret.txt")):read("a"))
+-- expect: reading '../scripts/../secret/secret.txt' is not allowed
+-- Out of the script's folder, back in, and out again.
+print(assert(io.open("../scripts/../secret/secret.txt")):read("a"))
