@@ -72,7 +72,6 @@ double friction_option(const OptionTable& options, double fallback) {
 }
 
 AnalysisSettings analysis_settings(const OptionTable& options) {
-  lua_State* L = options.state();
   AnalysisSettings settings;
   EquilibriumOptions& problem = settings.problem;
   problem.friction = friction_option(options, problem.friction);
