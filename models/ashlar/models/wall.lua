@@ -181,7 +181,9 @@ return function(opts)
     end
     local lintel_keys, arch_keys = { "bearing", "lintel_height" }, { "rise", "ring", "voussoirs" }
     for _, key in ipairs(p.head == "lintel" and arch_keys or lintel_keys) do
-      if p[key] ~= nil then fail(("%s: not an option of a %s head"):format(key, p.head)) end
+      if p[key] ~= nil then
+        fail(("%s: only for head = \"%s\", not \"%s\""):format(key, p.head == "lintel" and "arch" or "lintel", p.head))
+      end
     end
     if p.x < l then
       fail(("x %g leaves less than a brick (%g) between the wall's left end and the jamb: the courses "
