@@ -78,6 +78,11 @@ describe("models.wall with openings", function()
     end
     local expected_area = (2 * n * ro * math.sin(math.pi / (2 * n)) + 2 * ring) * t
     near(area, expected_area, 1e-9 * expected_area, "area of the ring's contacts with the courses")
+    -- rise = width / 2, given, is the default semicircle.
+    local given = models.wall{ length = 2.4, height = 1.12, openings = {
+      { x = 0.72, sill = 0.14, width = w, height = 0.28, head = "arch", voussoirs = n, ring = ring, rise = w / 2 } } }
+    assert.equal(#s, #given)
+    near(support.free_volume(given), expected, 1e-9 * expected, "wall volume, rise given")
   end)
 
   it("with a segmental arch head: the wall less the opening and the segment under the intrados chords", function()

@@ -207,12 +207,13 @@ return function(opts)
           p.left < 0 and "left" or "right"))
       end
     else
-      local rise, ring = p.rise or p.width / 2, p.ring or l
-      if rise > p.width / 2 then
-        fail(("rise must be <= width / 2 (%g; a semicircle), got %g"):format(p.width / 2, rise))
+      local half, ring = p.width / 2, p.ring or l
+      local rise = p.rise or half
+      if rise > half * (1 + 1e-9) then
+        fail(("rise must be <= width / 2 (%g; a semicircle), got %g"):format(half, rise))
       end
+      if rise >= half * (1 - 1e-9) then rise = half end
       -- The intrados is a circle through both jambs' tops, `rise` high.
-      local half = p.width / 2
       local ri = (half * half + rise * rise) / (2 * rise)
       local zc = rise - ri
       local arc = 2 * ri * math.atan(half, -zc)
