@@ -14,8 +14,8 @@ HexNodes hexahedron_corners(const Block& block, const std::string& what) {
                            "): the FEA meshes each block as 8-node hexahedra; build it with 8 "
                            "corners and 6 four-sided faces. Of the model library's blocks these are not: a "
                            "dome's keystone (give the dome an oculus), a staggered dome's voussoirs (use bond = "
-                           "\"stacked\") and an arch bridge's abutments, L-shaped to back the spandrels (use "
-                           "spandrel = false)");
+                           "\"stacked\"), an arch bridge's abutments, L-shaped to back the spandrels (use "
+                           "spandrel = false), and a wall's bricks cut around an arch head (use a lintel)");
   };
   if (block.vertices().size() != 8)
     throw not_hexahedron(std::to_string(block.vertices().size()) + " vertices");

@@ -116,6 +116,16 @@ describe("models.wall with openings", function()
     near(reaction, weight, 1e-6 * weight, "support reaction")
   end)
 
+  it("meshes for the FEA with lintels; with an arch head the message names the cut bricks and the way out", function()
+    local small = { length = 1.2, height = 0.42, openings = { { x = 0.24, width = 0.48, height = 0.21 } } }
+    local s = models.wall(small)
+    local fe = ashlar.fea(s, { refine = 1 })
+    assert.equal(#s - 1, fe.element_count)  -- every free block a box, one element each
+    small.height, small.openings[1].head = 0.7, "arch"
+    expect_error({ "is not a hexahedron", "a wall's bricks cut around an arch head (use a lintel)" }, ashlar.fea,
+      models.wall(small), { refine = 1 })
+  end)
+
   it("rejects bad openings, naming the opening, what was wrong and the value", function()
     local wall = models.wall
     local function with(opening, extra)
