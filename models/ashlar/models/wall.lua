@@ -148,6 +148,9 @@ return function(opts)
   options.limit_blocks(G, per_course * courses,
     ("%.0f bricks per course x %.0f courses"):format(per_course, courses))
   local y0, y1 = -t / 2, t / 2
+  -- The half-brick line at x (checked to be one): the very value of the
+  -- course joints there, (i + 0.5) * l or i * l.
+  local function on_grid(x) return whole(x, l / 2) * l / 2 end
 
   -- Openings: checked, then each with its footprint { left, right } (jambs
   -- and head), its courses (integers: the opening spans courses c with
@@ -198,8 +201,8 @@ return function(opts)
     if p.head == "lintel" then
       p.bearing = p.bearing or l
       p.lintel_height = p.lintel_height or 2 * h
-      p.left = whole(p.x - p.bearing, l / 2) * l / 2
-      p.right = whole(p.x + p.width + p.bearing, l / 2) * l / 2
+      p.left = on_grid(p.x - p.bearing)
+      p.right = on_grid(p.x + p.width + p.bearing)
       p.head_course = p.top + whole(p.lintel_height, h)
       p.crown = p.head_course * h
       if p.left < 0 or p.right > o.length then
@@ -226,7 +229,7 @@ return function(opts)
         shape.shape, shape.rise, shape.span = "segmental", rise + ring / 2, 2 * math.sqrt(r * r - zc * zc)
       end
       p.joints = arch_shapes.joints(shape, function(message) error(what .. ": " .. message, 5) end)
-      p.voussoirs, p.centre, p.springing = shape.voussoirs, (p.x + whole(p.x + p.width, l / 2) * l / 2) / 2, top
+      p.voussoirs, p.centre, p.springing = shape.voussoirs, (p.x + on_grid(p.x + p.width)) / 2, top
       p.left, p.right = p.centre + p.joints[0].ex, p.centre - p.joints[0].ex
       local chain, crown = {}, top
       for k = 0, p.voussoirs do
@@ -285,7 +288,7 @@ return function(opts)
     local holes, chains = {}, {}
     for _, p in ipairs(openings) do
       if c > p.sill_course and c <= p.top then
-        holes[#holes + 1] = { p.x, whole(p.x + p.width, l / 2) * l / 2 }
+        holes[#holes + 1] = { p.x, on_grid(p.x + p.width) }
       elseif p.head == "lintel" and c > p.top and c <= p.head_course then
         holes[#holes + 1] = { p.left, p.right }
       elseif p.head == "arch" and c > p.top and z0 < p.crown then
@@ -295,7 +298,7 @@ return function(opts)
     if #holes > 0 then
       for _, hole in ipairs(holes) do
         for _, x in ipairs(hole) do
-          local at = whole(x, l / 2) * l / 2 -- the grid's own value, as the joints
+          local at = on_grid(x)
           local seen = false
           for _, j in ipairs(joints) do seen = seen or math.abs(j - at) <= 1e-9 * l end
           if not seen then joints[#joints + 1] = at end
