@@ -191,6 +191,15 @@ int w_Structure_add_interface(lua_State* L) {
   });
 }
 
+int w_Structure_remove(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
+    Structure& s = *structure;
+    luax_pushBlock(L, s.remove(check_block_index(L, s, 2, 2, "block")).block);
+    return 1;
+  });
+}
+
 int w_Structure_cables(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
@@ -446,6 +455,7 @@ void register_Structure(lua_State* L) {
                                      {"add_load", w_Structure_add_load},
                                      {"add_cable", w_Structure_add_cable},
                                      {"add_interface", w_Structure_add_interface},
+                                     {"remove", w_Structure_remove},
                                      {"cables", w_Structure_cables},
                                      {"block", w_Structure_block},
                                      {"name", w_Structure_name},

@@ -12,7 +12,10 @@ HexNodes hexahedron_corners(const Block& block, const std::string& what) {
   const auto not_hexahedron = [&](const std::string& why) {
     return InvalidArgument(what + " is not a hexahedron (" + why +
                            "): the FEA meshes each block as 8-node hexahedra; build it with 8 "
-                           "corners and 6 four-sided faces (a dome needs an oculus, not a keystone)");
+                           "corners and 6 four-sided faces. Of the model library's blocks these are not: a "
+                           "dome's keystone (give the dome an oculus), a staggered dome's voussoirs (use bond = "
+                           "\"stacked\"), an arch bridge's abutments, L-shaped to back the spandrels (use "
+                           "spandrel = false), and a wall's bricks cut around an arch head (use a lintel)");
   };
   if (block.vertices().size() != 8)
     throw not_hexahedron(std::to_string(block.vertices().size()) + " vertices");

@@ -105,6 +105,41 @@ int Structure::add_cable(const Cable& cable) {
   return index;
 }
 
+StructureBlock Structure::remove(int i) {
+  if (i < 0 || i >= size()) {
+    throw InvalidArgument("remove: block " + std::to_string(i + 1) + " does not exist (the structure has " +
+                          std::to_string(size()) + " blocks)");
+  }
+  // The index a reference to block j has once block i is gone.
+  const auto renumber = [i](int& j) { j -= j > i ? 1 : 0; };
+  loads_.erase(std::remove_if(loads_.begin(), loads_.end(), [i](const PointLoad& load) { return load.block == i; }),
+               loads_.end());
+  for (PointLoad& load : loads_) renumber(load.block);
+  cables_.erase(std::remove_if(cables_.begin(), cables_.end(),
+                               [i](const Cable& cable) { return cable.from.block == i || cable.to.block == i; }),
+                cables_.end());
+  for (Cable& cable : cables_) {
+    renumber(cable.from.block);
+    renumber(cable.to.block);
+  }
+  explicit_.erase(std::remove_if(explicit_.begin(), explicit_.end(),
+                                 [i](const Interface& contact) { return contact.a == i || contact.b == i; }),
+                  explicit_.end());
+  explicit_pairs_.clear();
+  for (Interface& contact : explicit_) {
+    renumber(contact.a);
+    renumber(contact.b);
+    explicit_pairs_.insert({contact.a, contact.b});
+  }
+  StructureBlock removed = std::move(blocks_[i]);
+  blocks_.erase(blocks_.begin() + i);
+  index_by_name_.erase(removed.name);
+  for (auto& [name, index] : index_by_name_) renumber(index);
+  interface_cache_.clear();
+  overlap_cache_.clear();
+  return removed;
+}
+
 void Structure::set_cable_points(int index, const Vec3& from, const Vec3& to) {
   if (index < 0 || index >= static_cast<int>(cables_.size())) {
     throw InvalidArgument("cable " + std::to_string(index + 1) + " does not exist");

@@ -62,6 +62,12 @@ public:
   // bad block index, an end point off its block, a zero length, a negative
   // mass or a non-positive tension bound.
   int add_cable(const Cable& cable);
+  // Removes block i (0-based) and returns its entry. The blocks after it move
+  // down one index, and so does every reference to them (loads, cable ends,
+  // explicit interfaces); what refers to block i goes with it: its loads,
+  // the cables with an end on it, its explicit interfaces. Names stay as
+  // they are. Throws InvalidArgument for a bad index.
+  StructureBlock remove(int i);
 
   int size() const { return static_cast<int>(blocks_.size()); }
   const StructureBlock& entry(int i) const { return blocks_.at(i); }

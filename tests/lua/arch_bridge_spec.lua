@@ -262,6 +262,22 @@ describe("models.arch_bridge variants", function()
   end)
 end)
 
+describe("models.arch_bridge in the FEA", function()
+  -- The FEA meshes hexahedra: with spandrels the abutments are L-shaped
+  -- prisms (12 corners), and the message says so and what to do; the advice
+  -- holds, the bridge without spandrels meshes (every block 8 corners).
+  it("names the L-shaped abutment and the way out, which works", function()
+    local o = { spans = 1, voussoirs = 8, pier_courses = 1 }
+    local message = support.expect_error({ "block 17 ('abutment left') is not a hexahedron (12 vertices)",
+      "an arch bridge's abutments, L-shaped to back the spandrels (use spandrel = false)" }, ashlar.fea,
+      arch_bridge(o), { refine = 1 })
+    assert.is_nil(message:find("a dome needs an oculus", 1, true))
+    o.spandrel = false
+    local fe = ashlar.fea(arch_bridge(o), { refine = 1 })
+    assert.equal(8 + 2, fe.element_count)  -- 8 voussoirs and 2 abutments, one element each
+  end)
+end)
+
 describe("models.arch_bridge options", function()
   it("rejects bad options, naming models.arch_bridge", function()
     expect_error({ "models.arch_bridge: unknown option 'radius' (allowed: abutment_width, cover, deck, density, depth,",

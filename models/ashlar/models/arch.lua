@@ -116,13 +116,10 @@ return function(opts)
   resolve(o)
   local joints = arch_shapes.joints(o, fail_in_shapes)
   local n, y0, y1 = o.voussoirs, -o.depth / 2, o.depth / 2
-  local function rectangle(j)
-    return { { j.ix, y0, j.iz }, { j.ex, y0, j.ez }, { j.ex, y1, j.ez }, { j.ix, y1, j.iz } }
-  end
   local s = ashlar.structure()
   -- Voussoirs first, so that voussoir i is block i.
   for i = 1, n do
-    s:add(ashlar.loft(rectangle(joints[i - 1]), rectangle(joints[i]), { density = o.density }),
+    s:add(arch_shapes.voussoir(joints[i - 1], joints[i], 0, 0, y0, y1, o.density),
           { name = ("voussoir %d"):format(i) })
   end
   -- The supports reach from the intrados end of the springing joint outwards,

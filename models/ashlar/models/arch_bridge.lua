@@ -167,13 +167,10 @@ return function(opts)
   local level = {} -- blocks of the level z = H from left to right, as { x0, x1 }
 
   -- Arches and their spandrels, span by span.
-  local function rectangle(x, j)
-    return { { x + j.ix, y0, j.iz }, { x + j.ex, y0, j.ez }, { x + j.ex, y1, j.ez }, { x + j.ix, y1, j.iz } }
-  end
   local spandrels = {}
   for p, x in ipairs(centres) do
     for k = 1, n do
-      s:add(ashlar.loft(rectangle(x, joints[k - 1]), rectangle(x, joints[k]), { density = density }),
+      s:add(arch_shapes.voussoir(joints[k - 1], joints[k], x, 0, y0, y1, density),
             { name = ("span %d voussoir %d"):format(p, k) })
     end
     spandrels[p] = {}

@@ -1,7 +1,7 @@
--- Joint geometry of models.arch, in the x-z plane: pure arithmetic, no
--- blocks. joints(o, fail) returns the n + 1 joints from the left springing
+-- Joint geometry of models.arch, in the x-z plane. joints(o, fail) returns the n + 1 joints from the left springing
 -- (joint 0) to the right one (joint n), each { ix, iz, ex, ez }: its
--- intrados and extrados points. Voussoir k lies between joints k - 1 and k.
+-- intrados and extrados points. Voussoir k lies between joints k - 1 and k;
+-- voussoir(a, b, ...) builds it (the one block this file makes).
 --
 -- Every shape is symmetric about x = 0: the left half is computed and
 -- mirrored, so the arch is exactly symmetric and, for an even count, the
@@ -186,6 +186,15 @@ function half.catenary(o)
     local sh, ch = math.sinh(x / a), math.cosh(x / a)
     return x, z(x), sh / ch, 1 / ch
   end, springing)
+end
+
+-- The voussoir between joints a and b, the joints moved by (x, z), as the
+-- solid between the two joint rectangles from y = y0 to y1.
+function shapes.voussoir(a, b, x, z, y0, y1, density)
+  local function rectangle(j)
+    return { { x + j.ix, y0, z + j.iz }, { x + j.ex, y0, z + j.ez }, { x + j.ex, y1, z + j.ez }, { x + j.ix, y1, z + j.iz } }
+  end
+  return require("ashlar").loft(rectangle(a), rectangle(b), { density = density })
 end
 
 function shapes.joints(o, fail)
