@@ -125,10 +125,7 @@ StructureOptimization optimize_structure_to_target(const Structure& s, const Des
     e.gradient = chart.pull_back(y, space.reduce(gradient));
     return e;
   };
-  AnalysisSequence analyses(analysis, false);
-  AnalysisSettings verdict_settings = analysis;
-  verdict_settings.verdict_only = true;
-  AnalysisSequence verdicts(verdict_settings, false);
+  StabilityCheck stability(analysis);
   const MarginFunction stands = [&](const Eigen::VectorXd& z, bool gradient) {
     const Eigen::VectorXd y = design_at(z);
     current = with_design(s, space.design(y));
@@ -136,26 +133,15 @@ StructureOptimization optimize_structure_to_target(const Structure& s, const Des
         least_joint_width(*current, analysis.problem.contact) < fabrication.min_thickness) {
       throw GeometryError("a joint is narrower than min_thickness");
     }
-    MarginCheck m;
-    if (!gradient) {
-      const EquilibriumResult r = verdicts.analyze(*current);
-      m.feasible = r.stable;
-      m.violation = r.stable ? 0.0 : r.penalty;
-      return m;
-    }
-    const StructuralGradient g = structural_gradient(analyses.set_up(*current), *current);
-    m.feasible = g.analysis.stable;
-    m.violation = g.analysis.stable ? 0.0 : g.analysis.penalty;
-    // No equilibrium at all (an infinite penalty): short of the target, with no gradient.
-    if (!g.valid) return m;
-    DesignPoint d;
-    d.block_vertices = g.block_vertices;
-    for (size_t c = 0; c < g.cable_from.size(); ++c) {
-      d.points.push_back(g.cable_from[c]);
-      d.points.push_back(g.cable_to[c]);
-    }
-    m.violation_gradient = chart.pull_back(y, space.reduce(d));
-    return m;
+    return stability(*current, gradient, [&](const StructuralGradient& g) {
+      DesignPoint d;
+      d.block_vertices = g.block_vertices;
+      for (size_t c = 0; c < g.cable_from.size(); ++c) {
+        d.points.push_back(g.cable_from[c]);
+        d.points.push_back(g.cable_to[c]);
+      }
+      return chart.pull_back(y, space.reduce(d));
+    });
   };
   const ParameterResult found = optimize_parameters_to_target(space.lower_bounds(), space.upper_bounds(),
                                                               space.start(), objective, stands, settings);

@@ -65,6 +65,20 @@ Eigen::VectorXd parameter_gradient(const StructureGenerator& generate, const std
   return gradient;
 }
 
+// Central differences of f at x, each step relative * max(1, |x_j|).
+Eigen::VectorXd central_differences(const std::function<double(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x,
+                                    double relative) {
+  Eigen::VectorXd derivative(x.size());
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    const double step = relative * std::max(1.0, std::abs(x(j)));
+    Eigen::VectorXd plus = x, minus = x;
+    plus(j) += step;
+    minus(j) -= step;
+    derivative(j) = (f(plus) - f(minus)) / (2 * step);
+  }
+  return derivative;
+}
+
 }  // namespace
 
 DesignPoint design_of(const Structure& s) {
@@ -171,6 +185,29 @@ double material_of(const Structure& s, Material material) {
   return sum;
 }
 
+StabilityCheck::StabilityCheck(const AnalysisSettings& analysis)
+    : analyses_(analysis, false), verdicts_([&] {
+        AnalysisSettings verdict = analysis;
+        verdict.verdict_only = true;
+        return verdict;
+      }(), false) {}
+
+MarginCheck StabilityCheck::operator()(const Structure& s, bool gradient,
+                                       const std::function<Eigen::VectorXd(const StructuralGradient&)>& to_variables) {
+  MarginCheck m;
+  if (!gradient) {
+    const EquilibriumResult r = verdicts_.analyze(s);
+    m.feasible = r.stable;
+    m.violation = r.stable ? 0.0 : r.penalty;
+    return m;
+  }
+  const StructuralGradient g = structural_gradient(analyses_.set_up(s), s);
+  m.feasible = g.analysis.stable;
+  m.violation = g.analysis.stable ? 0.0 : g.analysis.penalty;
+  if (g.valid) m.violation_gradient = to_variables(g);
+  return m;
+}
+
 GeneratedOptimization optimize_generated_to_target(const StructureGenerator& generate,
                                                    const std::vector<std::string>& names,
                                                    const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
@@ -196,38 +233,17 @@ GeneratedOptimization optimize_generated_to_target(const StructureGenerator& gen
   const ParameterObjective objective = [&](const Eigen::VectorXd& values) {
     ParameterEvaluation e;
     e.value = material_of(*generate(values), material);
-    e.gradient.resize(n);
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const double step = 1e-6 * std::max(1.0, std::abs(values(j)));
-      Eigen::VectorXd plus = values, minus = values;
-      plus(j) += step;
-      minus(j) -= step;
-      e.gradient(j) = (material_of(*generate(plus), material) - material_of(*generate(minus), material)) / (2 * step);
-    }
+    e.gradient = central_differences([&](const Eigen::VectorXd& v) { return material_of(*generate(v), material); },
+                                     values, 1e-6);
     return e;
   };
-  AnalysisSequence analyses(analysis, false);
-  AnalysisSettings verdict_settings = analysis;
-  verdict_settings.verdict_only = true;
-  AnalysisSequence verdicts(verdict_settings, false);
+  StabilityCheck stability(analysis);
   std::shared_ptr<Structure> base;  // alive while its analysis is
-  // Whether generate(values) stands; the penalty as the violation, with its
-  // gradient when asked for.
   const auto stands = [&](const Eigen::VectorXd& values, bool gradient) {
     base = generate(values);
-    MarginCheck m;
-    if (!gradient) {
-      const EquilibriumResult r = verdicts.analyze(*base);
-      m.feasible = r.stable;
-      m.violation = r.stable ? 0.0 : r.penalty;
-      return m;
-    }
-    const StructuralGradient g = structural_gradient(analyses.set_up(*base), *base);
-    m.feasible = g.analysis.stable;
-    m.violation = g.analysis.stable ? 0.0 : g.analysis.penalty;
-    // No equilibrium at all (an infinite penalty): short of the target, with no gradient.
-    if (g.valid) m.violation_gradient = parameter_gradient(generate, names, values, *base, g);
-    return m;
+    return stability(*base, gradient, [&](const StructuralGradient& g) {
+      return parameter_gradient(generate, names, values, *base, g);
+    });
   };
   LoadFactorSettings load = target.load;
   load.problem = analysis.problem;
@@ -270,15 +286,10 @@ GeneratedOptimization optimize_generated_to_target(const StructureGenerator& gen
         m.feasible = f.factor >= target.value;
         m.violation = m.feasible ? 0.0 : target.value - f.factor;
         if (gradient) {
-          m.violation_gradient.resize(n);
-          for (Eigen::Index j = 0; j < n; ++j) {
-            const double step = 1e-5 * std::max(1.0, std::abs(values(j)));
-            Eigen::VectorXd plus = values, minus = values;
-            plus(j) += step;
-            minus(j) -= step;
-            const double up = factor_at(plus).factor, down = factor_at(minus).factor;
-            m.violation_gradient(j) = std::isfinite(up - down) ? -(up - down) / (2 * step) : 0.0;
-          }
+          // An unbounded factor on one side leaves that derivative unknown: 0.
+          m.violation_gradient =
+              -central_differences([&](const Eigen::VectorXd& v) { return factor_at(v).factor; }, values, 1e-5)
+                   .unaryExpr([](double d) { return std::isfinite(d) ? d : -0.0; });
         }
         return m;
       };

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/equilibrium_analysis.hpp"
 #include "analysis/load_factor.hpp"
+#include "analysis/structural_gradient.hpp"
 #include "optimize/design_space.hpp"
 #include "optimize/optimizer.hpp"
 #include "structure/structure.hpp"
@@ -108,6 +110,21 @@ inline constexpr EnumNames<Material, 2> kMaterialNames{{{{Material::volume, "vol
 
 // The free blocks' volume or weight.
 double material_of(const Structure& s, Material material);
+
+// Whether a design stands, as a margin check (optimizer.hpp): the analysis
+// penalty is the violation. A verdict-only analysis when no gradient is
+// wanted, else the structural gradient, whose derivatives `to_variables`
+// maps to the optimiser's variables (not called where there is no
+// equilibrium at all: short of the target, with no gradient).
+class StabilityCheck {
+public:
+  explicit StabilityCheck(const AnalysisSettings& analysis);
+  MarginCheck operator()(const Structure& s, bool gradient,
+                         const std::function<Eigen::VectorXd(const StructuralGradient&)>& to_variables);
+
+private:
+  AnalysisSequence analyses_, verdicts_;
+};
 
 // Minimises the material of generate(p) over lower <= p <= upper among the
 // parameters whose margin reaches `target` (optimize_parameters_to_target):
