@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/chart.hpp"
+#include "io/chart_map.hpp"
 #include "io/chart_rows.hpp"
 #include "luax.hpp"
 #include "sandbox.hpp"
@@ -117,6 +118,90 @@ void push_chart_result(lua_State* L, const std::string& path, const RowSeries& l
   lua_setfield(L, -2, "skipped");
 }
 
+// Options of one kind of chart only, and the kind that takes them.
+const std::vector<std::pair<const char*, bool>> kKindOptions = {
+    {"series", false}, {"log_x", false}, {"log_y", false}, {"x_range", false},
+    {"y_range", false}, {"z", true},     {"levels", true}, {"boundary", true},
+    {"map", true},      {"z_label", true}};
+
+void check_kind_options(const OptionTable& options, bool map) {
+  lua_State* L = options.state();
+  for (const auto& [key, for_map] : kKindOptions) {
+    const bool given = options.push(key) != LUA_TNIL;
+    lua_pop(L, 1);
+    if (given && for_map != map) {
+      throw ArgError(options.arg(), std::string(key) + ": taken by " +
+                                        (for_map ? "kind = \"map\" only" : "line charts only, not kind = \"map\""));
+    }
+  }
+}
+
+void push_pair(lua_State* L, const char* key, double a, double b) {
+  lua_createtable(L, 2, 0);
+  lua_pushnumber(L, a);
+  lua_rawseti(L, -2, 1);
+  lua_pushnumber(L, b);
+  lua_rawseti(L, -2, 2);
+  lua_setfield(L, -2, key);
+}
+
+void push_map_result(lua_State* L, const std::string& path, const MapSpec& spec,
+                     const MapDrawing& drawing) {
+  lua_createtable(L, 0, 7);
+  set_string(L, "path", path.c_str());
+  lua_createtable(L, static_cast<int>(drawing.boundary.size()), 0);
+  for (size_t k = 0; k < drawing.boundary.size(); ++k) {
+    const std::vector<Vec2>& line = drawing.boundary[k];
+    lua_createtable(L, static_cast<int>(line.size()), 0);
+    for (size_t i = 0; i < line.size(); ++i) {
+      lua_createtable(L, 2, 0);
+      lua_pushnumber(L, line[i].x());
+      lua_rawseti(L, -2, 1);
+      lua_pushnumber(L, line[i].y());
+      lua_rawseti(L, -2, 2);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  lua_setfield(L, -2, "boundary");
+  push_pair(L, "range", drawing.lo, drawing.hi);
+  push_pair(L, "x_range", drawing.frame.x.lo, drawing.frame.x.hi);
+  push_pair(L, "y_range", drawing.frame.y.lo, drawing.frame.y.hi);
+  lua_createtable(L, 0, 4);
+  set_field(L, "left", drawing.frame.plot.left);
+  set_field(L, "top", drawing.frame.plot.top);
+  set_field(L, "width", drawing.frame.plot.width);
+  set_field(L, "height", drawing.frame.plot.height);
+  lua_setfield(L, -2, "plot");
+  set_field(L, "cells", static_cast<int>(spec.grid.z.size()));
+  set_field(L, "no_data", spec.grid.no_data);
+}
+
+// kind = "map": the rows' grid over x and y, coloured by z.
+int chart_map(lua_State* L, const OptionTable& options, const std::string& path,
+              const std::vector<ChartRow>& rows) {
+  const std::string x = required_string(options, "x", "the column plotted along x");
+  const std::string y = required_string(options, "y", "the column plotted along y (one column)");
+  const std::string z = required_string(options, "z", "the column the colours show");
+  MapSpec spec;
+  spec.grid = grid_from_rows(rows, x, y, z);
+  if (options.push("levels") != LUA_TNIL) spec.levels = to_numbers(L, -1, 1, "levels");
+  lua_pop(L, 1);
+  spec.boundary = options.number("boundary");
+  spec.map = options.string("map").value_or(spec.map);
+  spec.title = options.string("title").value_or("");
+  spec.x_label = options.string("x_label").value_or(x);
+  spec.y_label = options.string("y_label").value_or(y);
+  spec.z_label = options.string("z_label").value_or(z);
+  spec.width = image_size(options, "width", spec.width);
+  spec.height = image_size(options, "height", spec.height);
+  const MapDrawing drawing = draw_map(path, spec);
+  return call_protected(L, 0, [&](lua_State* L) {
+    push_map_result(L, path, spec, drawing);
+    return 1;
+  });
+}
+
 int w_chart(lua_State* L) {
   return guard(L, [&] {
     if (lua_type(L, 1) != LUA_TTABLE) {
@@ -126,20 +211,23 @@ int w_chart(lua_State* L) {
                          type_name(L, 1));
     }
     const OptionTable options(L, 1,
-                              {"path", "data", "x", "y", "series", "kind", "title", "x_label",
-                               "y_label", "log_x", "log_y", "x_range", "y_range", "width",
-                               "height"});
+                              {"path", "data", "x", "y", "z", "series", "kind", "title", "x_label",
+                               "y_label", "z_label", "log_x", "log_y", "x_range", "y_range",
+                               "levels", "boundary", "map", "width", "height"});
     const std::string path = sandbox::require_access(
         L, 1, "path", required_string(options, "path", "the file to write (.png, .svg or .pdf)"),
         sandbox::Access::write);
+    const std::string kind = options.string("kind").value_or("linespoints");
+    check_kind_options(options, kind == "map");
     const std::vector<ChartRow> rows = chart_rows(options);
+    if (kind == "map") return chart_map(L, options, path, rows);
     ChartColumns columns;
     columns.x = required_string(options, "x", "the column plotted along x");
     columns.y = column_names(options, "y");
     if (columns.y.empty()) throw ArgError(1, "y: required, a column or a list of columns");
     columns.series = column_names(options, "series");
     ChartSpec spec;
-    spec.kind = chart_kind(options.string("kind").value_or("linespoints"));
+    spec.kind = chart_kind(kind);
     spec.title = options.string("title").value_or("");
     spec.x_label = options.string("x_label").value_or(columns.x);
     spec.y_label = options.string("y_label").value_or(joined(columns.y));
@@ -153,6 +241,8 @@ int w_chart(lua_State* L) {
     spec.height = image_size(options, "height", spec.height);
     RowSeries lines = series_from_rows(rows, columns);
     spec.series = lines.series;
+    spec.x_boolean = lines.x_boolean;
+    spec.y_boolean = lines.y_boolean;
     draw_chart(path, spec);
     return call_protected(L, 0, [&](lua_State* L) {
       push_chart_result(L, path, lines);

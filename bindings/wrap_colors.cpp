@@ -1,6 +1,6 @@
 #include "wrap_colors.hpp"
 
-#include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include "io/color_map.hpp"
@@ -10,34 +10,20 @@ namespace ashlar::lua {
 namespace {
 
 // The values table: one number per block, mapped with `map` over `range`
-// (default: the values' own range).
+// (default: value_range's, from 0 when no value is negative).
 ColorScale color_scale(lua_State* L, int color, int arg, int block_count) {
   const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
   if (mapped.push("values") != LUA_TTABLE) {
     throw ArgError(arg, "color.values: expected a list of numbers, one per block");
   }
-  const int values_index = lua_gettop(L);
-  if (lua_rawlen(L, values_index) != static_cast<lua_Unsigned>(block_count)) {
+  std::vector<double> values = to_numbers(L, -1, arg, "color.values");
+  if (values.size() != static_cast<size_t>(block_count)) {
     throw ArgError(arg, "color.values: needs one value per block (" +
                             std::to_string(block_count) + "), got " +
-                            std::to_string(lua_rawlen(L, values_index)));
-  }
-  std::vector<double> values;
-  for (int i = 1; i <= block_count; ++i) {
-    lua_rawgeti(L, values_index, i);
-    if (lua_type(L, -1) != LUA_TNUMBER) {
-      throw ArgError(arg, "color.values[" + std::to_string(i) + "]: expected a number, got " +
-                              type_name(L, -1));
-    }
-    values.push_back(lua_tonumber(L, -1));
-    lua_pop(L, 1);
+                            std::to_string(values.size()));
   }
   lua_pop(L, 1);
-  double lo = 0.0, hi = 0.0;
-  if (!values.empty()) {
-    lo = *std::min_element(values.begin(), values.end());
-    hi = *std::max_element(values.begin(), values.end());
-  }
+  auto [lo, hi] = value_range(values);
   if (mapped.push("range") != LUA_TNIL) std::tie(lo, hi) = to_range(L, -1, arg, "color.range");
   lua_pop(L, 1);
   ColorScale scale;
@@ -82,6 +68,28 @@ std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::st
   const double hi = check_number(L, -1, arg, (what + "[2]").c_str());
   lua_pop(L, 2);
   return {lo, hi};
+}
+
+std::vector<double> to_numbers(lua_State* L, int idx, int arg, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  if (lua_type(L, idx) != LUA_TTABLE) {
+    throw ArgError(arg, what + ": expected a list of numbers, got " + type_name(L, idx));
+  }
+  std::vector<double> values;
+  const lua_Unsigned count = lua_rawlen(L, idx);
+  for (lua_Unsigned i = 1; i <= count; ++i) {
+    lua_rawgeti(L, idx, static_cast<lua_Integer>(i));
+    if (lua_type(L, -1) != LUA_TNUMBER) {
+      throw ArgError(arg, what + "[" + std::to_string(i) + "]: expected a number, got " +
+                              type_name(L, -1));
+    }
+    values.push_back(lua_tonumber(L, -1));
+    lua_pop(L, 1);
+    if (std::isnan(values.back())) {
+      throw ArgError(arg, what + "[" + std::to_string(i) + "]: expected a number, got NaN");
+    }
+  }
+  return values;
 }
 
 std::vector<Rgb> block_colors(lua_State* L, const OptionTable& options, int block_count) {

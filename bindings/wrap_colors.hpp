@@ -17,6 +17,8 @@ namespace ashlar::lua {
 Rgb to_rgb(lua_State* L, int idx, int arg, const std::string& what);
 // The {lo, hi} table at idx, two finite numbers; `what` names it.
 std::pair<double, double> to_range(lua_State* L, int idx, int arg, const std::string& what);
+// The list of numbers at idx (finite or not, never NaN); `what` names it.
+std::vector<double> to_numbers(lua_State* L, int idx, int arg, const std::string& what);
 // The `color` option: {r, g, b} for every block, a list with one {r, g, b}
 // per block, or {values = {...}, map = "viridis", range = {lo, hi}}. Empty
 // when absent.

@@ -75,13 +75,24 @@ int w_draw(lua_State* L) {
 int w_legend(lua_State* L) {
   return guard(L, [&] {
     const std::string path = sandbox::checked_path(L, 1, "path", sandbox::Access::write);
-    const OptionTable options(L, 2, {"map", "range", "label", "width", "height", "orientation"});
+    const OptionTable options(L, 2,
+                              {"map", "range", "values", "label", "width", "height", "orientation"});
     LegendOptions legend;
     legend.map = options.string("map").value_or(legend.map);
-    if (options.push("range") == LUA_TNIL) {
-      throw ArgError(2, "range: expected {lo, hi}, the values at the ends of the colour bar");
+    if (options.push("range") != LUA_TNIL) {
+      std::tie(legend.lo, legend.hi) = to_range(L, -1, 2, "range");
+    } else if (options.push("values") != LUA_TNIL) {
+      std::tie(legend.lo, legend.hi) = value_range(to_numbers(L, -1, 2, "values"));
+      if (!(legend.lo < legend.hi)) {
+        throw ArgError(2, "values: their range [" + number_text(legend.lo) + ", " +
+                              number_text(legend.hi) +
+                              "] is empty; give range = {lo, hi}");
+      }
+      lua_pop(L, 1);
+    } else {
+      throw ArgError(2, "range: expected {lo, hi}, the values at the ends of the colour bar "
+                        "(or values = {...}, the values the colours stand for)");
     }
-    std::tie(legend.lo, legend.hi) = to_range(L, -1, 2, "range");
     lua_pop(L, 1);
     legend.label = options.string("label").value_or("");
     const std::string orientation = options.string("orientation").value_or("vertical");

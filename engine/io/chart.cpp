@@ -15,6 +15,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/image_format.hpp"
+#include "io/chart_layout.hpp"
 #include "io/plplot_picture.hpp"
 
 namespace ashlar {
@@ -30,10 +31,6 @@ constexpr double kSingleValueHalfDecades = 0.25;
 // A legend takes at most this fraction of the image's width; longer names
 // shrink its text.
 constexpr double kLegendWidthShare = 0.35;
-// About the advance of an average character of DejaVu Sans (lowercase,
-// digits, spaces), in font sizes: to leave room for text before PLplot has
-// drawn it.
-constexpr double kCharacterWidth = 0.5;
 
 // Okabe & Ito (2008), "Color universal design", in an order whose first
 // colours differ most, yellow last (it is faint on white).
@@ -57,26 +54,9 @@ constexpr PLINT kLineStyles[] = {1, 3, 2};
 
 // The colour map 0 entries the chart sets; the palette follows them.
 enum ColorIndex : PLINT { kBackground, kText, kGrid, kMinorGrid, kLegendBorder, kFirstSeries };
-const Rgb kTextColor{0.15, 0.15, 0.15};
-const Rgb kGridColor{0.87, 0.87, 0.87};
 const Rgb kMinorGridColor{0.94, 0.94, 0.94};
 const Rgb kLegendBorderColor{0.75, 0.75, 0.75};
 
-// Sizes that follow the image's smaller side (px).
-struct ChartMetrics {
-  double line;       // unit of line widths: 1 px for a smaller side of 600 px
-  double font;       // title and axis labels: 15 px at 600 px, at least 11
-  double tick_font;  // tick labels and legend
-  double margin;     // around everything
-
-  ChartMetrics(int width, int height) {
-    const double side = std::min(width, height);
-    line = std::max(0.75, side / 600.0);
-    font = std::max(11.0, side / 40.0);
-    tick_font = 0.85 * font;
-    margin = std::max(6.0, 0.025 * side);
-  }
-};
 
 // ---------------------------------------------------------------------------
 // Checks and ranges
@@ -154,17 +134,6 @@ ChartAxis chosen_axis(const std::optional<std::pair<double, double>>& range, dou
 // A value along an axis in PLplot's world coordinates: log10 on log axes.
 double world(double value, bool log) { return log ? std::log10(value) : value; }
 
-// The widest tick label PLplot writes on a linear axis over [lo, hi], in
-// characters: its step is 1, 2 or 5 times a power of ten (pldtik), its
-// labels have the step's decimals, and past 5 digits it writes the values
-// over a common power of ten, shown once at the axis's end.
-int linear_label_characters(double lo, double hi) {
-  const double largest = std::max(std::abs(lo), std::abs(hi));
-  if (largest >= 1e5 || largest < 1e-4) return 5;
-  const int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(hi - lo))));
-  const int digits = std::max(1, static_cast<int>(std::floor(std::log10(largest))) + 1);
-  return digits + (decimals > 0 ? decimals + 1 : 0) + (lo < 0 ? 1 : 0);
-}
 
 struct PreparedSeries {
   std::vector<PLFLT> line_x, line_y;      // world coordinates, steps drawn out; empty: no line
@@ -197,6 +166,7 @@ struct PreparedChart {
   std::vector<PLFLT> legend_widths, legend_marker_scales;
   PLFLT legend_scale = 1.0;
   PLFLT legend_sample = 0.0;  // length of a line sample, normalised to the width
+  bool x_boolean = false, y_boolean = false;
 };
 
 bool has_lines(ChartKind kind) { return kind != ChartKind::points; }
@@ -278,6 +248,8 @@ PreparedChart prepare(const ChartSpec& spec) {
       std::min(1.2 * m.font, (spec.width - 2 * m.margin) / (kCharacterWidth * spec.title.size()));
   chart.x_label = plplot_text(spec.x_label);
   chart.y_label = plplot_text(spec.y_label);
+  chart.x_boolean = spec.x_boolean && !spec.log_x;
+  chart.y_boolean = spec.y_boolean && !spec.log_y;
 
   // Top to bottom: title, plot, x tick labels (PLplot's common power of ten
   // goes under them), x label.
@@ -286,8 +258,10 @@ PreparedChart prepare(const ChartSpec& spec) {
   const double bottom = m.margin + x_labels + (spec.x_label.empty() ? 0.0 : 1.6 * m.font);
   chart.x_label_offset = (x_labels + 0.8 * m.font) / (kPlplotCharacterHeight * m.font);
   // Left to right: y label, y tick labels, plot, legend.
-  const int label_characters =
-      spec.log_y ? 5 : linear_label_characters(chart.y.lo, chart.y.hi);
+  // "false" is 5 characters long.
+  const int label_characters = spec.log_y || spec.y_boolean
+                                   ? 5
+                                   : linear_label_characters(chart.y.lo, chart.y.hi);
   const double y_labels = (kCharacterWidth * label_characters + 1.0) * m.tick_font;
   const double left = m.margin + y_labels + (spec.y_label.empty() ? 0.0 : 1.5 * m.font);
   chart.y_label_offset = (y_labels + 0.6 * m.font) / (kPlplotCharacterHeight * m.font);
@@ -331,9 +305,24 @@ PLFLT paint_legend(const PreparedChart& chart) {
   return 1.0 - m.margin / chart.width - width - m.font / chart.width;
 }
 
-// Box options of an axis: PLplot's log labels and ticks on a log axis.
-const char* axis_options(const char* options, const char* log_options, bool log) {
-  return log ? log_options : options;
+// Box options of an axis: PLplot's log labels and ticks on a log axis,
+// plplot_boolean_label's on an axis of booleans.
+std::string axis_options(const char* options, const char* log_options, bool log, bool boolean) {
+  return log ? log_options : std::string(options) + (boolean ? "o" : "");
+}
+
+// plbox's tick spacing and subdivisions: PLplot's choice (0), or 1 and
+// none on an axis of booleans.
+PLFLT tick_spacing(bool boolean) { return boolean ? 1.0 : 0.0; }
+PLINT tick_subdivisions(bool boolean) { return boolean ? 1 : 0; }
+
+// plbox with the chart's axes.
+void chart_box(const PreparedChart& chart, const char* x_options, const char* x_log_options,
+               const char* y_options, const char* y_log_options) {
+  plbox(axis_options(x_options, x_log_options, chart.x.log, chart.x_boolean).c_str(),
+        tick_spacing(chart.x_boolean), tick_subdivisions(chart.x_boolean),
+        axis_options(y_options, y_log_options, chart.y.log, chart.y_boolean).c_str(),
+        tick_spacing(chart.y_boolean), tick_subdivisions(chart.y_boolean));
 }
 
 // What paint_chart is given, and where the plot area ended.
@@ -370,11 +359,10 @@ void paint_chart(void* context) {
   // The grid under everything: minor lines (log axes), then major ones.
   plwidth(0.7 * m.line);
   plcol0(kMinorGrid);
-  plbox(axis_options("", "hl", chart.x.log), 0.0, 0, axis_options("", "hl", chart.y.log), 0.0, 0);
+  chart_box(chart, "", "hl", "", "hl");
   plwidth(m.line);
   plcol0(kGrid);
-  plbox(axis_options("g", "gl", chart.x.log), 0.0, 0, axis_options("g", "gl", chart.y.log), 0.0,
-        0);
+  chart_box(chart, "g", "gl", "g", "gl");
 
   plplot_font(m.tick_font);
   for (const PreparedSeries& series : chart.series) {
@@ -395,8 +383,9 @@ void paint_chart(void* context) {
   // The frame, ticks and tick labels (y labels upright), then the labels.
   plcol0(kText);
   plwidth(m.line);
-  plbox(axis_options("bcnst", "bcnstl", chart.x.log), 0.0, 0,
-        axis_options("bcnstv", "bcnstvl", chart.y.log), 0.0, 0);
+  plslabelfunc(plplot_boolean_label, nullptr);
+  chart_box(chart, "bcnst", "bcnstl", "bcnstv", "bcnstvl");
+  plslabelfunc(nullptr, nullptr);
   plplot_font(m.font);
   if (!chart.x_label.empty()) plmtex("b", chart.x_label_offset, 0.5, 0.5, chart.x_label.c_str());
   if (!chart.y_label.empty()) plmtex("l", chart.y_label_offset, 0.5, 0.5, chart.y_label.c_str());
@@ -414,7 +403,7 @@ ChartKind chart_kind(const std::string& name) {
   if (name == "linespoints") return ChartKind::linespoints;
   if (name == "steps") return ChartKind::steps;
   throw InvalidArgument("chart: unknown kind '" + name +
-                        "' (allowed: lines, points, linespoints, steps)");
+                        "' (allowed: lines, points, linespoints, steps, map)");
 }
 
 Rgb chart_series_color(int k) {

@@ -23,7 +23,7 @@ enum class ChartKind {
 };
 
 // The kind called `name`: "lines", "points", "linespoints" or "steps".
-// Throws InvalidArgument naming them otherwise.
+// Throws InvalidArgument naming them and "map" (io/chart_map.hpp) otherwise.
 ChartKind chart_kind(const std::string& name);
 
 struct ChartSeries {
@@ -33,12 +33,16 @@ struct ChartSeries {
 
 struct ChartSpec {
   // Series k is drawn in chart_series_color(k), with the k-th marker shape.
-  // At least one point in all, every coordinate finite.
+  // At least one point in all, every coordinate finite; a series without
+  // points still has its legend entry.
   std::vector<ChartSeries> series;
   ChartKind kind = ChartKind::linespoints;
   std::string title;                  // above the plot; none when empty
   std::string x_label, y_label;       // under the x axis, along the y axis; none when empty
   bool log_x = false, log_y = false;  // log axes take values > 0 only
+  // Axes of booleans (0 and 1, not on a log axis): ticks at 0 and 1 only,
+  // labelled "false" and "true".
+  bool x_boolean = false, y_boolean = false;
   // An axis's ends (lo < hi, finite; > 0 on a log axis) instead of the
   // data's padded range; what lies outside is cut off.
   std::optional<std::pair<double, double>> x_range, y_range;

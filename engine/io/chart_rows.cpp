@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <set>
 
 #include "core/error.hpp"
@@ -155,6 +156,20 @@ std::string series_name(const std::string& y, const SeriesKey& key, const ChartC
   return (columns.y.size() > 1 ? y + ", " : "") + join(parts);
 }
 
+// Whether the columns' values are booleans only, at least one.
+bool only_booleans(const std::vector<ChartRow>& rows, const std::vector<std::string>& columns) {
+  bool any = false;
+  for (const ChartRow& row : rows) {
+    for (const std::string& column : columns) {
+      const ChartCell* cell = find_cell(row, column);
+      if (!cell) continue;
+      if (cell->type != ChartCell::Type::boolean) return false;
+      any = true;
+    }
+  }
+  return any;
+}
+
 }  // namespace
 
 RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns& columns) {
@@ -176,33 +191,134 @@ RowSeries series_from_rows(const std::vector<ChartRow>& rows, const ChartColumns
   }
 
   RowSeries result;
+  result.x_boolean = only_booleans(rows, {columns.x});
+  result.y_boolean = only_booleans(rows, columns.y);
   std::vector<bool> skipped(rows.size(), false);
+  bool any_point = false;
   for (const std::string& y : columns.y) {
+    // Every series value of a row with this y column has a line, points or not.
     std::map<SeriesKey, std::vector<Vec2>, KeyLess> lines;
     for (size_t r = 0; r < rows.size(); ++r) {
       const ChartCell* x_cell = find_cell(rows[r], columns.x);
       const ChartCell* y_cell = find_cell(rows[r], y);
+      SeriesKey key;
+      for (const std::string& s : columns.series) key.push_back(find_cell(rows[r], s));
+      std::vector<Vec2>& points = lines[key];
       if (!x_cell || !y_cell || !std::isfinite(x_cell->number) || !std::isfinite(y_cell->number)) {
         skipped[r] = true;
         continue;
       }
-      SeriesKey key;
-      for (const std::string& s : columns.series) key.push_back(find_cell(rows[r], s));
-      lines[key].emplace_back(x_cell->number, y_cell->number);
+      points.emplace_back(x_cell->number, y_cell->number);
+      any_point = true;
     }
     for (auto& [key, points] : lines) {
       std::stable_sort(points.begin(), points.end(),
                        [](const Vec2& a, const Vec2& b) { return a.x() < b.x(); });
-      result.series.push_back({series_name(y, key, columns), std::move(points)});
+      const std::string name = series_name(y, key, columns);
+      result.series.push_back(
+          {points.empty() ? name + " (no finite value)" : name, std::move(points)});
     }
   }
   result.skipped = static_cast<int>(std::count(skipped.begin(), skipped.end(), true));
-  if (result.series.empty()) {
+  if (!any_point) {
     throw InvalidArgument("chart: nothing to plot: no row has both x ('" + columns.x +
                           "') and y ('" + join(columns.y) + "'); " +
                           std::to_string(result.skipped) + " rows skipped");
   }
   return result;
+}
+
+}  // namespace ashlar
+
+namespace ashlar {
+
+MapGrid grid_from_rows(const std::vector<ChartRow>& rows, const std::string& x,
+                       const std::string& y, const std::string& z) {
+  if (rows.empty()) throw InvalidArgument("chart: map: nothing to plot: data has no rows");
+  std::set<std::string> present;
+  for (const ChartRow& row : rows) {
+    for (const auto& entry : row) present.insert(entry.first);
+  }
+  check_present(x, "x", present);
+  check_present(y, "y", present);
+  check_present(z, "z", present);
+  bool numbers = false, booleans = false;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const ChartCell* x_cell = find_cell(rows[r], x);
+    const ChartCell* y_cell = find_cell(rows[r], y);
+    const ChartCell* z_cell = find_cell(rows[r], z);
+    check_plotted(x_cell, x, "map: x", r);
+    check_plotted(y_cell, y, "map: y", r);
+    check_plotted(z_cell, z, "map: z", r);
+    for (const auto& [cell, column] : {std::pair{x_cell, &x}, std::pair{y_cell, &y}}) {
+      if (!cell || !std::isfinite(cell->number)) {
+        throw InvalidArgument("chart: map: row " + std::to_string(r + 1) + " has no finite " +
+                              *column + " (" + value_text(cell) +
+                              "); every row of a map sits at a point of the grid");
+      }
+    }
+    if (z_cell) (z_cell->type == ChartCell::Type::boolean ? booleans : numbers) = true;
+  }
+  if (numbers && booleans) {
+    throw InvalidArgument("chart: map: z: column '" + z +
+                          "' holds both numbers and booleans; a map takes one or the other");
+  }
+  MapGrid grid;
+  grid.z_boolean = booleans;
+  grid.x_boolean = only_booleans(rows, {x});
+  grid.y_boolean = only_booleans(rows, {y});
+  std::set<double> xs, ys;
+  for (const ChartRow& row : rows) {
+    xs.insert(find_cell(row, x)->number);
+    ys.insert(find_cell(row, y)->number);
+  }
+  grid.x.assign(xs.begin(), xs.end());
+  grid.y.assign(ys.begin(), ys.end());
+  for (const auto& [values, column] : {std::pair{&grid.x, &x}, std::pair{&grid.y, &y}}) {
+    if (values->size() < 2) {
+      throw InvalidArgument("chart: map: " + *column + " has " + std::to_string(values->size()) +
+                            " value; a map needs at least 2 along each axis");
+    }
+  }
+  const size_t nx = grid.x.size();
+  const auto index = [](const std::vector<double>& values, double value) {
+    return static_cast<size_t>(std::lower_bound(values.begin(), values.end(), value) -
+                               values.begin());
+  };
+  const auto pair_text = [&](double a, double b) {
+    return "(" + x + " = " + number_text(a) + ", " + y + " = " + number_text(b) + ")";
+  };
+  std::vector<size_t> row_at(nx * grid.y.size(), rows.size());
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const double a = find_cell(rows[r], x)->number, b = find_cell(rows[r], y)->number;
+    size_t& at = row_at[index(grid.y, b) * nx + index(grid.x, a)];
+    if (at != rows.size()) {
+      throw InvalidArgument("chart: map: rows " + std::to_string(at + 1) + " and " +
+                            std::to_string(r + 1) + " are both at " + pair_text(a, b) +
+                            "; a map takes one row per point of the grid");
+    }
+    at = r;
+  }
+  for (size_t i = 0; i < nx; ++i) {
+    for (size_t j = 0; j < grid.y.size(); ++j) {
+      if (row_at[j * nx + i] != rows.size()) continue;
+      throw InvalidArgument("chart: map: the rows do not form a grid: no row at " +
+                            pair_text(grid.x[i], grid.y[j]) + " (" + std::to_string(nx) + " " +
+                            x + " values × " + std::to_string(grid.y.size()) + " " + y +
+                            " values, " + std::to_string(rows.size()) + " rows)");
+    }
+  }
+  grid.z.resize(row_at.size());
+  for (size_t k = 0; k < row_at.size(); ++k) {
+    const ChartCell* cell = find_cell(rows[row_at[k]], z);
+    grid.z[k] = cell && std::isfinite(cell->number) ? cell->number
+                                                     : std::numeric_limits<double>::quiet_NaN();
+    if (std::isnan(grid.z[k])) ++grid.no_data;
+  }
+  if (grid.no_data == static_cast<int>(grid.z.size())) {
+    throw InvalidArgument("chart: map: nothing to plot: no row has a finite z ('" + z + "')");
+  }
+  return grid;
 }
 
 }  // namespace ashlar

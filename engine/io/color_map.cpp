@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -143,6 +144,17 @@ std::vector<Rgb> map_colors(const std::vector<double>& values, double lo, double
     colors.push_back(sample(map, std::clamp(t, 0.0, 1.0)));
   }
   return colors;
+}
+
+std::pair<double, double> value_range(const std::vector<double>& values) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const double value : values) {
+    if (!std::isfinite(value)) continue;
+    lo = std::min(lo, value);
+    hi = std::max(hi, value);
+  }
+  if (lo > hi) return {0.0, 0.0};
+  return {lo >= 0.0 ? 0.0 : lo, hi};
 }
 
 void check_color_map(const std::string& name) { find_map(name); }

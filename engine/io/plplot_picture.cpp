@@ -144,6 +144,11 @@ std::string plplot_text(const std::string& text) {
   return escaped;
 }
 
+void plplot_boolean_label(PLINT, PLFLT value, char* text, PLINT length, PLPointer) {
+  const char* label = std::abs(value) < 1e-9 ? "false" : std::abs(value - 1.0) < 1e-9 ? "true" : "";
+  std::snprintf(text, static_cast<size_t>(length), "%s", label);
+}
+
 void plplot_color(PLINT index, const Rgb& color) {
   const auto byte = [](double channel) { return static_cast<PLINT>(std::lround(channel * 255)); };
   plscol0(index, byte(color.r), byte(color.g), byte(color.b));

@@ -42,6 +42,11 @@ constexpr double kPlplotCharacterHeight = 0.75;
 // superscript, ...), so a '#' of the text is doubled.
 std::string plplot_text(const std::string& text);
 
+// A PLplot label function (plslabelfunc) for axes of booleans: "false" at
+// 0, "true" at 1, nothing elsewhere. plbox and plcolorbar call it for the
+// axes whose options have 'o'.
+void plplot_boolean_label(PLINT axis, PLFLT value, char* text, PLINT length, PLPointer data);
+
 // Sets entry `index` of colour map 0 (opacity ignored).
 void plplot_color(PLINT index, const Rgb& color);
 
