@@ -345,6 +345,8 @@ void paint_chart(void* context) {
   for (int k = 0; k < kPaletteSize; ++k) plplot_color(kFirstSeries + k, kPalette[k]);
   plvpor(0.0, 1.0, 0.0, 1.0);
   plwind(0.0, 1.0, 0.0, 1.0);
+  // Text in the text colour (plinit left colour 1 current, as it was then).
+  plcol0(kText);
   // The title, centred on the page (measured down from its top edge).
   if (!chart.title.empty()) {
     plplot_font(chart.title_font);

@@ -331,6 +331,8 @@ void paint_map(void* context) {
             map.green.data(), map.blue.data(), nullptr);
   plvpor(0.0, 1.0, 0.0, 1.0);
   plwind(0.0, 1.0, 0.0, 1.0);
+  // Text in the text colour (plinit left colour 1 current, as it was then).
+  plcol0(kText);
   if (!map.title.empty()) {
     plplot_font(map.title_font);
     plmtex("t", -(m.margin + 0.7 * m.font) / (kPlplotCharacterHeight * map.title_font), 0.5, 0.5,

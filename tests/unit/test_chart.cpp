@@ -15,7 +15,9 @@
 #include "core/error.hpp"
 #include "core/atomic_file.hpp"
 #include "io/chart.hpp"
+#include "io/chart_map.hpp"
 #include "io/chart_rows.hpp"
+#include "io/color_map.hpp"
 #include "test_support.hpp"
 
 using namespace ashlar;
@@ -150,7 +152,7 @@ TEST(ChartAxes, RejectBadSpecs) {
   spec.series = {{"empty", {}}};
   EXPECT_TRUE(contains(error_of([&] { chart_axes(spec); }), "nothing to plot"));
   EXPECT_TRUE(contains(error_of([] { chart_kind("bars"); }),
-                       "unknown kind 'bars' (allowed: lines, points, linespoints, steps)"));
+                       "unknown kind 'bars' (allowed: lines, points, linespoints, steps, map)"));
 }
 
 TEST(Chart, PngShowsEachSeriesInItsColourAtItsPoints) {
@@ -370,4 +372,71 @@ TEST(ChartRows, SplitsRowsIntoSortedSeries) {
                          series_from_rows({}, {"t", {"inf"}, {}});
                        }),
                        "chart: nothing to plot: data has no rows"));
+}
+
+TEST(ChartMap, CellsSitAtTheirGridPointsInTheirColours) {
+  // z = stable over x in {3, 1, 2} (unsorted rows) × y in {10, 20}; the
+  // row at (3, 20) has no z: no data.
+  const auto number = [](double v) { return ChartCell{ChartCell::Type::number, v, ""}; };
+  const auto boolean = [](bool v) {
+    return ChartCell{ChartCell::Type::boolean, v ? 1.0 : 0.0, ""};
+  };
+  std::vector<ChartRow> rows;
+  for (const double y : {20.0, 10.0}) {
+    for (const double x : {3.0, 1.0, 2.0}) {
+      ChartRow row{{"x", number(x)}, {"y", number(y)}};
+      if (!(x == 3 && y == 20)) row["z"] = boolean(x >= 2 && y >= 20);
+      rows.push_back(row);
+    }
+  }
+  MapSpec spec;
+  spec.grid = grid_from_rows(rows, "x", "y", "z");
+  EXPECT_EQ(spec.grid.x, (std::vector<double>{1, 2, 3}));
+  EXPECT_EQ(spec.grid.y, (std::vector<double>{10, 20}));
+  EXPECT_TRUE(spec.grid.z_boolean);
+  EXPECT_EQ(spec.grid.no_data, 1);
+  TempDir dir;
+  const MapDrawing drawing = draw_map(dir.file("m.png"), spec);
+  EXPECT_DOUBLE_EQ(drawing.frame.x.lo, 0.5);
+  EXPECT_DOUBLE_EQ(drawing.frame.x.hi, 3.5);
+  EXPECT_DOUBLE_EQ(drawing.frame.y.lo, 5);
+  EXPECT_DOUBLE_EQ(drawing.frame.y.hi, 25);
+  // The boundary: left of and under the one true cell (2, 20); none
+  // between it and the cell without data.
+  ASSERT_EQ(drawing.boundary.size(), 1u);
+  EXPECT_EQ(drawing.boundary[0],
+            (std::vector<Vec2>{{1.5, 25}, {1.5, 15}, {2.5, 15}}));
+  const Surface image = read_png(dir.file("m.png"));
+  // Vermillion and blue halfway to white; no data light grey.
+  const std::array<int, 3> false_color{234, 175, 128}, true_color{128, 185, 217},
+      no_data{217, 217, 217};
+  expect_color(pixel(image.get(), drawing.frame.to_image({1, 10})), false_color, "(1, 10)");
+  expect_color(pixel(image.get(), drawing.frame.to_image({3, 10})), false_color, "(3, 10)");
+  expect_color(pixel(image.get(), drawing.frame.to_image({1.2, 22})), false_color, "(1, 20)");
+  expect_color(pixel(image.get(), drawing.frame.to_image({2.2, 22})), true_color, "(2, 20)");
+  expect_color(pixel(image.get(), drawing.frame.to_image({3.2, 22})), no_data, "(3, 20)");
+}
+
+TEST(ChartMap, RefusesRowsThatDoNotFormAGrid) {
+  const auto number = [](double v) { return ChartCell{ChartCell::Type::number, v, ""}; };
+  std::vector<ChartRow> rows = {{{"a", number(1)}, {"b", number(1)}, {"z", number(0)}},
+                                {{"a", number(2)}, {"b", number(1)}, {"z", number(0)}},
+                                {{"a", number(2)}, {"b", number(3)}, {"z", number(0)}}};
+  EXPECT_TRUE(contains(error_of([&] { grid_from_rows(rows, "a", "b", "z"); }),
+                       "no row at (a = 1, b = 3) (2 a values × 2 b values, 3 rows)"));
+  rows.push_back({{"a", number(2)}, {"b", number(3)}, {"z", number(1)}});
+  EXPECT_TRUE(contains(error_of([&] { grid_from_rows(rows, "a", "b", "z"); }),
+                       "rows 3 and 4 are both at (a = 2, b = 3)"));
+  rows.pop_back();
+  rows.push_back({{"a", number(1)}, {"z", number(1)}});
+  EXPECT_TRUE(contains(error_of([&] { grid_from_rows(rows, "a", "b", "z"); }),
+                       "row 4 has no finite b (nil)"));
+}
+
+TEST(ColorMap, ValueRangesOfNonNegativeValuesStartAtZero) {
+  EXPECT_EQ(value_range({3.337e-11, 3591.0, 12.0}), (std::pair<double, double>{0.0, 3591.0}));
+  EXPECT_EQ(value_range({-2.0, 5.0}), (std::pair<double, double>{-2.0, 5.0}));
+  EXPECT_EQ(value_range({-2.0, -1.0}), (std::pair<double, double>{-2.0, -1.0}));
+  EXPECT_EQ(value_range({std::nan(""), 4.0, INFINITY}), (std::pair<double, double>{0.0, 4.0}));
+  EXPECT_EQ(value_range({}), (std::pair<double, double>{0.0, 0.0}));
 }
