@@ -341,16 +341,20 @@ void paint_map(void* context) {
   plvpor(map.left, map.right, map.bottom, map.top);
   plwind(map.ex.front(), map.ex.back(), map.ey.front(), map.ey.back());
 
+  // Each row's runs of cells of one colour as one rectangle (a boolean map
+  // of 40 x 40 cells is then a few dozen of them).
   const size_t nx = map.ex.size() - 1, ny = map.ey.size() - 1;
+  const auto same = [](PLFLT a, PLFLT b) { return a == b || (std::isnan(a) && std::isnan(b)); };
   for (size_t j = 0; j < ny; ++j) {
-    for (size_t i = 0; i < nx; ++i) {
+    for (size_t i = 0, end = 0; i < nx; i = end) {
       const PLFLT color = map.cell_color[j * nx + i];
+      for (end = i + 1; end < nx && same(map.cell_color[j * nx + end], color);) ++end;
       if (std::isnan(color)) {
         plcol0(kNoData);
       } else {
         plcol1(color);
       }
-      PLFLT x[] = {map.ex[i], map.ex[i + 1], map.ex[i + 1], map.ex[i]};
+      PLFLT x[] = {map.ex[i], map.ex[end], map.ex[end], map.ex[i]};
       PLFLT y[] = {map.ey[j], map.ey[j], map.ey[j + 1], map.ey[j + 1]};
       plfill(4, x, y);
     }

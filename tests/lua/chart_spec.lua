@@ -178,8 +178,9 @@ describe("ashlar.chart", function()
       return ashlar.chart(full)
     end
     expect_error({ "bad argument #1", "expected an option table" }, ashlar.chart, path)
-    expect_error({ "bad argument #1", "unknown option 'colour'", "(allowed: data, height, kind, log_x, "
-                   .. "log_y, path, series, title, width, x, x_label, x_range, y, y_label, y_range)" }, chart,
+    expect_error({ "bad argument #1", "unknown option 'colour'", "(allowed: boundary, data, height, kind, levels, "
+                   .. "log_x, log_y, map, path, series, title, width, x, x_label, x_range, y, y_label, y_range, z, "
+                   .. "z_label)" }, chart,
                  { colour = "red" })
     expect_error({ "x_range: expected {lo, hi}, got number" }, chart, { x_range = 1 })
     expect_error({ "chart: y_range must be finite with lo < hi, got {2, 1}" }, chart, { y_range = { 2, 1 } })
