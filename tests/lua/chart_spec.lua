@@ -227,7 +227,7 @@ describe("ashlar.chart", function()
     expect_error({ "chart: width and height must lie in [200, 16384], got 100 x 600" }, chart, { width = 100 })
     expect_error({ "chart: width and height must lie in [200, 16384], got 900 x 20000" }, chart, { height = 20000 })
     expect_error({ "width: expected a positive whole number of pixels, got 640.5" }, chart, { width = 640.5 })
-    expect_error({ "chart: unknown kind 'bars' (allowed: lines, points, linespoints, steps)" }, chart,
+    expect_error({ "chart: unknown kind 'bars' (allowed: lines, points, linespoints, steps, map)" }, chart,
       { kind = "bars" })
     expect_error({ "log_y: expected a boolean, got string" }, chart, { log_y = "yes" })
     expect_error({ "title: expected a string, got number" }, chart, { title = 3 })
