@@ -135,7 +135,7 @@ describe("ashlar.legend", function()
       { map = "jet", range = { 0, 1 } })
     expect_error({ "orientation: expected 'vertical' or 'horizontal'" }, ashlar.legend, path,
       { range = { 0, 1 }, orientation = "diagonal" })
-    expect_error({ "unknown option 'lable'", "allowed: height, label, map, orientation, range, width" },
+    expect_error({ "unknown option 'lable'", "allowed: height, label, map, orientation, range, values, width" },
       ashlar.legend, path, { range = { 0, 1 }, lable = "x" })
     expect_error({ ".svg or .png" }, ashlar.legend, dir .. "/l.pdf", { range = { 0, 1 } })
     assert.is_nil(io.open(path))
