@@ -80,23 +80,23 @@ for key, mt in pairs(debug.getregistry()) do
 end
 table.sort(types)
 
-local problems, checked = {}, { live = 0, documented = 0 }
+local problems, checked = {}, { live = 0, documented = 0, functions = 0, models = 0, methods = 0 }
 local function problem(fmt, ...) problems[#problems + 1] = string.format(fmt, ...) end
 
 for _, name in ipairs(sorted_keys(ashlar)) do
-  if type(ashlar[name]) == "function" then
-    checked.live = checked.live + 1
+  if type(rawget(ashlar, name)) == "function" then
+    checked.live, checked.functions = checked.live + 1, checked.functions + 1
     if not doc_ashlar[name] then problem("ashlar.%s exists but docs/api.md does not mention it", name) end
   end
 end
 for _, name in ipairs(sorted_keys(models)) do
-  if type(models[name]) == "function" then
-    checked.live = checked.live + 1
+  if type(rawget(models, name)) == "function" then
+    checked.live, checked.models = checked.live + 1, checked.models + 1
     if not doc_models[name] then problem("models.%s exists but docs/api.md does not mention it", name) end
   end
 end
 for _, name in ipairs(sorted_keys(live_methods)) do
-  checked.live = checked.live + 1
+  checked.live, checked.methods = checked.live + 1, checked.methods + 1
   if not doc_methods[name] then
     table.sort(live_methods[name])
     problem("method %s:%s exists but docs/api.md never calls it as x:%s(...)",
@@ -106,11 +106,11 @@ end
 
 for _, name in ipairs(sorted_keys(doc_ashlar_calls)) do
   checked.documented = checked.documented + 1
-  if type(ashlar[name]) ~= "function" then problem("docs/api.md calls ashlar.%s, which does not exist", name) end
+  if type(rawget(ashlar, name)) ~= "function" then problem("docs/api.md calls ashlar.%s, which does not exist", name) end
 end
 for _, name in ipairs(sorted_keys(doc_models_calls)) do
   checked.documented = checked.documented + 1
-  if type(models[name]) ~= "function" then problem("docs/api.md calls models.%s, which does not exist", name) end
+  if type(rawget(models, name)) ~= "function" then problem("docs/api.md calls models.%s, which does not exist", name) end
 end
 for _, name in ipairs(sorted_keys(doc_methods)) do
   checked.documented = checked.documented + 1
@@ -119,7 +119,9 @@ for _, name in ipairs(sorted_keys(doc_methods)) do
   end
 end
 
-print(string.format("%d live names checked against docs/api.md (types %s), %d documented calls checked against the live API",
-                    checked.live, table.concat(types, ", "), checked.documented))
+print(string.format("%d live names checked against docs/api.md (%d ashlar functions, %d models, %d method names of %s), "
+                    .. "%d documented calls checked against the live API",
+                    checked.live, checked.functions, checked.models, checked.methods, table.concat(types, ", "),
+                    checked.documented))
 for _, p in ipairs(problems) do print("FAIL " .. p) end
 if #problems > 0 then error(#problems .. " mismatch(es) between the live API and docs/api.md", 0) end

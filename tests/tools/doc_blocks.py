@@ -101,7 +101,9 @@ def main():
     failures = []
     for path in a.files:
         name = os.path.basename(path)
-        folder = os.path.join(work, re.sub(r"[^A-Za-z0-9_.-]", "_", os.path.relpath(path)))
+        here = os.path.abspath(path)
+        label = os.path.basename(os.path.dirname(here)) + "_" + os.path.basename(here)
+        folder = os.path.join(work, re.sub(r"[^A-Za-z0-9_.-]", "_", label))
         shutil.rmtree(folder, ignore_errors=True)
         os.makedirs(folder)
         updates = {}
