@@ -21,6 +21,12 @@ local q = ashlar.analyze(thin, { friction = 0.7 })
 print(string.format("t = 0.45 m: stable %s, infeasibility %.4f", tostring(q.stable), q.infeasibility))
 ashlar.draw(thin, out .. "/01_arch_thin.svg", { result = q, forces = true, title = "t/R = 0.09: needs tension" })
 
+-- Its minimum thickness, which the chapter quotes as about 0.107 R.
+local g = ashlar.geometric_factor(function(t) return models.arch{ radius = 5, thickness = t, voussoirs = 31 } end,
+                                  0.6, { friction = math.huge })
+print(string.format("minimum thickness t/R = %.4f", g.minimum / 5))
+
+assert(math.abs(g.minimum / 5 - 0.1071) < 1e-4, "minimum t/R of 31 voussoirs")
 assert(r.stable and r.infeasibility == 0, "the 0.6 m arch stands")
 assert(#r.interfaces == 32 and #line == 32, "one centre of pressure per joint")
 assert(not q.stable and math.abs(q.infeasibility - 0.2913) < 5e-4, "the 0.45 m arch needs tension")

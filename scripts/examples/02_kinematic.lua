@@ -19,6 +19,16 @@ local m = kin.mechanism[3]
 print(string.format("block 3 starts to move with vertical velocity %.3f", m.velocity[3]))
 for _, joint in ipairs(kin.limit) do print("joint", joint.a, joint.b, joint.mode) end
 
+-- What the equilibrium borrowed: each wall holds half the weight by
+-- friction, on compression the kinematic method does not find.
+local c = ashlar.compare_methods(s, { friction = 0.6 })
+local weight = 9.81 * s:block(3):mass()
+for _, b in ipairs(c.borrowed) do
+  print(string.format("joint %d-%d: friction %.3f W, available %.3f W", b.a, b.b, b.friction / weight, b.available / weight))
+  assert(math.abs(b.friction / weight - 0.5) < 1e-6 and b.available < 1e-2 * weight, "half the weight on each wall")
+end
+assert(#c.borrowed == 2)
+
 -- The dynamics referee: a quarter of a second from rest.
 local sim = ashlar.simulate(s, { duration = 0.25, friction = 0.6 })
 local path = sim:trajectory(3)

@@ -24,6 +24,10 @@ local arch = models.arch{ radius = 5, thickness = 0.4, voussoirs = 24 }
 local options = { analysis = { friction = math.huge }, initial_step = 0.01, progress = false,
                   symmetry = { point = { 0, 0, 0 }, normal = { 1, 0, 0 } } }
 local g = ashlar.gradient(arch, options.analysis)
+local minimum = ashlar.geometric_factor(function(t) return models.arch{ radius = 5, thickness = t, voussoirs = 24 } end,
+                                        0.6, options.analysis).minimum
+print(string.format("minimum thickness %.3f m: 0.4 m is %.2f of it", minimum, 0.4 / minimum))
+assert(math.abs(minimum - 0.535) < 1e-3, "minimum thickness of the 24-voussoir arch")
 print(string.format("penalty %.4f before", ashlar.analyze(arch, options.analysis).penalty))
 local rows = {}
 for _, method in ipairs{ "gradient", "lbfgs" } do

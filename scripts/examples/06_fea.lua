@@ -36,6 +36,7 @@ ashlar.chart{ path = out .. "/06_tied_tension.svg", data = rows, x = "t", y = "t
               title = "Arch, 24 voussoirs: contact nodes in tension, every contact tied",
               x_label = "t / R", y_label = "nodes in tension" }
 
+assert(rows[7].tensile == 2 and rows[8].tensile == 0, "no tied node in tension from t/R 0.15")
 assert(tied.status == "tension" and tied.history[1].tensile == 10, "tied: 10 nodes in tension")
 assert(math.abs(tied.history[1].tension - 9258.8) < 1, "tied: 9.26 kN of tension")
 assert(fe.status == "compression_only" and fe.iterations == 2, "unilateral: compression only")

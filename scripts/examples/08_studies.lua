@@ -52,6 +52,15 @@ local second, passed = ashlar_test("")
 print(second:match("[^\n]*passed[^\n]*"))
 os.execute("rm -r '" .. work .. "'")
 
+-- The minima the chapter quotes, for polyhedral voussoirs.
+local minima = { [8] = 0.09997, [16] = 0.10708, [64] = 0.10738 }
+for _, n in ipairs{ 8, 16, 64 } do
+  local g = ashlar.geometric_factor(function(t) return models.arch{ radius = 1, thickness = t, voussoirs = n } end,
+                                    0.15, { friction = math.huge })
+  print(string.format("%2d voussoirs: minimum t/R %.5f", n, g.minimum))
+  assert(math.abs(g.minimum - minima[n]) < 1e-5, "minimum thickness of " .. n .. " voussoirs")
+end
+
 assert(#rows == 63 and #c.series == 3 and c.skipped == 0, "the sweep")
 assert(math.abs(thinnest[8] - 0.100) < 1e-9 and math.abs(thinnest[16] - 0.108) < 1e-9
        and math.abs(thinnest[64] - 0.108) < 1e-9, "thinnest stable arches (minima 0.09997, 0.10708, 0.10738)")
