@@ -26,7 +26,16 @@ let renderer;
 try {
   renderer = new THREE.WebGLRenderer({ antialias: true });
 } catch (error) {
-  fail("This browser cannot draw WebGL, which the viewer needs: " + error.message);
+  // The usual cause is WebGL switched off with hardware acceleration, or a
+  // headless Chromium without a software GL: it draws WebGL on SwiftShader
+  // only with --use-angle=swiftshader --enable-unsafe-swiftshader (the flags
+  // tests/tools/check_viewer.js uses); --disable-gpu --use-gl=swiftshader
+  // alone leaves it without WebGL.
+  fail("This browser cannot draw WebGL, which the viewer needs (" + error.message + "). " +
+       "WebGL is usually off because hardware acceleration is: turn it on (Chrome, Edge: Settings > System > " +
+       "Use graphics acceleration when available; Firefox: Settings > Performance) or open the page in " +
+       "another browser. Headless Chromium draws WebGL only with --use-angle=swiftshader " +
+       "--enable-unsafe-swiftshader; --disable-gpu --use-gl=swiftshader alone does not work.");
   throw error;
 }
 renderer.setPixelRatio(window.devicePixelRatio);
