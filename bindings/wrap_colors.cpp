@@ -10,7 +10,8 @@ namespace ashlar::lua {
 namespace {
 
 // The values table: one number per block, mapped with `map` over `range`
-// (default: the values' own range).
+// (default: the values' own range, from 0 when none is negative, so that a
+// magnitude's legend starts at nothing rather than at its smallest value).
 ColorScale color_scale(lua_State* L, int color, int arg, int block_count) {
   const OptionTable mapped(L, color, arg, "color.", {"values", "map", "range"});
   if (mapped.push("values") != LUA_TTABLE) {
@@ -35,7 +36,7 @@ ColorScale color_scale(lua_State* L, int color, int arg, int block_count) {
   lua_pop(L, 1);
   double lo = 0.0, hi = 0.0;
   if (!values.empty()) {
-    lo = *std::min_element(values.begin(), values.end());
+    lo = std::min(*std::min_element(values.begin(), values.end()), 0.0);
     hi = *std::max_element(values.begin(), values.end());
   }
   if (mapped.push("range") != LUA_TNIL) std::tie(lo, hi) = to_range(L, -1, arg, "color.range");

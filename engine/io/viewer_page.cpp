@@ -14,6 +14,7 @@
 #include "core/text.hpp"
 #include "core/version.hpp"
 #include "io/color_map.hpp"
+#include "io/force_glyphs.hpp"
 #include "io/json_document.hpp"
 #include "io/simulation_export.hpp"
 #include "io/structure_scene.hpp"
@@ -69,9 +70,11 @@ Rows interface_rows(const Structure& structure, int k, const ExportOptions& opti
     rows.emplace_back("normal force",
                       force(f.normal_force) + (f.normal_force >= 0 ? " (compression)" : " (tension)"));
     if (!result->stable) rows.emplace_back("tension", force(f.tension));
-    rows.emplace_back("resultant", force(f.resultant.norm()) + " on " + structure.name(f.b));
-    rows.emplace_back("its components", "(" + readout(f.resultant.x()) + ", " + readout(f.resultant.y()) + ", " +
-                                            readout(f.resultant.z()) + ") N");
+    const ArrowForce drawn = arrow_force(structure, contact, f);
+    rows.emplace_back("resultant", force(drawn.force.norm()) + " on " + structure.name(drawn.on) + " by " +
+                                       structure.name(drawn.by));
+    rows.emplace_back("its components", "(" + readout(drawn.force.x()) + ", " + readout(drawn.force.y()) + ", " +
+                                            readout(drawn.force.z()) + ") N");
     rows.emplace_back("centre of pressure", point(f.center_of_pressure));
   }
   return rows;
@@ -119,6 +122,21 @@ std::string summary(const Structure& structure, const ExportOptions& options) {
             kSolverStatusNames.name(result->status) + ")";
   }
   return text;
+}
+
+// The page's key: what each colour drawn means, for the layers present.
+json key_json(const ExportOptions& options, const bool present[]) {
+  json key = json::array();
+  const auto add = [&](const std::string& label, const Rgb& c) { key.push_back({{"label", label}, {"color", {c.r, c.g, c.b}}}); };
+  if (present[static_cast<int>(SceneLayer::forces)]) {
+    add("compression (force on the block the arrow enters)", options.compression_color);
+    add("tension", options.tension_color);
+  }
+  if (present[static_cast<int>(SceneLayer::interfaces)]) add("contact interfaces", options.interface_color);
+  if (present[static_cast<int>(SceneLayer::thrust)]) add("thrust line", options.thrust_color);
+  if (present[static_cast<int>(SceneLayer::cables)]) add("cables", options.cable_color);
+  if (present[static_cast<int>(SceneLayer::traces)]) add("load traces", options.trace_color);
+  return key;
 }
 
 json legend_json(const ColorScale& scale) {
@@ -230,6 +248,12 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
     layers.push_back({{"name", name}, {"visible", layer != SceneLayer::edges || options.edges}});
   }
   scene["layers"] = std::move(layers);
+  scene["key"] = key_json(options, present);
+  // Arrow length per newton (m/N), for the page's scale bar.
+  scene["force_scale"] = present[static_cast<int>(SceneLayer::forces)] ? json(force_arrow_scale(structure, options))
+                                                                        : json(nullptr);
+  // A planar structure (x-z plane) opens in the front view, orthographic.
+  scene["planar"] = structure.planar();
   scene["opacity"] = opacity;
   scene["edge_color"] = {options.edge_color.r, options.edge_color.g, options.edge_color.b};
   scene["outline"] = std::move(outline);
@@ -292,7 +316,7 @@ void write_viewer_page(const Structure& structure, const SimulationResult& resul
                       {"positions", std::move(positions)},
                       {"rotations", std::move(rotations)}});
   }
-  page.data["animation"] = {{"times", frames.times}, {"tracks", std::move(tracks)}};
+  page.data["animation"] = {{"times", frames.times}, {"tracks", std::move(tracks)}, {"autoplay", options.autoplay}};
   write_page(path, page.data);
 }
 

@@ -148,6 +148,19 @@ TEST(ViewerPage, HoldsTheSceneAndEveryScriptWhateverTheNames) {
   EXPECT_EQ(arrow["info"][0], json({"between", "base and </script><!-- top"}));
   EXPECT_EQ(arrow["info"][2][0], "normal force");
   EXPECT_EQ(arrow["info"][2][1], "11.77 kN (compression)");  // 1200 kg x 9.81
+  EXPECT_EQ(arrow["info"][3], json({"resultant", "11.77 kN on </script><!-- top by base"}));
+
+  // The key names the colour of each role drawn; the scale bar's scale:
+  // 2400 kg x 9.81 on the ground, about a quarter of the blocks'
+  // diagonal (1.5 m) long: 62.8 kN/m, rounded to 50 kN per metre.
+  std::vector<std::string> roles;
+  for (const json& entry : scene["key"]) roles.push_back(entry["label"]);
+  EXPECT_EQ(roles, (std::vector<std::string>{"compression (force on the block the arrow enters)", "tension",
+                                             "thrust line"}));
+  EXPECT_EQ(scene["key"][0]["color"],
+            json({options.compression_color.r, options.compression_color.g, options.compression_color.b}));
+  EXPECT_NEAR(scene["force_scale"].get<double>(), 2e-5, 1e-17);
+  EXPECT_EQ(scene["planar"], false);
 
   // The legend: the map sampled from lo to hi.
   const json& legend = scene["legend"];
@@ -224,6 +237,7 @@ TEST(ViewerPage, AnimationTracksHoldTheSimulationsKeyFrames) {
     write_viewer_page(s, r, fps, dir.file("drop.html"), options);
     const json scene = json::parse(script_text(read_file(dir.file("drop.html")), "ashlar-scene"));
     const json& animation = scene["animation"];
+    EXPECT_EQ(animation["autoplay"], true);  // the default: it plays as it opens
     const AnimationFrames frames = animation_frames(r, fps);
     const std::size_t n = frames.times.size();
     // 30 fps: 0, 1/30, ..., then the end; 0: every recorded frame.
