@@ -275,6 +275,10 @@ for (const group of layers.values()) bounds.expandByObject(group);
 const controls = new OrbitControls(camera, renderer.domElement);
 // The orthographic camera's half height at zoom 1 (m).
 let ortho_half = 1;
+// The view last fitted, while the user has not turned, panned or zoomed
+// since: a resized window fits it again.
+let fitted = null;
+controls.addEventListener("start", () => { fitted = null; });
 
 function use_camera(next) {
   camera = next;
@@ -328,6 +332,7 @@ function fit_view(name) {
   controls.target.copy(center);
   controls.update();
   document.body.dataset.view = name;
+  fitted = name;
 }
 
 // Switches between perspective and orthographic, keeping the direction,
@@ -351,6 +356,7 @@ function set_orthographic(on) {
   use_camera(next);
   update_projection();
   controls.update();
+  fitted = null;
 }
 
 function reset_view() {
@@ -442,6 +448,7 @@ function resize() {
   renderer.setSize(width, height);
   perspective.aspect = width / height;
   update_projection();
+  if (fitted) fit_view(fitted);
   request_render();
 }
 window.addEventListener("resize", resize);

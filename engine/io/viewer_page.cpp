@@ -129,7 +129,7 @@ json key_json(const ExportOptions& options, const bool present[]) {
   json key = json::array();
   const auto add = [&](const std::string& label, const Rgb& c) { key.push_back({{"label", label}, {"color", {c.r, c.g, c.b}}}); };
   if (present[static_cast<int>(SceneLayer::forces)]) {
-    add("compression (force on the block the arrow enters)", options.compression_color);
+    add("compression", options.compression_color);
     add("tension", options.tension_color);
   }
   if (present[static_cast<int>(SceneLayer::interfaces)]) add("contact interfaces", options.interface_color);
