@@ -42,6 +42,19 @@ std::string point(const Vec3& p) {
   return "(" + readout(p.x()) + ", " + readout(p.y()) + ", " + readout(p.z()) + ") m";
 }
 
+// Coordinates are written rounded to a millionth of the structure's size
+// (the diagonal of its bounding box), at a power of ten: the few decimals a
+// picture needs (far finer than a pixel) instead of the 17 digits of a
+// single-precision number printed as a double.
+class Rounding {
+ public:
+  explicit Rounding(double size) : scale_(std::pow(10.0, 6.0 - std::floor(std::log10(size > 0.0 ? size : 1.0)))) {}
+  double operator()(double value) const { return std::round(value * scale_) / scale_; }
+
+ private:
+  double scale_;  // 10^decimals
+};
+
 using Rows = std::vector<std::pair<std::string, std::string>>;
 
 Rows block_rows(const Structure& structure, int i, const ExportOptions& options) {
@@ -95,10 +108,11 @@ Rows object_rows(const Structure& structure, const SceneObject& object, const Ex
 
 json color_json(const Rgb& c) { return json::array({c.r, c.g, c.b, c.a}); }
 
-json object_json(const Structure& structure, const SceneObject& object, const ExportOptions& options) {
+json object_json(const Structure& structure, const SceneObject& object, const ExportOptions& options,
+                 const Rounding& rounded) {
   json positions = json::array(), triangles = json::array();
   for (const Vec3& p : object.mesh.positions) {
-    for (int axis = 0; axis < 3; ++axis) positions.push_back(static_cast<float>(p[axis]));
+    for (int axis = 0; axis < 3; ++axis) positions.push_back(rounded(p[axis]));
   }
   for (const auto& triangle : object.mesh.triangles) {
     for (unsigned index : triangle) triangles.push_back(index);
@@ -224,6 +238,7 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
   scene["title"] = options.title.empty() ? file_name(path) : options.title;
   scene["summary"] = summary(structure, options);
   scene["legend"] = options.color_scale ? legend_json(*options.color_scale) : json(nullptr);
+  const Rounding rounded(structure.bounds().diagonal());
   json outline = json::array();
   double opacity = 1.0;
   bool present[kSceneLayerNames.entries.size()] = {};
@@ -236,10 +251,10 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
     }
     for (const auto& edge : object.outline) {
       for (const Vec3& p : edge) {
-        for (int axis = 0; axis < 3; ++axis) outline.push_back(static_cast<float>(p[axis]));
+        for (int axis = 0; axis < 3; ++axis) outline.push_back(rounded(p[axis]));
       }
     }
-    items.push_back(object_json(structure, object, options));
+    items.push_back(object_json(structure, object, options, rounded));
   }
   if (!outline.empty()) present[static_cast<int>(SceneLayer::edges)] = true;
   json layers = json::array();
