@@ -69,16 +69,37 @@ for (const { name } of scene_data.layers) {
 const pickable = [];
 const block_materials = [];
 const meshes = [];
+// A force arrow from what the scene holds of it: tail and tip (m), the
+// shaft's and the head's radius, the head's length (m), and the sides of
+// its prism and pyramid; the solid of the engine's arrow_faces, turned
+// about its axis.
+function arrow_geometry([tx, ty, tz, px, py, pz, shaft, head, head_length, sides]) {
+  const axis = new THREE.Vector3(px - tx, py - ty, pz - tz);
+  const length = axis.length();
+  const neck = length - head_length;
+  const profile = [[0, 0], [shaft, 0], [shaft, neck], [head, neck], [0, length]].map(([x, y]) => new THREE.Vector2(x, y));
+  const geometry = new THREE.LatheGeometry(profile, sides).toNonIndexed();
+  geometry.applyQuaternion(new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis.normalize()));
+  geometry.translate(tx, ty, tz);
+  return geometry;
+}
+
 for (const object of scene_data.objects) {
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
-  geometry.setIndex(object.triangles);
+  let geometry;
+  if (object.arrow) {
+    geometry = arrow_geometry(object.arrow);
+  } else {
+    geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
+    geometry.setIndex(object.triangles);
+  }
   // Every polygon has its own vertices, so vertex normals are face normals.
   geometry.computeVertexNormals();
   const [r, g, b, a] = object.color;
   const material = new THREE.MeshLambertMaterial({
     color: srgb([r, g, b]),
-    side: object.two_sided ? THREE.DoubleSide : THREE.FrontSide,
+    // Arrows are drawn from both sides, whichever way the lathe winds them.
+    side: object.two_sided || object.arrow ? THREE.DoubleSide : THREE.FrontSide,
   });
   const mesh = new THREE.Mesh(geometry, material);
   mesh.name = object.name;

@@ -177,7 +177,7 @@ void add_force_arrows(const Structure& structure, const EquilibriumResult& resul
     const bool pulls = f.tension > negligible;
     glyphs.push_back({std::move(name), arrow_faces(f.center_of_pressure, tip, shape),
                       pulls ? options.tension_color : options.compression_color, SceneLayer::forces,
-                      static_cast<int>(k)});
+                      static_cast<int>(k), ArrowGlyph{f.center_of_pressure, tip, shape}});
   }
 }
 

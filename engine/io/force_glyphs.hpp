@@ -21,13 +21,6 @@ struct InterfaceForces;
 // from outside.
 using GlyphFaces = std::vector<std::vector<Vec3>>;
 
-struct ArrowShape {
-  double shaft_radius = 0.0;  // m
-  double head_radius = 0.0;   // m, larger than shaft_radius
-  double head_length = 0.0;   // m, at most the arrow's length
-  int sides = 6;              // of the shaft prism and the head pyramid, >= 3
-};
-
 // One closed solid from tail to tip: a prism shaft, then a pyramid head
 // whose base is joined to the shaft by a flat ring. The tip is the apex.
 GlyphFaces arrow_faces(const Vec3& tail, const Vec3& tip, const ArrowShape& shape);
@@ -73,6 +66,7 @@ struct NamedGlyph {
   Rgb color;
   SceneLayer layer;
   int interface = -1;  // forces: the arrow's interface (index into result.interfaces)
+  std::optional<ArrowGlyph> arrow;  // forces: what `faces` draws
 };
 
 // Every cable as a tube, node "cable c" (1-based), the load traces as one

@@ -110,6 +110,27 @@ json color_json(const Rgb& c) { return json::array({c.r, c.g, c.b, c.a}); }
 
 json object_json(const Structure& structure, const SceneObject& object, const ExportOptions& options,
                  const Rounding& rounded) {
+  json info = json::array();
+  for (const auto& [key, value] : object_rows(structure, object, options)) info.push_back({key, value});
+  json item = {{"layer", kSceneLayerNames.name(object.layer)},
+               {"name", object.name},
+               {"color", color_json(object.color)},
+               {"two_sided", object.two_sided},
+               {"info", std::move(info)}};
+  if (const std::optional<ArrowGlyph>& arrow = object.arrow) {
+    // Arrows are many and alike: the page builds each from its ends and
+    // proportions, as arrow_faces does, rather than holding its facets.
+    json values = json::array();
+    for (const Vec3& p : {arrow->tail, arrow->tip}) {
+      for (int axis = 0; axis < 3; ++axis) values.push_back(rounded(p[axis]));
+    }
+    for (double size : {arrow->shape.shaft_radius, arrow->shape.head_radius, arrow->shape.head_length}) {
+      values.push_back(rounded(size));
+    }
+    values.push_back(arrow->shape.sides);
+    item["arrow"] = std::move(values);
+    return item;
+  }
   json positions = json::array(), triangles = json::array();
   for (const Vec3& p : object.mesh.positions) {
     for (int axis = 0; axis < 3; ++axis) positions.push_back(rounded(p[axis]));
@@ -117,15 +138,9 @@ json object_json(const Structure& structure, const SceneObject& object, const Ex
   for (const auto& triangle : object.mesh.triangles) {
     for (unsigned index : triangle) triangles.push_back(index);
   }
-  json info = json::array();
-  for (const auto& [key, value] : object_rows(structure, object, options)) info.push_back({key, value});
-  return {{"layer", kSceneLayerNames.name(object.layer)},
-          {"name", object.name},
-          {"color", color_json(object.color)},
-          {"two_sided", object.two_sided},
-          {"positions", std::move(positions)},
-          {"triangles", std::move(triangles)},
-          {"info", std::move(info)}};
+  item["positions"] = std::move(positions);
+  item["triangles"] = std::move(triangles);
+  return item;
 }
 
 std::string summary(const Structure& structure, const ExportOptions& options) {

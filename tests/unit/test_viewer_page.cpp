@@ -149,6 +149,19 @@ TEST(ViewerPage, HoldsTheSceneAndEveryScriptWhateverTheNames) {
   EXPECT_EQ(arrow["info"][2][0], "normal force");
   EXPECT_EQ(arrow["info"][2][1], "11.77 kN (compression)");  // 1200 kg x 9.81
   EXPECT_EQ(arrow["info"][3], json({"resultant", "11.77 kN on </script><!-- top by base"}));
+  // It is held as its ends and proportions (the page builds its facets):
+  // from the centre of pressure, 11.77 kN at 50 kN per m up, its shaft 6 %
+  // of the largest arrow's length (23.54 kN: 0.4709 m) wide, 6 sides.
+  ASSERT_EQ(arrow["arrow"].size(), 10u);
+  EXPECT_FALSE(arrow.contains("positions"));
+  const InterfaceForces& upper = result.interfaces[1];
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(arrow["arrow"][axis].get<double>(), upper.center_of_pressure[axis], 1e-5);
+    EXPECT_NEAR(arrow["arrow"][3 + axis].get<double>(),
+                upper.center_of_pressure[axis] + upper.resultant[axis] / 5e4, 1e-5);
+  }
+  EXPECT_NEAR(arrow["arrow"][6].get<double>(), 0.06 * 2 * 1200 * 9.81 / 5e4, 1e-5);
+  EXPECT_EQ(arrow["arrow"][9], 6);
 
   // The key names the colour of each role drawn; the scale bar's scale:
   // 2400 kg x 9.81 on the ground, about a quarter of the blocks'
