@@ -111,7 +111,11 @@ int w_Simulation_export(lua_State* L) {
       }
     }
     if (!html) {
-      for (const char* key : {"opacity", "edges", "title", "legend", "autoplay"}) {
+      if (options.has("autoplay")) {
+        throw ArgError(3, "autoplay: applies to an animated page (.html, or format = \"html\"); a .glb animation "
+                          "plays as its viewer says");
+      }
+      for (const char* key : {"opacity", "edges", "title", "legend"}) {
         if (options.has(key)) {
           throw ArgError(3, std::string(key) + ": applies to a still (give frame = k) or an animated page (.html, "
                                                "or format = \"html\"); a .glb animation takes color and fps");
