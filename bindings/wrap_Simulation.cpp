@@ -86,12 +86,13 @@ int w_Simulation_export(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
-    const OptionTable options(L, 3, {ASHLAR_EXPORT_OPTIONS, "frame", "fps"});
+    const OptionTable options(L, 3, {ASHLAR_EXPORT_OPTIONS, "frame", "fps", "autoplay"});
     const SimulationResult& r = record->result;
     const int frames = static_cast<int>(r.times.size());
     if (const std::optional<lua_Integer> frame =
             options.whole("frame", 1, frames, "a frame number from 1 to " + std::to_string(frames))) {
       if (options.has("fps")) throw ArgError(3, "fps: a still (frame = k) has no frame rate");
+      if (options.has("autoplay")) throw ArgError(3, "autoplay: a still (frame = k) does not play");
       const Structure still = posed_structure(record->structure, r.poses[*frame - 1]);
       export_with_options(L, still, path, options);
       return 0;
@@ -110,6 +111,10 @@ int w_Simulation_export(lua_State* L) {
       }
     }
     if (!html) {
+      if (options.has("autoplay")) {
+        throw ArgError(3, "autoplay: applies to an animated page (.html, or format = \"html\"); a .glb animation "
+                          "plays as its viewer says");
+      }
       for (const char* key : {"opacity", "edges", "title", "legend"}) {
         if (options.has(key)) {
           throw ArgError(3, std::string(key) + ": applies to a still (give frame = k) or an animated page (.html, "
@@ -119,7 +124,9 @@ int w_Simulation_export(lua_State* L) {
     }
     const double fps = options.positive("fps", 0.0, true);
     if (html) {
-      write_viewer_page(record->structure, r, fps, path, block_appearance(L, options, record->structure.size(), true));
+      ExportOptions page = block_appearance(L, options, record->structure.size(), true);
+      page.autoplay = options.boolean("autoplay").value_or(true);
+      write_viewer_page(record->structure, r, fps, path, page);
       return 0;
     }
     AnimationOptions animation;

@@ -3,8 +3,10 @@
 --   ashlar scripts/viewer_screenshots.lua [folder] [pages]
 -- folder: the PNGs (default docs/figures/viewer); pages: where the .html
 -- pages are written (default: a new temporary folder, printed). Pictures:
---   arch_forces     a semicircular arch, 15 voussoirs, friction 0.7: its
---                   interfaces, force arrows and thrust line
+--   arch_forces     a semicircular arch, 15 voussoirs, planar (front view,
+--                   orthographic), friction 0.7: its interfaces, one arrow
+--                   per interface (its resultant, at its centre of
+--                   pressure), the thrust line, the key and the force scale
 --   dome_weights    a 12 x 8 dome coloured by ashlar.important_weights
 --   arcade_thrust   a two-span arcade (models.arch_bridge{ spans = 2,
 --                   spandrel = false }): its thrust line branching at the pier
@@ -42,14 +44,22 @@ end
 
 print("arch, 15 voussoirs")
 local arch = models.arch{ voussoirs = 15 }
+-- Planar: the page opens in the front view, orthographic.
+arch:set_planar(true)
 local r = timed("analyze", function() return ashlar.analyze(arch, { friction = 0.7 }) end)
--- Arrows long enough to read at this size: the largest 1 m.
+-- Arrows long enough to read at this size: a round number of newtons per
+-- metre of arrow (1, 2 or 5 x 10^k), the largest arrow at most 1 m.
 local largest = 0
 for _, f in ipairs(r.interfaces) do
   largest = math.max(largest, math.sqrt(f.resultant[1] ^ 2 + f.resultant[2] ^ 2 + f.resultant[3] ^ 2))
 end
-page("arch_forces", arch, { result = r, forces = true, thrust = true, interfaces = true, force_scale = 1 / largest,
-                            title = "Semicircular arch, 15 voussoirs: interfaces, forces, thrust line" })
+local decade = 10 ^ math.floor(math.log(largest, 10))
+local per_metre = 10 * decade
+for _, step in ipairs{ 5, 2, 1 } do
+  if step * decade >= largest then per_metre = step * decade end
+end
+page("arch_forces", arch, { result = r, forces = true, thrust = true, interfaces = true, force_scale = 1 / per_metre,
+                            title = "Semicircular arch, 15 voussoirs: interfaces, force resultants, thrust line" })
 
 print("dome, 12 meridians x 8 parallels")
 local dome = models.dome{ meridians = 12, parallels = 8 }

@@ -4,7 +4,13 @@
 // with the wheel; hovering (or tapping) an object shows its name and
 // values; the check boxes show and hide each layer. The page of a
 // simulation also plays it (play and pause, a time slider, loop): its
-// blocks and their outlines move through the key frames the engine wrote.
+// blocks and their outlines move through the key frames the engine wrote,
+// playing as the page opens unless the scene says not to. Buttons show the
+// structure from the front, the side, the top or obliquely (iso), in
+// perspective or orthographic; a planar structure opens in the front view,
+// orthographic. A key names the colour of each role drawn (compression,
+// tension, interfaces, thrust line, ...) and a scale bar reads the arrows'
+// length as a force.
 // Coordinates are ashlar's: metres, z up.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
@@ -43,9 +49,15 @@ renderer.setClearColor(srgb([0.957, 0.957, 0.945]));
 view.appendChild(renderer.domElement);
 
 const scene = new THREE.Scene();
-const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
-camera.up.set(0, 0, 1);
-scene.add(camera);
+// Two cameras, one of them in use; the view buttons and the orthographic
+// box switch between them.
+const perspective = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+const orthographic = new THREE.OrthographicCamera(-1, 1, 1, -1, 0.01, 1000);
+for (const c of [perspective, orthographic]) {
+  c.up.set(0, 0, 1);
+  scene.add(c);
+}
+let camera = scene_data.planar ? orthographic : perspective;
 // A soft light everywhere and one from the eye, so that faces turned to
 // the viewer show their colour and the others darken with their angle.
 scene.add(new THREE.AmbientLight(0xffffff, 1.4));
@@ -66,16 +78,37 @@ for (const { name } of scene_data.layers) {
 const pickable = [];
 const block_materials = [];
 const meshes = [];
+// A force arrow from what the scene holds of it: tail and tip (m), the
+// shaft's and the head's radius, the head's length (m), and the sides of
+// its prism and pyramid; the solid of the engine's arrow_faces, turned
+// about its axis.
+function arrow_geometry([tx, ty, tz, px, py, pz, shaft, head, head_length, sides]) {
+  const axis = new THREE.Vector3(px - tx, py - ty, pz - tz);
+  const length = axis.length();
+  const neck = length - head_length;
+  const profile = [[0, 0], [shaft, 0], [shaft, neck], [head, neck], [0, length]].map(([x, y]) => new THREE.Vector2(x, y));
+  const geometry = new THREE.LatheGeometry(profile, sides).toNonIndexed();
+  geometry.applyQuaternion(new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis.normalize()));
+  geometry.translate(tx, ty, tz);
+  return geometry;
+}
+
 for (const object of scene_data.objects) {
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
-  geometry.setIndex(object.triangles);
+  let geometry;
+  if (object.arrow) {
+    geometry = arrow_geometry(object.arrow);
+  } else {
+    geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
+    geometry.setIndex(object.triangles);
+  }
   // Every polygon has its own vertices, so vertex normals are face normals.
   geometry.computeVertexNormals();
   const [r, g, b, a] = object.color;
   const material = new THREE.MeshLambertMaterial({
     color: srgb([r, g, b]),
-    side: object.two_sided ? THREE.DoubleSide : THREE.FrontSide,
+    // Arrows are drawn from both sides, whichever way the lathe winds them.
+    side: object.two_sided || object.arrow ? THREE.DoubleSide : THREE.FrontSide,
   });
   const mesh = new THREE.Mesh(geometry, material);
   mesh.name = object.name;
@@ -207,38 +240,173 @@ if (scene_data.legend) {
   document.getElementById("legend").classList.remove("hidden");
 }
 
-// The camera looks at the whole structure from the front (-y), a little
-// from the right and from above, as close as keeps every corner of its
-// bounding box in view.
+// The key: the colour of each role drawn.
+if (scene_data.key && scene_data.key.length > 0) {
+  const key = document.getElementById("key");
+  for (const { label, color } of scene_data.key) {
+    const row = document.createElement("div");
+    row.className = "row";
+    const swatch = document.createElement("span");
+    swatch.className = "swatch";
+    swatch.style.background = "#" + srgb(color).getHexString(THREE.SRGBColorSpace);
+    row.append(swatch, label);
+    key.append(row);
+  }
+  key.classList.remove("hidden");
+}
+
+// A force in N, kN or MN, as the engine writes them.
+function force_text(newtons) {
+  const [unit, size] = newtons >= 1e6 ? ["MN", 1e6] : newtons >= 1e3 ? ["kN", 1e3] : ["N", 1];
+  return `${Number((newtons / size).toPrecision(4))} ${unit}`;
+}
+
+// The largest of 1, 2 and 5 x 10^k not above value (> 0).
+function round_down(value) {
+  const decade = Math.pow(10, Math.floor(Math.log10(value)));
+  const step = [5, 2, 1].find((s) => s * decade <= value * (1 + 1e-12)) || 1;
+  return Number((step * decade).toPrecision(6));
+}
+
+// The scale bar: a round force whose arrow is at most 120 pixels long at
+// the distance of the point the view turns about.
+const metres_per_newton = scene_data.force_scale;
+const scale_rule = document.getElementById("scale-rule");
+const scale_text = document.getElementById("scale-text");
+if (metres_per_newton > 0) {
+  document.getElementById("scale-note").textContent =
+    `1 m of arrow = ${force_text(1 / metres_per_newton)}`;
+  document.getElementById("scale").classList.remove("hidden");
+}
+function update_scale() {
+  if (!(metres_per_newton > 0)) return;
+  const height = renderer.domElement.clientHeight;
+  const span = camera === orthographic
+    ? (orthographic.top - orthographic.bottom) / orthographic.zoom
+    : 2 * camera.position.distanceTo(controls.target) * Math.tan(THREE.MathUtils.degToRad(perspective.fov / 2));
+  const pixels_per_newton = (height / span) * metres_per_newton;
+  const newtons = round_down(120 / pixels_per_newton);
+  scale_rule.style.width = `${Math.round(newtons * pixels_per_newton)}px`;
+  scale_text.textContent = force_text(newtons) + (camera === perspective ? " (at the centre of the view)" : "");
+}
+// The views: where the eye is seen from the structure (z up). The opening
+// view is "front" for a planar structure (x-z plane), else "oblique": from
+// the front, a little from the right and from above.
+const views = {
+  front: new THREE.Vector3(0, -1, 0),
+  side: new THREE.Vector3(1, 0, 0),
+  top: new THREE.Vector3(0, -1e-4, 1),  // y up on the screen
+  iso: new THREE.Vector3(1, -1, 1),
+  oblique: new THREE.Vector3(0.35, -1, 0.45),
+};
+const opening_view = scene_data.planar ? "front" : "oblique";
 const bounds = new THREE.Box3();
 for (const group of layers.values()) bounds.expandByObject(group);
 const controls = new OrbitControls(camera, renderer.domElement);
-function reset_view() {
+// The orthographic camera's half height at zoom 1 (m).
+let ortho_half = 1;
+// The view last fitted, while the user has not turned, panned or zoomed
+// since: a resized window fits it again.
+let fitted = null;
+controls.addEventListener("start", () => { fitted = null; });
+
+function use_camera(next) {
+  camera = next;
+  camera.add(headlight);
+  camera.add(headlight.target);
+  controls.object = camera;
+  document.body.dataset.projection = camera === orthographic ? "orthographic" : "perspective";
+  document.getElementById("orthographic").checked = camera === orthographic;
+}
+
+function update_projection() {
+  const aspect = perspective.aspect;
+  orthographic.left = -ortho_half * aspect;
+  orthographic.right = ortho_half * aspect;
+  orthographic.top = ortho_half;
+  orthographic.bottom = -ortho_half;
+  perspective.updateProjectionMatrix();
+  orthographic.updateProjectionMatrix();
+}
+
+// Looks at the whole structure from `name`'s direction, as close as keeps
+// every corner of its bounding box in view.
+function fit_view(name) {
   const center = bounds.getCenter(new THREE.Vector3());
-  const back = new THREE.Vector3(0.35, -1, 0.45).normalize();  // from the structure to the eye
+  const back = views[name].clone().normalize();  // from the structure to the eye
   const right = new THREE.Vector3().crossVectors(camera.up, back).normalize();
   const up = new THREE.Vector3().crossVectors(back, right);
-  const tan_v = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
-  const tan_h = tan_v * camera.aspect;
-  let distance = 0;
+  const tan_v = Math.tan(THREE.MathUtils.degToRad(perspective.fov / 2));
+  const tan_h = tan_v * perspective.aspect;
+  let distance = 0, half_width = 0, half_height = 0, depth = 0;
   for (let corner = 0; corner < 8; ++corner) {
     const p = new THREE.Vector3(corner & 1 ? bounds.max.x : bounds.min.x, corner & 2 ? bounds.max.y : bounds.min.y,
                                 corner & 4 ? bounds.max.z : bounds.min.z).sub(center);
     const toward = p.dot(back);
     distance = Math.max(distance, toward + Math.abs(p.dot(right)) / tan_h, toward + Math.abs(p.dot(up)) / tan_v);
+    half_width = Math.max(half_width, Math.abs(p.dot(right)));
+    half_height = Math.max(half_height, Math.abs(p.dot(up)));
+    depth = Math.max(depth, Math.abs(toward));
   }
-  distance *= 1.25;  // a margin, which also keeps most structures clear of the panels
+  if (camera === orthographic) {
+    ortho_half = 1.1 * Math.max(half_height, half_width / perspective.aspect, 1e-6);
+    orthographic.zoom = 1;
+    distance = 2 * depth + ortho_half;  // the eye outside the box
+  } else {
+    distance *= 1.25;  // a margin, which also keeps most structures clear of the panels
+  }
   camera.position.copy(center).addScaledVector(back, distance);
   camera.near = distance / 100;
   camera.far = distance * 10;
-  camera.updateProjectionMatrix();
+  update_projection();
   controls.target.copy(center);
   controls.update();
+  document.body.dataset.view = name;
+  fitted = name;
+}
+
+// Switches between perspective and orthographic, keeping the direction,
+// the point turned about and the size of what is there on the screen.
+function set_orthographic(on) {
+  if ((camera === orthographic) === on) return;
+  const target = controls.target;
+  const offset = camera.position.clone().sub(target);
+  const tan_v = Math.tan(THREE.MathUtils.degToRad(perspective.fov / 2));
+  let distance = offset.length();
+  if (on) {
+    ortho_half = distance * tan_v;
+    orthographic.zoom = 1;
+  } else {
+    distance = ortho_half / orthographic.zoom / tan_v;
+  }
+  const next = on ? orthographic : perspective;
+  next.position.copy(target).addScaledVector(offset.normalize(), distance);
+  next.near = distance / 100;
+  next.far = distance * 10;
+  use_camera(next);
+  update_projection();
+  controls.update();
+  fitted = null;
+}
+
+function reset_view() {
+  fit_view(opening_view);
 }
 document.getElementById("reset").addEventListener("click", () => {
   reset_view();
   request_render();
 });
+for (const button of document.querySelectorAll("#views button")) {
+  button.addEventListener("click", () => {
+    fit_view(button.dataset.view);
+    request_render();
+  });
+}
+document.getElementById("orthographic").addEventListener("change", (event) => {
+  set_orthographic(event.target.checked);
+  request_render();
+});
+use_camera(camera);
 
 // Hover: the object under the pointer, among the visible ones. Blocks that
 // are translucent give way to what lies inside them (arrows, the thrust
@@ -299,6 +467,7 @@ function request_render() {
   render_requested = true;
   requestAnimationFrame(() => {
     render_requested = false;
+    update_scale();
     renderer.render(scene, camera);
   });
 }
@@ -307,8 +476,9 @@ controls.addEventListener("change", request_render);
 function resize() {
   const width = view.clientWidth, height = view.clientHeight;
   renderer.setSize(width, height);
-  camera.aspect = width / height;
-  camera.updateProjectionMatrix();
+  perspective.aspect = width / height;
+  update_projection();
+  if (fitted) fit_view(fitted);
   request_render();
 }
 window.addEventListener("resize", resize);
@@ -369,4 +539,5 @@ if (animation) {
   slider.addEventListener("input", () => set_time(Number(slider.value)));
   set_time(start);
   document.getElementById("player").classList.remove("hidden");
+  if (animation.autoplay !== false) set_playing(true);
 }

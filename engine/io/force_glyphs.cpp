@@ -119,17 +119,44 @@ constexpr int kEdgeSides = 4;
 
 bool finite(const Vec3& v) { return v.allFinite(); }
 
-void add_force_arrows(const EquilibriumResult& result, const ExportOptions& options,
-                      double block_size, std::vector<NamedGlyph>& glyphs) {
+// Joint normals closer than this to horizontal (or to a coordinate plane)
+// count as lying in it: round-off must not flip an arrow.
+constexpr double kFlatNormal = 1e-9;
+
+// Whether the unit normal n points upward: z up, then +x, then +y.
+bool points_up(const Vec3& n) {
+  for (int axis : {2, 0, 1}) {
+    if (std::abs(n[axis]) > kFlatNormal) return n[axis] > 0.0;
+  }
+  return false;
+}
+
+// The round number 1, 2 or 5 x 10^k nearest `value` (> 0) on a log scale.
+double round_number(double value) {
+  const double decade = std::pow(10.0, std::floor(std::log10(value)));
+  double best = decade;
+  for (double step : {2.0, 5.0, 10.0}) {
+    if (std::abs(std::log(step * decade / value)) < std::abs(std::log(best / value))) best = step * decade;
+  }
+  return best;
+}
+
+double largest_resultant(const EquilibriumResult& result) {
   double largest = 0.0;
   for (const InterfaceForces& f : result.interfaces) {
     if (finite(f.resultant)) largest = std::max(largest, f.resultant.norm());
   }
+  return largest;
+}
+
+void add_force_arrows(const Structure& structure, const EquilibriumResult& result, const ExportOptions& options,
+                      std::vector<NamedGlyph>& glyphs) {
+  const double largest = largest_resultant(result);
   if (largest == 0.0) return;
-  const double largest_arrow = options.force_scale > 0.0 ? options.force_scale * largest
-                                                         : kLargestArrowOfBlockSize * block_size;
-  const double metres_per_newton = largest_arrow / largest;
+  const double metres_per_newton = force_arrow_scale(structure, options);
+  const double largest_arrow = metres_per_newton * largest;
   const double negligible = options.negligible_force * largest;
+  const std::shared_ptr<const std::vector<Interface>> contacts = structure.interfaces(options.contact);
   std::map<std::string, int> uses;
   for (std::size_t k = 0; k < result.interfaces.size(); ++k) {
     const InterfaceForces& f = result.interfaces[k];
@@ -145,11 +172,12 @@ void add_force_arrows(const EquilibriumResult& result, const ExportOptions& opti
     std::string name = "force " + std::to_string(f.a + 1) + "-" + std::to_string(f.b + 1);
     const int use = ++uses[name];
     if (use > 1) name += " #" + std::to_string(use);
-    const Vec3 tip = f.center_of_pressure + length * f.resultant / size;
+    const ArrowForce drawn = arrow_force(structure, contacts->at(k), f);
+    const Vec3 tip = f.center_of_pressure + length * drawn.force / size;
     const bool pulls = f.tension > negligible;
     glyphs.push_back({std::move(name), arrow_faces(f.center_of_pressure, tip, shape),
                       pulls ? options.tension_color : options.compression_color, SceneLayer::forces,
-                      static_cast<int>(k)});
+                      static_cast<int>(k), ArrowGlyph{f.center_of_pressure, tip, shape}});
   }
 }
 
@@ -178,6 +206,22 @@ double mean_free_block_size(const Structure& structure) {
     ++count;
   }
   return count > 0 ? sum / count : structure.bounds().diagonal();
+}
+
+ArrowForce arrow_force(const Structure& structure, const Interface& contact, const InterfaceForces& forces) {
+  // forces.resultant acts on forces.b; contact.normal points from a into b.
+  const bool a_support = structure.is_support(forces.a), b_support = structure.is_support(forces.b);
+  const bool on_b = a_support != b_support ? a_support : points_up(contact.normal);
+  if (on_b) return {forces.b, forces.a, forces.resultant};
+  return {forces.a, forces.b, -forces.resultant};
+}
+
+double force_arrow_scale(const Structure& structure, const ExportOptions& options) {
+  const double largest = largest_resultant(*options.result);
+  if (largest == 0.0) return 0.0;
+  if (options.force_scale > 0.0) return options.force_scale;
+  const double newtons_per_metre = round_number(largest / (kLargestArrowOfBlockSize * mean_free_block_size(structure)));
+  return 1.0 / newtons_per_metre;
 }
 
 std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
@@ -210,7 +254,7 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
   }
   if (!traces.empty()) glyphs.push_back({"load traces", std::move(traces), options.trace_color, SceneLayer::traces});
   if (!options.result) return glyphs;
-  if (options.forces) add_force_arrows(*options.result, options, block_size, glyphs);
+  if (options.forces) add_force_arrows(structure, *options.result, options, glyphs);
   if (options.thrust) {  // every branch, as the drawings show it
     GlyphFaces tubes;
     for (std::vector<Vec3> points : thrust_polylines(structure, *options.result)) {

@@ -15,16 +15,11 @@
 
 namespace ashlar {
 
+struct InterfaceForces;
+
 // Planar faces of one or more closed solids, each counter-clockwise seen
 // from outside.
 using GlyphFaces = std::vector<std::vector<Vec3>>;
-
-struct ArrowShape {
-  double shaft_radius = 0.0;  // m
-  double head_radius = 0.0;   // m, larger than shaft_radius
-  double head_length = 0.0;   // m, at most the arrow's length
-  int sides = 6;              // of the shaft prism and the head pyramid, >= 3
-};
 
 // One closed solid from tail to tip: a prism shaft, then a pyramid head
 // whose base is joined to the shaft by a flat ring. The tip is the apex.
@@ -43,12 +38,35 @@ double mean_free_block_size(const Structure& structure);
 // Every edge of a block once, as its two end points.
 std::vector<std::array<Vec3, 2>> block_edges(const Block& block);
 
+// What a force arrow draws for an interface: the force exerted on block
+// `on` by block `by` (N). `on` is the free block when the other is a
+// support (the support's reaction on it); between two free blocks (or two
+// supports) it is the block above the joint: the one the interface's
+// normal points into once turned upward (z > 0; for a vertical joint
+// +x, then +y). The same whatever the blocks' indices: in compression the
+// arrow, drawn from the centre of pressure, points into block `on`.
+struct ArrowForce {
+  int on = -1;
+  int by = -1;
+  Vec3 force = Vec3::Zero();
+};
+ArrowForce arrow_force(const Structure& structure, const Interface& contact, const InterfaceForces& forces);
+
+// Arrow length per newton (m/N) of the force arrows options ask for:
+// options.force_scale when given, else the round scale (1, 2 or 5 x 10^k N
+// per metre of arrow) nearest (on a log scale) the one that draws the
+// largest resultant a quarter of the mean free-block size long: it is
+// then 0.16 to 0.35 of that size. 0 when
+// options.result holds no finite non-zero resultant. Needs options.result.
+double force_arrow_scale(const Structure& structure, const ExportOptions& options);
+
 struct NamedGlyph {
   std::string name;
   GlyphFaces faces;
   Rgb color;
   SceneLayer layer;
   int interface = -1;  // forces: the arrow's interface (index into result.interfaces)
+  std::optional<ArrowGlyph> arrow;  // forces: what `faces` draws
 };
 
 // Every cable as a tube, node "cable c" (1-based), the load traces as one

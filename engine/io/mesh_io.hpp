@@ -71,10 +71,17 @@ struct ExportOptions {
   std::vector<Rgb> block_colors;
   // HTML viewer only: the values block_colors came from, if any.
   std::optional<ColorScale> color_scale;
+  // HTML viewer only, a simulation's page: it plays as it opens (false:
+  // paused at the first key frame).
+  bool autoplay = true;
   // HTML viewer only: the page's title; empty: the file's name.
   std::string title;
   bool interfaces = false;  // also write each contact polygon as a node
-  Rgb interface_color{0.9, 0.2, 0.1};
+  // Colours of the roles, from colour-blind-safe palettes (Paul Tol's
+  // "vibrant" for the arrows, saturated enough to read through translucent
+  // blocks; Okabe-Ito's orange for the thrust line), none
+  // shared: interfaces a light neutral that leaves the arrows the eye.
+  Rgb interface_color{0.87, 0.84, 0.74};
   ContactOptions contact;
 
   // An analysis of this very structure (same blocks, and interfaces found
@@ -82,23 +89,25 @@ struct ExportOptions {
   // owned, it must outlive the call.
   const EquilibriumResult* result = nullptr;
   // One arrow per interface, node "force a-b" (1-based blocks): from the
-  // centre of pressure along the resultant acting on block b, its length
-  // proportional to the resultant's size. Interfaces whose resultant is
+  // centre of pressure along the force on one of its blocks (arrow_force
+  // in force_glyphs.hpp: on the free block at a support, else on the
+  // block above), its length proportional to the resultant's size. Interfaces whose resultant is
   // below `negligible_force` of the largest get none.
   bool forces = false;
   // The thrust line, every branch of it (thrust_polylines(structure, *result)), as thin tubes in one node
   // "thrust line"; none when it has fewer than two points.
   bool thrust = false;
-  // Arrow length per newton (m/N); 0 scales the largest arrow to a quarter
-  // of the mean size (bounding-box diagonal) of the free blocks. Give a
+  // Arrow length per newton (m/N); 0: a round number of newtons per metre
+  // that draws the largest arrow about a quarter of the mean size
+  // (bounding-box diagonal) of the free blocks (force_arrow_scale). Give a
   // value to compare arrows across several exports.
   double force_scale = 0.0;
   // Fraction of the largest resultant below which an interface gets no
   // arrow and a tension counts as none (solver round-off).
   double negligible_force = 1e-3;
-  Rgb compression_color{0.15, 0.35, 0.9};  // arrows of interfaces in compression only
-  Rgb tension_color{0.9, 0.1, 0.1};        // arrows of interfaces carrying tension
-  Rgb thrust_color{1.0, 0.65, 0.0};
+  Rgb compression_color{0.0, 0.467, 0.733};  // arrows of interfaces in compression only (Tol blue)
+  Rgb tension_color{0.8, 0.2, 0.067};        // arrows of interfaces carrying tension (Tol red)
+  Rgb thrust_color{0.902, 0.624, 0.0};         // Okabe-Ito orange
   Rgb cable_color{0.2, 0.2, 0.22};  // cables are always drawn, as thin tubes
   // Load traces (ForceFlow::polylines of trace_loads, m), drawn as thin
   // tubes merged into one node "load traces": hundreds of traces as nodes

@@ -128,6 +128,7 @@ std::vector<SceneObject> structure_scene(const Structure& structure, const Expor
     }
     object.color = glyph.color;
     object.interface = glyph.interface;
+    object.arrow = glyph.arrow;
     objects.push_back(std::move(object));
   }
   return objects;

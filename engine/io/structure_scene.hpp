@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,19 @@ inline constexpr EnumNames<SceneLayer, 7> kSceneLayerNames{{{{SceneLayer::blocks
                                                              {SceneLayer::cables, "cables"},
                                                              {SceneLayer::traces, "traces"}}}};
 
+struct ArrowShape {
+  double shaft_radius = 0.0;  // m
+  double head_radius = 0.0;   // m, larger than shaft_radius
+  double head_length = 0.0;   // m, at most the arrow's length
+  int sides = 6;              // of the shaft prism and the head pyramid, >= 3
+};
+
+// A force arrow as arrow_faces (force_glyphs.hpp) draws it.
+struct ArrowGlyph {
+  Vec3 tail = Vec3::Zero(), tip = Vec3::Zero();  // m
+  ArrowShape shape;
+};
+
 struct SceneObject {
   SceneLayer layer = SceneLayer::blocks;
   std::string name;  // "voussoir 3", "interface 2-3", "force 2-3", "thrust line", ...
@@ -38,6 +52,8 @@ struct SceneObject {
   int interface = -1;  // interfaces, forces: index into structure.interfaces(options.contact)
   // blocks: every edge of the block as drawn (displaced by a mechanism too).
   std::vector<std::array<Vec3, 2>> outline;
+  // forces: the arrow `mesh` holds, for a viewer that builds it itself.
+  std::optional<ArrowGlyph> arrow;
 };
 
 // Checks `options` against the structure (InvalidArgument, messages

@@ -14,6 +14,7 @@
 #include "core/text.hpp"
 #include "core/version.hpp"
 #include "io/color_map.hpp"
+#include "io/force_glyphs.hpp"
 #include "io/json_document.hpp"
 #include "io/simulation_export.hpp"
 #include "io/structure_scene.hpp"
@@ -40,6 +41,19 @@ std::string force(double newtons) {
 std::string point(const Vec3& p) {
   return "(" + readout(p.x()) + ", " + readout(p.y()) + ", " + readout(p.z()) + ") m";
 }
+
+// Coordinates are written rounded to a millionth of the structure's size
+// (the diagonal of its bounding box), at a power of ten: the few decimals a
+// picture needs (far finer than a pixel) instead of the 17 digits of a
+// single-precision number printed as a double.
+class Rounding {
+ public:
+  explicit Rounding(double size) : scale_(std::pow(10.0, 6.0 - std::floor(std::log10(size > 0.0 ? size : 1.0)))) {}
+  double operator()(double value) const { return std::round(value * scale_) / scale_; }
+
+ private:
+  double scale_;  // 10^decimals
+};
 
 using Rows = std::vector<std::pair<std::string, std::string>>;
 
@@ -69,9 +83,11 @@ Rows interface_rows(const Structure& structure, int k, const ExportOptions& opti
     rows.emplace_back("normal force",
                       force(f.normal_force) + (f.normal_force >= 0 ? " (compression)" : " (tension)"));
     if (!result->stable) rows.emplace_back("tension", force(f.tension));
-    rows.emplace_back("resultant", force(f.resultant.norm()) + " on " + structure.name(f.b));
-    rows.emplace_back("its components", "(" + readout(f.resultant.x()) + ", " + readout(f.resultant.y()) + ", " +
-                                            readout(f.resultant.z()) + ") N");
+    const ArrowForce drawn = arrow_force(structure, contact, f);
+    rows.emplace_back("resultant", force(drawn.force.norm()) + " on " + structure.name(drawn.on) + " by " +
+                                       structure.name(drawn.by));
+    rows.emplace_back("its components", "(" + readout(drawn.force.x()) + ", " + readout(drawn.force.y()) + ", " +
+                                            readout(drawn.force.z()) + ") N");
     rows.emplace_back("centre of pressure", point(f.center_of_pressure));
   }
   return rows;
@@ -92,23 +108,39 @@ Rows object_rows(const Structure& structure, const SceneObject& object, const Ex
 
 json color_json(const Rgb& c) { return json::array({c.r, c.g, c.b, c.a}); }
 
-json object_json(const Structure& structure, const SceneObject& object, const ExportOptions& options) {
+json object_json(const Structure& structure, const SceneObject& object, const ExportOptions& options,
+                 const Rounding& rounded) {
+  json info = json::array();
+  for (const auto& [key, value] : object_rows(structure, object, options)) info.push_back({key, value});
+  json item = {{"layer", kSceneLayerNames.name(object.layer)},
+               {"name", object.name},
+               {"color", color_json(object.color)},
+               {"two_sided", object.two_sided},
+               {"info", std::move(info)}};
+  if (const std::optional<ArrowGlyph>& arrow = object.arrow) {
+    // Arrows are many and alike: the page builds each from its ends and
+    // proportions, as arrow_faces does, rather than holding its facets.
+    json values = json::array();
+    for (const Vec3& p : {arrow->tail, arrow->tip}) {
+      for (int axis = 0; axis < 3; ++axis) values.push_back(rounded(p[axis]));
+    }
+    for (double size : {arrow->shape.shaft_radius, arrow->shape.head_radius, arrow->shape.head_length}) {
+      values.push_back(rounded(size));
+    }
+    values.push_back(arrow->shape.sides);
+    item["arrow"] = std::move(values);
+    return item;
+  }
   json positions = json::array(), triangles = json::array();
   for (const Vec3& p : object.mesh.positions) {
-    for (int axis = 0; axis < 3; ++axis) positions.push_back(static_cast<float>(p[axis]));
+    for (int axis = 0; axis < 3; ++axis) positions.push_back(rounded(p[axis]));
   }
   for (const auto& triangle : object.mesh.triangles) {
     for (unsigned index : triangle) triangles.push_back(index);
   }
-  json info = json::array();
-  for (const auto& [key, value] : object_rows(structure, object, options)) info.push_back({key, value});
-  return {{"layer", kSceneLayerNames.name(object.layer)},
-          {"name", object.name},
-          {"color", color_json(object.color)},
-          {"two_sided", object.two_sided},
-          {"positions", std::move(positions)},
-          {"triangles", std::move(triangles)},
-          {"info", std::move(info)}};
+  item["positions"] = std::move(positions);
+  item["triangles"] = std::move(triangles);
+  return item;
 }
 
 std::string summary(const Structure& structure, const ExportOptions& options) {
@@ -119,6 +151,21 @@ std::string summary(const Structure& structure, const ExportOptions& options) {
             kSolverStatusNames.name(result->status) + ")";
   }
   return text;
+}
+
+// The page's key: what each colour drawn means, for the layers present.
+json key_json(const ExportOptions& options, const bool present[]) {
+  json key = json::array();
+  const auto add = [&](const std::string& label, const Rgb& c) { key.push_back({{"label", label}, {"color", {c.r, c.g, c.b}}}); };
+  if (present[static_cast<int>(SceneLayer::forces)]) {
+    add("compression", options.compression_color);
+    add("tension", options.tension_color);
+  }
+  if (present[static_cast<int>(SceneLayer::interfaces)]) add("contact interfaces", options.interface_color);
+  if (present[static_cast<int>(SceneLayer::thrust)]) add("thrust line", options.thrust_color);
+  if (present[static_cast<int>(SceneLayer::cables)]) add("cables", options.cable_color);
+  if (present[static_cast<int>(SceneLayer::traces)]) add("load traces", options.trace_color);
+  return key;
 }
 
 json legend_json(const ColorScale& scale) {
@@ -206,6 +253,7 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
   scene["title"] = options.title.empty() ? file_name(path) : options.title;
   scene["summary"] = summary(structure, options);
   scene["legend"] = options.color_scale ? legend_json(*options.color_scale) : json(nullptr);
+  const Rounding rounded(structure.bounds().diagonal());
   json outline = json::array();
   double opacity = 1.0;
   bool present[kSceneLayerNames.entries.size()] = {};
@@ -218,10 +266,10 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
     }
     for (const auto& edge : object.outline) {
       for (const Vec3& p : edge) {
-        for (int axis = 0; axis < 3; ++axis) outline.push_back(static_cast<float>(p[axis]));
+        for (int axis = 0; axis < 3; ++axis) outline.push_back(rounded(p[axis]));
       }
     }
-    items.push_back(object_json(structure, object, options));
+    items.push_back(object_json(structure, object, options, rounded));
   }
   if (!outline.empty()) present[static_cast<int>(SceneLayer::edges)] = true;
   json layers = json::array();
@@ -230,6 +278,12 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
     layers.push_back({{"name", name}, {"visible", layer != SceneLayer::edges || options.edges}});
   }
   scene["layers"] = std::move(layers);
+  scene["key"] = key_json(options, present);
+  // Arrow length per newton (m/N), for the page's scale bar.
+  scene["force_scale"] = present[static_cast<int>(SceneLayer::forces)] ? json(force_arrow_scale(structure, options))
+                                                                        : json(nullptr);
+  // A planar structure (x-z plane) opens in the front view, orthographic.
+  scene["planar"] = structure.planar();
   scene["opacity"] = opacity;
   scene["edge_color"] = {options.edge_color.r, options.edge_color.g, options.edge_color.b};
   scene["outline"] = std::move(outline);
@@ -292,7 +346,7 @@ void write_viewer_page(const Structure& structure, const SimulationResult& resul
                       {"positions", std::move(positions)},
                       {"rotations", std::move(rotations)}});
   }
-  page.data["animation"] = {{"times", frames.times}, {"tracks", std::move(tracks)}};
+  page.data["animation"] = {{"times", frames.times}, {"tracks", std::move(tracks)}, {"autoplay", options.autoplay}};
   write_page(path, page.data);
 }
 

@@ -9,8 +9,13 @@
 // options.color_scale says what the colours mean, shows the name and values
 // of the block, arrow or interface under the pointer, and switches each
 // layer (blocks, edges, interfaces, forces, thrust, cables, traces) on and
-// off. The page of a simulation also plays it: play and pause, a time
-// slider, the time, and looping.
+// off. The scene also holds "key" (the colour of each role drawn, with its
+// label), "force_scale" (the arrows' metres per newton, force_arrow_scale
+// in force_glyphs.hpp, for the page's scale bar; null without arrows) and
+// "planar" (the structure lies in the x-z plane: the page opens in the
+// front view, orthographic). The page of a simulation also plays it, from
+// the moment it opens unless options.autoplay is false: play and pause, a
+// time slider, the time, and looping.
 #pragma once
 
 #include <string>

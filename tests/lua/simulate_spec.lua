@@ -93,7 +93,14 @@ describe("ashlar.simulate", function()
         :match('<script type="application/json" id="ashlar%-scene">(.-)</script>')
       assert.truthy(scene:find('"animation":{"times":[0.0,', 1, true), name)
       assert.truthy(scene:find('"tracks":[{"object":1,', 1, true), name)
+      assert.truthy(scene:find('"autoplay":true', 1, true), name)  -- plays as it opens
     end
+    sim:export(folder .. "/paused.html", { autoplay = false })
+    assert.truthy(support.read_file(folder .. "/paused.html"):find('"autoplay":false', 1, true))
+    support.expect_error({ "autoplay: a still (frame = k) does not play" },
+      function() sim:export(folder .. "/x.html", { frame = 1, autoplay = false }) end)
+    support.expect_error({ 'autoplay: applies to an animated page (.html, or format = "html")' },
+      function() sim:export(folder .. "/x.glb", { autoplay = false }) end)
     support.expect_error({ "forces: applies to a still (give frame = k)" },
       function() sim:export(folder .. "/x.html", { forces = true }) end)
     support.expect_error({ 'format: an animation is a .glb, or the HTML viewer with format = "html", got "compas"' },

@@ -72,6 +72,13 @@ describe("ashlar.export to HTML", function()
     assert.truthy(scene:find('"title":"five voussoirs"', 1, true))
     assert.truthy(scene:find('"legend":{"label":"index","lo":"0","hi":"10"', 1, true))
     assert.truthy(scene:find('["index","3"]', 1, true))  -- voussoir 3's read-out
+    -- Without a range, values none of which is negative map from 0 (a
+    -- magnitude's legend starts at nothing); a negative one keeps its own.
+    ashlar.export(s, folder .. "/from0.html", { color = { values = values }, legend = "index" })
+    assert.truthy(scene_of(folder .. "/from0.html"):find('"legend":{"label":"index","lo":"0","hi":"' .. #s .. '"', 1, true))
+    values[1] = -2
+    ashlar.export(s, folder .. "/signed.html", { color = { values = values }, legend = "index" })
+    assert.truthy(scene_of(folder .. "/signed.html"):find('"legend":{"label":"index","lo":"-2","hi":"' .. #s .. '"', 1, true))
     assert.truthy(scene:find('{"name":"edges","visible":false}', 1, true))
     assert.truthy(read(folder .. "/values.html"):find("<title>five voussoirs</title>", 1, true))
   end)

@@ -6,15 +6,20 @@
 //   OUT     a folder for the page and the screenshots
 // Every case checks that the page loads without console errors and draws
 // something; then
-//   arch: the forces and thrust line show in their colours and go when
-//         switched off, hovering or tapping the crown names its voussoir,
-//         hovering an arrow shows its interface's forces;
+//   arch: a planar arch opens in the front view, orthographic, spanning
+//         most of the width; the key names each colour drawn and the scale
+//         bar reads the arrows as a round force; the view buttons and the
+//         orthographic box change the camera and the picture; the forces
+//         and thrust line show in their colours and go when switched off,
+//         hovering or tapping the crown names its voussoir, hovering an
+//         arrow shows its interface's forces;
 //   dome: blocks coloured by height with coolwarm are red at the top and
-//         blue at the bottom, and the legend shows the map and its label;
+//         blue at the bottom, and the legend shows the map and its label,
+//         from 0;
 //   animation: a simulation's page has a player (the still pages have
-//         none); the red block it drops is lower on the screen at the last
-//         frame than at the first, and hovering it there names it; playing
-//         moves the time on, pausing stops it.
+//         none) and plays as it opens; the red block it drops is lower on
+//         the screen at the last frame than at the first, and hovering it
+//         there names it; playing moves the time on, pausing stops it.
 // Exits 77 (ctest: skipped) when chromium is not installed, 2 when
 // puppeteer-core is not (npm ci in this folder), 1 when a check fails.
 'use strict';
@@ -52,7 +57,7 @@ function check(ok, what) {
 
 // Pixel statistics of a PNG screenshot, decoded by the browser itself,
 // within `region` ([x0, y0, x1, y1], default all) and outside the viewer's
-// panels. Classes: background, saturated blue (hue 200-250), orange
+// panels. Classes: background, saturated blue (hue 190-250), orange
 // (20-50), red (<= 12 or >= 348), and everything else drawn.
 async function analyse(browser, shot, region) {
   const page = await browser.newPage();
@@ -93,7 +98,7 @@ async function analyse(browser, shot, region) {
           if (max === r) hue = (60 * (g - b) / (max - min) + 360) % 360;
           else if (max === g) hue = 60 * (b - r) / (max - min) + 120;
           else hue = 60 * (r - g) / (max - min) + 240;
-          if (hue >= 200 && hue <= 250) { counts.blue += 1; blue_points.push([x, y]); }
+          if (hue >= 190 && hue <= 250) { counts.blue += 1; blue_points.push([x, y]); }
           else if (hue >= 20 && hue <= 50) counts.orange += 1;
           else if (hue <= 12 || hue >= 348) {
             counts.red += 1;
@@ -128,8 +133,95 @@ async function info_after_hover(page, x, y) {
   return page.$eval('#info', (element) => element.innerText);
 }
 
+// What the page's camera does: the view chosen and its projection.
+async function camera_state(page) {
+  return page.evaluate(() => ({ view: document.body.dataset.view, projection: document.body.dataset.projection }));
+}
+
+// The share of pixels that differ between two screenshots.
+async function difference(browser, a, b) {
+  const page = await browser.newPage();
+  try {
+    return await page.evaluate(async (a, b) => {
+      const pixels = async (base64) => {
+        const image = new Image();
+        image.src = 'data:image/png;base64,' + base64;
+        await image.decode();
+        const canvas = document.createElement('canvas');
+        canvas.width = image.width;
+        canvas.height = image.height;
+        const context = canvas.getContext('2d');
+        context.drawImage(image, 0, 0);
+        return context.getImageData(0, 0, image.width, image.height).data;
+      };
+      const [p, q] = [await pixels(a), await pixels(b)];
+      let differ = 0;
+      for (let k = 0; k < p.length; k += 4) {
+        if (Math.abs(p[k] - q[k]) + Math.abs(p[k + 1] - q[k + 1]) + Math.abs(p[k + 2] - q[k + 2]) > 30) differ += 1;
+      }
+      return differ / (p.length / 4);
+    }, a.png, b.png);
+  } finally {
+    await page.close();
+  }
+}
+
+async function check_views(browser, page, front) {
+  // The page's scene: the arrows' scale it drew with.
+  const scene = await page.evaluate(() => JSON.parse(document.getElementById('ashlar-scene').textContent));
+  const newtons_per_metre = 1 / scene.force_scale;
+  const mantissa = newtons_per_metre / Math.pow(10, Math.floor(Math.log10(newtons_per_metre) + 1e-9));
+  check([1, 2, 5].some((m) => Math.abs(mantissa - m) < 1e-6),
+        `the automatic arrow scale is a round number: ${newtons_per_metre} N per m`);
+  const panels = await page.evaluate(() => ({
+    key: document.getElementById('key').innerText,
+    key_shown: getComputedStyle(document.getElementById('key')).display !== 'none',
+    scale: document.getElementById('scale').innerText,
+    rule: document.getElementById('scale-rule').getBoundingClientRect().width,
+  }));
+  check(panels.key_shown && ['compression', 'tension', 'contact interfaces', 'thrust line'].every((l) => panels.key.includes(l)),
+        `the key names every colour drawn: ${JSON.stringify(panels.key)}`);
+  const unit = newtons_per_metre >= 1e6 ? [1e6, 'MN'] : newtons_per_metre >= 1e3 ? [1e3, 'kN'] : [1, 'N'];
+  const note = `1 m of arrow = ${Number((newtons_per_metre / unit[0]).toPrecision(4))} ${unit[1]}`;
+  check(panels.scale.includes(note), `the scale bar says ${JSON.stringify(note)}: ${JSON.stringify(panels.scale)}`);
+  check(/force scale\s+[125]0* (N|kN|MN)\b/.test(panels.scale) && panels.rule >= 40 && panels.rule <= 126,
+        `it shows a round force, ${panels.rule.toFixed(0)} px long`);
+
+  const opening = await camera_state(page);
+  check(opening.view === 'front' && opening.projection === 'orthographic',
+        `a planar arch opens in the front view, orthographic: ${JSON.stringify(opening)}`);
+  const [left, , right] = front.box;
+  check(right - left > 0.7 * WIDTH, `and spans most of the width: ${right - left} of ${WIDTH} px`);
+
+  await page.click('#views button[data-view="top"]');
+  const top = await screenshot(page, 'arch_top.png');
+  const top_state = await camera_state(page);
+  const top_drawn = await analyse(browser, top);
+  const front_height = front.box[3] - front.box[1], top_height = top_drawn.box[3] - top_drawn.box[1];
+  check(top_state.view === 'top' && top_height < 0.6 * front_height,
+        `the top button looks down: ${JSON.stringify(top_state)}, the arch ${top_height} px deep against ${front_height} px high`);
+  await page.click('#views button[data-view="side"]');
+  const side = await screenshot(page, 'arch_side.png');
+  const side_drawn = await analyse(browser, side);
+  check((await camera_state(page)).view === 'side' && side_drawn.box[2] - side_drawn.box[0] < 0.6 * (right - left),
+        `the side button looks along the span: ${side_drawn.box[2] - side_drawn.box[0]} px wide`);
+  await page.click('#views button[data-view="iso"]');
+  const iso_ortho = await screenshot(page, 'arch_iso_orthographic.png');
+  await page.click('#orthographic');
+  const iso = await screenshot(page, 'arch_iso.png');
+  const iso_state = await camera_state(page);
+  const changed = await difference(browser, iso_ortho, iso);
+  check(iso_state.view === 'iso' && iso_state.projection === 'perspective' && changed > 0.005,
+        `the orthographic box switches to perspective: ${JSON.stringify(iso_state)}, ${(100 * changed).toFixed(1)} % of pixels change`);
+  await page.click('#orthographic');
+  await page.click('#views button[data-view="front"]');
+  const back = await camera_state(page);
+  check(back.view === 'front' && back.projection === 'orthographic', `and back: ${JSON.stringify(back)}`);
+}
+
 async function check_arch(browser, page) {
   const drawn = await analyse(browser, await screenshot(page, 'arch.png'));
+  await check_views(browser, page, drawn);
   check(drawn.drawn > 0.03 * drawn.total, `the arch covers ${(100 * drawn.drawn / drawn.total).toFixed(1)} % of the canvas`);
   check(drawn.blue > 200, `force arrows show in the compression colour (${drawn.blue} blue pixels)`);
   check(drawn.orange > 100, `the thrust line shows in orange (${drawn.orange} pixels)`);
@@ -192,6 +284,8 @@ async function check_dome(browser, page) {
     bar: getComputedStyle(element.querySelector('.bar')).backgroundImage,
   }));
   check(legend.shown && legend.text.includes('height (m)'), `the legend shows its label: ${JSON.stringify(legend.text)}`);
+  const lo = await page.$eval('#legend-lo', (element) => element.textContent);
+  check(lo === '0', `the legend of heights (none negative) starts at 0: ${JSON.stringify(lo)}`);
   const stops = [...legend.bar.matchAll(/rgb\((\d+), (\d+), (\d+)\)/g)].map((m) => m.slice(1).map(Number));
   const [first, last] = [stops[0], stops[stops.length - 1]];
   check(stops.length > 10 && first[2] > first[0] + 80 && last[0] > last[2] + 80,
@@ -203,6 +297,16 @@ async function player_time(page) {
 }
 
 async function check_animation(browser, page) {
+  // It plays as it opens; pausing and the slider bring it back to t = 0.
+  await new Promise((done) => setTimeout(done, 300));
+  const opened = await page.$eval('#play', (element) => element.textContent);
+  const played = await player_time(page);
+  check(opened === 'pause' && played > 0, `the page plays as it opens: ${played} s after 0.3 s, button ${opened}`);
+  await page.click('#play');
+  await page.$eval('#time', (slider) => {
+    slider.value = slider.min;
+    slider.dispatchEvent(new Event('input'));
+  });
   const player = await page.$eval('#player', (element) => ({
     shown: getComputedStyle(element).display !== 'none',
     button: element.querySelector('#play').textContent,

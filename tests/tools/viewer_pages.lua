@@ -1,8 +1,9 @@
 -- Writes the pages the browser tests open (tests/tools/check_viewer.js runs it):
 --   ashlar viewer_pages.lua <case> <folder>
--- arch: a 9-voussoir arch with its forces, thrust line and interfaces;
+-- arch: a 9-voussoir arch, planar, with its forces, thrust line and
+-- interfaces;
 -- dome: a small dome coloured by the height of each block (coolwarm), with
--- a legend;
+-- a legend (from 0: no value is negative);
 -- animation: a red block dropped onto the ground, where it comes to rest
 -- (sim:export's page, with its player).
 local ashlar = require "ashlar"
@@ -13,6 +14,7 @@ assert(case and folder, "usage: ashlar viewer_pages.lua arch|dome|animation <fol
 
 if case == "arch" then
   local s = models.arch{ voussoirs = 9 }
+  s:set_planar(true)
   local r = ashlar.analyze(s, { friction = 0.7 })
   assert(r.stable, "the test arch should stand")
   ashlar.export(s, folder .. "/arch.html",
@@ -20,7 +22,8 @@ if case == "arch" then
 elseif case == "dome" then
   local s = models.dome{ meridians = 8, parallels = 4 }
   local heights = {}
-  for i = 1, #s do heights[i] = s:block(i):centroid()[3] end
+  -- Above the supports' underside (z = -0.5 m): every value positive.
+  for i = 1, #s do heights[i] = s:block(i):centroid()[3] + 0.5 end
   ashlar.export(s, folder .. "/dome.html",
                 { color = { values = heights, map = "coolwarm" }, legend = "height (m)" })
 elseif case == "animation" then

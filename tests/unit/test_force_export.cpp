@@ -95,8 +95,10 @@ TEST(MeshExport, ForceArrowsAndThrustLineAreNodes) {
   EXPECT_EQ(gltf.triangles("thrust line"), 20);  // one hexagonal prism: two points
 
   // The arrow on the top block starts at its centre of pressure and points
-  // along the resultant; the largest one (on the base, carrying both
-  // blocks) is a quarter of the blocks' diagonal, 1.5 m.
+  // along the resultant (the force on the top block, the one above); the
+  // scale is the round number of newtons per metre (1, 2 or 5 x 10^k)
+  // nearest, on a log scale, the one that draws the largest (on the base,
+  // carrying both blocks) a quarter of the blocks' diagonal, 1.5 m, long.
   const InterfaceForces& top = result.interfaces[1];
   ASSERT_EQ(top.b, 2);
   Vec3 tip = top.center_of_pressure;
@@ -106,7 +108,19 @@ TEST(MeshExport, ForceArrowsAndThrustLineAreNodes) {
   const Vec3 arrow = tip - top.center_of_pressure;
   EXPECT_GT(arrow.normalized().dot(top.resultant.normalized()), 1 - 1e-6);
   const double largest = result.interfaces[0].resultant.norm();
-  EXPECT_NEAR(arrow.norm(), 0.25 * 1.5 * top.resultant.norm() / largest, 1e-6);
+  const double exact = largest / (0.25 * 1.5);  // N per m
+  double newtons_per_metre = 0.0;
+  for (double decade = 1.0; decade <= 1e9; decade *= 10.0) {
+    for (double step : {1.0, 2.0, 5.0}) {
+      const double candidate = step * decade;
+      if (newtons_per_metre == 0.0 || std::abs(std::log(candidate / exact)) < std::abs(std::log(newtons_per_metre / exact))) {
+        newtons_per_metre = candidate;
+      }
+    }
+  }
+  EXPECT_EQ(newtons_per_metre, 5e4);  // 2400 kg x 9.81 / 0.375 m = 62.8 kN/m
+  EXPECT_NEAR(arrow.norm(), top.resultant.norm() / newtons_per_metre, 1e-6);
+  EXPECT_DOUBLE_EQ(force_arrow_scale(s, forces_and_thrust(result)), 1.0 / newtons_per_metre);
 
   // Compression is blue; the blocks turn translucent to show the glyphs.
   EXPECT_GT(gltf.base_color("force 2-3")[2].get<double>(), gltf.base_color("force 2-3")[0]);
@@ -117,6 +131,50 @@ TEST(MeshExport, ForceArrowsAndThrustLineAreNodes) {
     export_structure(s, dir.file("all" + extension), forces_and_thrust(result));
   }
   EXPECT_EQ(dir.entries().size(), 2u + 7u);  // s.gltf, s.bin; all.* with .bin and .mtl
+}
+
+// The arrow of an interface is the force on the free block, or on the
+// block above, whatever the blocks' indices: a column on the ground (the
+// support numbered last, as a dome's are) gets an upward reaction; in a
+// stack numbered from the top every arrow points up.
+TEST(ForceGlyphs, ArrowsShowTheForceOnTheFreeBlockWhateverTheIndices) {
+  Structure s;
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0, 0, 0.75})), false, "top");
+  s.add(std::make_shared<const Block>(make_box({1, 1, 0.5}, {0, 0, 0.25})), false, "base");
+  s.add(std::make_shared<const Block>(make_box({4, 2, 0.5}, {0, 0, -0.25})), true, "ground");
+  const EquilibriumResult result = analyze_equilibrium(s, {});
+  ASSERT_TRUE(result.stable);
+  const auto contacts = s.interfaces({});
+  ASSERT_EQ(contacts->size(), 2u);
+  const double weight = 1200 * 9.81;  // each block: 0.5 m^3 x 2400 kg/m^3
+  for (std::size_t k = 0; k < contacts->size(); ++k) {
+    const InterfaceForces& f = result.interfaces[k];
+    const ArrowForce drawn = arrow_force(s, contacts->at(k), f);
+    const bool ground = f.b == 2;
+    // top-base: on the top block (above), by the base; base-ground: on the base, by the ground.
+    EXPECT_EQ(drawn.on, ground ? 1 : 0) << k;
+    EXPECT_EQ(drawn.by, ground ? 2 : 1) << k;
+    EXPECT_NEAR(drawn.force.z(), (ground ? 2 : 1) * weight, 1e-6 * weight) << k;
+    EXPECT_NEAR(drawn.force.head<2>().norm(), 0.0, 1e-6 * weight) << k;
+  }
+
+  // The exported arrows rise from their centres of pressure.
+  TempDir dir;
+  ExportOptions options = forces_and_thrust(result);
+  options.thrust = false;
+  export_structure(s, dir.file("s.gltf"), options);
+  const GltfFile gltf(dir, "s.gltf");
+  for (const auto& [name, k] : {std::pair<std::string, int>{"force 1-2", 0}, {"force 2-3", 1}}) {
+    const Vec3& start = result.interfaces[k].center_of_pressure;
+    double highest = -1e9, lowest = 1e9;
+    for (const Vec3& p : gltf.positions(name)) {
+      highest = std::max(highest, p.z());
+      lowest = std::min(lowest, p.z());
+    }
+    const double length = force_arrow_scale(s, options) * result.interfaces[k].resultant.norm();
+    EXPECT_NEAR(highest, start.z() + length, 1e-6) << name;
+    EXPECT_NEAR(lowest, start.z(), 1e-6) << name;
+  }
 }
 
 TEST(MeshExport, CablesAreTubesBetweenTheirEnds) {

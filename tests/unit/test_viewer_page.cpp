@@ -148,6 +148,31 @@ TEST(ViewerPage, HoldsTheSceneAndEveryScriptWhateverTheNames) {
   EXPECT_EQ(arrow["info"][0], json({"between", "base and </script><!-- top"}));
   EXPECT_EQ(arrow["info"][2][0], "normal force");
   EXPECT_EQ(arrow["info"][2][1], "11.77 kN (compression)");  // 1200 kg x 9.81
+  EXPECT_EQ(arrow["info"][3], json({"resultant", "11.77 kN on </script><!-- top by base"}));
+  // It is held as its ends and proportions (the page builds its facets):
+  // from the centre of pressure, 11.77 kN at 50 kN per m up, its shaft 6 %
+  // of the largest arrow's length (23.54 kN: 0.4709 m) wide, 6 sides.
+  ASSERT_EQ(arrow["arrow"].size(), 10u);
+  EXPECT_FALSE(arrow.contains("positions"));
+  const InterfaceForces& upper = result.interfaces[1];
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(arrow["arrow"][axis].get<double>(), upper.center_of_pressure[axis], 1e-5);
+    EXPECT_NEAR(arrow["arrow"][3 + axis].get<double>(),
+                upper.center_of_pressure[axis] + upper.resultant[axis] / 5e4, 1e-5);
+  }
+  EXPECT_NEAR(arrow["arrow"][6].get<double>(), 0.06 * 2 * 1200 * 9.81 / 5e4, 1e-5);
+  EXPECT_EQ(arrow["arrow"][9], 6);
+
+  // The key names the colour of each role drawn; the scale bar's scale:
+  // 2400 kg x 9.81 on the ground, about a quarter of the blocks'
+  // diagonal (1.5 m) long: 62.8 kN/m, rounded to 50 kN per metre.
+  std::vector<std::string> roles;
+  for (const json& entry : scene["key"]) roles.push_back(entry["label"]);
+  EXPECT_EQ(roles, (std::vector<std::string>{"compression", "tension", "thrust line"}));
+  EXPECT_EQ(scene["key"][0]["color"],
+            json({options.compression_color.r, options.compression_color.g, options.compression_color.b}));
+  EXPECT_NEAR(scene["force_scale"].get<double>(), 2e-5, 1e-17);
+  EXPECT_EQ(scene["planar"], false);
 
   // The legend: the map sampled from lo to hi.
   const json& legend = scene["legend"];
@@ -224,6 +249,7 @@ TEST(ViewerPage, AnimationTracksHoldTheSimulationsKeyFrames) {
     write_viewer_page(s, r, fps, dir.file("drop.html"), options);
     const json scene = json::parse(script_text(read_file(dir.file("drop.html")), "ashlar-scene"));
     const json& animation = scene["animation"];
+    EXPECT_EQ(animation["autoplay"], true);  // the default: it plays as it opens
     const AnimationFrames frames = animation_frames(r, fps);
     const std::size_t n = frames.times.size();
     // 30 fps: 0, 1/30, ..., then the end; 0: every recorded frame.
