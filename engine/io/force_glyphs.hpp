@@ -66,7 +66,7 @@ struct NamedGlyph {
   Rgb color;
   SceneLayer layer;
   int interface = -1;  // forces: the arrow's interface (index into result.interfaces)
-  std::optional<ArrowGlyph> arrow;  // forces: what `faces` draws
+  std::optional<ArrowGlyph> arrow = std::nullopt;  // forces: what `faces` draws
 };
 
 // Every cable as a tube, node "cable c" (1-based), the load traces as one
