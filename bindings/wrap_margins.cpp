@@ -156,7 +156,13 @@ std::optional<LoadFactorRecord> to_load_factor(lua_State* L, int idx, int arg, c
   if (lua_type(L, idx) != LUA_TTABLE) return std::nullopt;
   const bool factor = get_field(L, idx, "factor") == LUA_TNUMBER;
   const bool load = get_field(L, idx, "load") == LUA_TSTRING;
-  lua_pop(L, 2);
+  const bool kinematic = get_field(L, idx, "method") == LUA_TSTRING &&
+                         lua_tostring(L, -1) == std::string(kAnalysisMethodNames.name(AnalysisMethod::kinematic));
+  lua_pop(L, 3);
+  if (factor && kinematic) {
+    throw ArgError(arg, what + ": a load factor of the kinematic method has no equilibrium at its factor (its "
+                               "mechanism is the analysis's just above it): give that analysis's Result");
+  }
   if (!factor || !load) return std::nullopt;
   LoadFactorRecord record;
   get_field(L, idx, "factor");

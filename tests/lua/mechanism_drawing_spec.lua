@@ -81,23 +81,25 @@ local function model_points(s)
 end
 
 
--- Block i's vertices as the mechanism moves it by `distance` (the fastest centroid that far): turned about
--- its centroid by distance x |rotation| (Rodrigues' formula), then shifted by distance x velocity.
-local function moved_vertices(s, motion, i, distance)
+-- Point v of block i as the mechanism moves the block by `distance` (the fastest centroid that far): turned
+-- about its centroid by distance x |rotation| (Rodrigues' formula), then shifted by distance x velocity.
+local function moved_point(s, motion, i, distance, v)
   local m, c = motion[i], s:block(i):centroid()
   local w = m.rotation
   local angle = distance * math.sqrt(w[1] ^ 2 + w[2] ^ 2 + w[3] ^ 2)
   local k = angle > 0 and { w[1] * distance / angle, w[2] * distance / angle, w[3] * distance / angle } or { 0, 0, 0 }
   local cos, sin = math.cos(angle), math.sin(angle)
+  local d = { v[1] - c[1], v[2] - c[2], v[3] - c[3] }
+  local kd = k[1] * d[1] + k[2] * d[2] + k[3] * d[3]
+  local cross = { k[2] * d[3] - k[3] * d[2], k[3] * d[1] - k[1] * d[3], k[1] * d[2] - k[2] * d[1] }
+  local p = {}
+  for a = 1, 3 do p[a] = c[a] + d[a] * cos + cross[a] * sin + k[a] * kd * (1 - cos) + distance * m.velocity[a] end
+  return p
+end
+
+local function moved_vertices(s, motion, i, distance)
   local moved = {}
-  for _, v in ipairs(s:block(i):vertices()) do
-    local d = { v[1] - c[1], v[2] - c[2], v[3] - c[3] }
-    local kd = k[1] * d[1] + k[2] * d[2] + k[3] * d[3]
-    local cross = { k[2] * d[3] - k[3] * d[2], k[3] * d[1] - k[1] * d[3], k[1] * d[2] - k[2] * d[1] }
-    local p = {}
-    for a = 1, 3 do p[a] = c[a] + d[a] * cos + cross[a] * sin + k[a] * kd * (1 - cos) + distance * m.velocity[a] end
-    moved[#moved + 1] = p
-  end
+  for _, v in ipairs(s:block(i):vertices()) do moved[#moved + 1] = moved_point(s, motion, i, distance, v) end
   return moved
 end
 
@@ -300,17 +302,42 @@ describe("ashlar.draw and ashlar.export of a load factor's result", function()
       near(nearest, 0, 1e-6, "support left")
     end
     assert.is_truthy(groups["thrust line"])
-    -- A rod per hinge, centred on its pivot (the joints run the arch's whole depth, symmetric about y = 0).
+    -- A rod per hinge, centred on its pivot (the joints run the arch's whole depth, symmetric about y = 0),
+    -- moved with the joint's free block (a, or b when a is a support).
     for _, limit in ipairs(f.limit) do
+      local carrier = s:is_support(limit.a) and limit.b or limit.a
+      local centre = moved_point(s, f.mechanism, carrier, distance, limit.pivot)
       local rod = groups[("hinge %d-%d"):format(limit.a, limit.b)]
       assert.is_truthy(rod, "hinge " .. limit.a .. "-" .. limit.b)
       local c = { 0, 0, 0 }
       for _, p in ipairs(rod.points) do for a = 1, 3 do c[a] = c[a] + p[a] / #rod.points end end
-      near(distance3(c, limit.pivot), 0, 1e-5, "rod of hinge " .. limit.a .. "-" .. limit.b)
+      near(distance3(c, centre), 0, 1e-5, "rod of hinge " .. limit.a .. "-" .. limit.b)
     end
     -- limit = false: no rods.
     ashlar.export(s, path, { result = f, limit = false })
     assert.is_nil(obj_groups(support.read_file(path))[("hinge %d-%d"):format(f.limit[1].a, f.limit[1].b)])
+  end)
+
+  it("marks an unstable kinematic analysis's hinges with limit = true, and none by default", function()
+    -- t/R 0.09 is below the 24-voussoir minimum (0.1071): it falls without sliding.
+    local thin = models.arch{ radius = 1, thickness = 0.09, voussoirs = n }
+    local r = ashlar.analyze(thin, { friction = math.huge, method = "kinematic" })
+    assert.is_false(r.stable)
+    local hinges = 0
+    for _, limit in ipairs(r.limit) do
+      if limit.mode == "hinge" or limit.mode == "hinge_sliding" then hinges = hinges + 1 end
+    end
+    assert.is_true(hinges >= 4)
+    local function dots(options)
+      ashlar.draw(thin, dir .. "/kinematic.svg", options)
+      local count = 0
+      for _, p in ipairs(with_fill(svg_paths(support.read_file(dir .. "/kinematic.svg")), "0%,0%,0%")) do
+        if p.d:find("C", 1, true) then count = count + 1 end
+      end
+      return count
+    end
+    assert.equal(hinges, dots{ result = r, limit = true, mechanism = 0.1 })
+    assert.equal(0, dots{ result = r })
   end)
 
   it("reports bad mechanism options clearly", function()
@@ -321,6 +348,8 @@ describe("ashlar.draw and ashlar.export of a load factor's result", function()
                       mechanism = f.mechanism, limit = { { interface = 999, mode = "hinge", pivot = { 0, 0, 0 } } } }
     expect_error({ "limit interface 999 is not one of the structure's" },
                  function() ashlar.draw(s, dir .. "/x.svg", { result = damaged }) end)
+    expect_error({ "a load factor of the kinematic method has no equilibrium at its factor" },
+                 function() ashlar.draw(s, dir .. "/x.svg", { result = { factor = 0.1, method = "kinematic" } }) end)
     damaged.limit, damaged.friction = f.limit, "high"
     expect_error({ "result.friction: expected a number >= 0", "string" },
                  function() ashlar.draw(s, dir .. "/x.svg", { result = damaged }) end)
