@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -139,24 +140,25 @@ struct ProjectedFace {
   int block = -1;
 };
 
-// The blocks as drawn: where they stand, or the free ones moved by the
-// options' mechanism (mechanism_scale > 0).
-std::vector<Block> drawn_blocks(const Structure& structure, const ElevationOptions& options, bool moved) {
+// The free blocks moved by the options' mechanism, the supports where
+// they stand.
+std::vector<Block> moved_blocks(const Structure& structure, const ElevationOptions& options) {
   std::vector<Block> blocks;
   for (int i = 0; i < structure.size(); ++i) {
-    const bool moves = moved && !structure.is_support(i);
-    blocks.push_back(moves ? moved_by_mechanism(structure.block(i), (*options.mechanism)[i], options.mechanism_scale)
-                           : structure.block(i));
+    blocks.push_back(structure.is_support(i)
+                         ? structure.block(i)
+                         : moved_by_mechanism(structure.block(i), (*options.mechanism)[i], options.mechanism_scale));
   }
   return blocks;
 }
 
-// Every face of every block that turns towards the viewer, farthest first;
-// faces at equal depth stay in block order.
-std::vector<ProjectedFace> visible_faces(const std::vector<Block>& blocks, const ElevationProjection& projection) {
+// Every face of every block (block_of(i), i < count) that turns towards the
+// viewer, farthest first; faces at equal depth stay in block order.
+std::vector<ProjectedFace> visible_faces(int count, const std::function<const Block&(int)>& block_of,
+                                         const ElevationProjection& projection) {
   std::vector<ProjectedFace> faces;
-  for (int i = 0; i < static_cast<int>(blocks.size()); ++i) {
-    const Block& block = blocks[i];
+  for (int i = 0; i < count; ++i) {
+    const Block& block = block_of(i);
     for (size_t f = 0; f < block.faces().size(); ++f) {
       if (block.face_planes()[f].normal.dot(projection.view()) > -kFacingViewer) continue;
       ProjectedFace face;
@@ -179,7 +181,8 @@ std::vector<ProjectedFace> visible_faces(const std::vector<Block>& blocks, const
 void paint_blocks(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
                   const ElevationOptions& options, const Metrics& metrics) {
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for (const ProjectedFace& face : visible_faces(drawn_blocks(structure, options, false), projection)) {
+  const auto standing = [&](int i) -> const Block& { return structure.block(i); };
+  for (const ProjectedFace& face : visible_faces(structure.size(), standing, projection)) {
     const bool support = structure.is_support(face.block);
     const Rgb fill = options.block_colors.empty() ? (support ? kSupportFill : kFreeBlockFill)
                                                   : options.block_colors[face.block];
@@ -302,7 +305,9 @@ void paint_displaced(cairo_t* cr, const Structure& structure, const ElevationPro
   cairo_set_line_width(cr, 1.2 * metrics.line);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   set_color(cr, options.mechanism_color);
-  for (const ProjectedFace& face : visible_faces(drawn_blocks(structure, options, true), projection)) {
+  const std::vector<Block> moved = moved_blocks(structure, options);
+  const auto moved_of = [&](int i) -> const Block& { return moved[i]; };
+  for (const ProjectedFace& face : visible_faces(structure.size(), moved_of, projection)) {
     if (structure.is_support(face.block)) continue;
     cairo_new_path(cr);
     for (size_t k = 0; k < face.outline.size(); ++k) move_or_line(cr, face.outline[k], k == 0);
@@ -398,7 +403,7 @@ std::vector<Vec3> fitted_points(const Structure& structure, const ElevationOptio
     points.insert(points.end(), vertices.begin(), vertices.end());
   }
   if (options.mechanism_scale > 0.0) {
-    for (const Block& block : drawn_blocks(structure, options, true)) {
+    for (const Block& block : moved_blocks(structure, options)) {
       points.insert(points.end(), block.vertices().begin(), block.vertices().end());
     }
   }
