@@ -104,7 +104,7 @@ int w_Simulation_export(lua_State* L) {
     }
     const bool html = format || file_extension(path) == "html";
     for (const char* key : {"interfaces", "tolerance", "result", "forces", "thrust", "force_scale", "cable_color",
-                            "traces", "trace_color", "mechanism"}) {
+                            "traces", "trace_color", "mechanism", "limit"}) {
       if (options.has(key)) {
         throw ArgError(3, std::string(key) + ": applies to a still (give frame = k); an animation takes color and "
                                              "fps, and as a page (.html) legend, opacity, edges and title too");

@@ -99,7 +99,7 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
     const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
     compas.result = result.get();
     for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
-                            "traces", "trace_color", "mechanism", "edges", "title", "legend"}) {
+                            "traces", "trace_color", "mechanism", "edges", "title", "legend", "limit"}) {
       if (options.has(key)) {
         throw ArgError(options.arg(), std::string(key) + ": does not apply to a COMPAS assembly (.json), which "
                                                          "holds blocks, supports, interfaces and, with result, "
@@ -121,10 +121,13 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
   ExportOptions exported = block_appearance(L, options, s.size(), html);
   exported.interfaces = options.boolean("interfaces").value_or(false);
   exported.contact.tolerance = options.positive("tolerance", 0.0, true);
-  const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
-  exported.result = result.get();
+  const ResultOption result = result_with_mechanism(L, options, s, exported.contact);
+  exported.result = result.analysis.get();
+  exported.mechanism = result.mechanism();
+  if (options.boolean("limit").value_or(result.factor.has_value())) exported.limit = result.limit();
   exported.forces = options.boolean("forces").value_or(false);
-  exported.thrust = options.boolean("thrust").value_or(false);
+  // A load factor's result is drawn for its limit state: the thrust line at the factor.
+  exported.thrust = options.boolean("thrust").value_or(result.factor.has_value());
   exported.force_scale = options.positive("force_scale", 0.0, true);
   exported.mechanism_scale = options.positive("mechanism", 0.0, true);
   if (options.push("cable_color") != LUA_TNIL) {

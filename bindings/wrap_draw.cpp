@@ -15,6 +15,7 @@
 #include "wrap_colors.hpp"
 #include "wrap_Result.hpp"
 #include "wrap_Structure.hpp"
+#include "wrap_margins.hpp"
 
 namespace ashlar::lua {
 namespace {
@@ -49,12 +50,21 @@ int w_draw(lua_State* L) {
     const Structure& s = *structure;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"result", "thrust", "forces", "force_scale", "view", "width",
-                                     "height", "title", "color", "thrust_color", "tolerance"});
+                                     "height", "title", "color", "thrust_color", "tolerance", "limit", "mechanism",
+                                     "mechanism_color"});
     ElevationOptions drawing;
     drawing.block_colors = block_colors(L, options, s.size());
     drawing.contact.tolerance = options.positive("tolerance", 0.0, true);
-    const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
-    drawing.result = result.get();
+    const ResultOption result = result_with_mechanism(L, options, s, drawing.contact);
+    drawing.result = result.analysis.get();
+    // An analysis's drawing keeps its look; a load factor's is of its limit state.
+    if (options.boolean("limit").value_or(result.factor.has_value())) drawing.limit = result.limit();
+    drawing.mechanism = result.mechanism();
+    drawing.mechanism_scale = options.positive("mechanism", 0.0, true);
+    if (options.push("mechanism_color") != LUA_TNIL) {
+      drawing.mechanism_color = to_rgb(L, -1, options.arg(), "mechanism_color");
+    }
+    lua_pop(L, 1);
     // Drawing a result mostly means drawing its line of thrust.
     drawing.thrust = options.boolean("thrust").value_or(drawing.result != nullptr);
     drawing.forces = options.boolean("forces").value_or(false);

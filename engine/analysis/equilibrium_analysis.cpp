@@ -161,6 +161,26 @@ bool EquilibriumAnalysis::carries_alone(Eigen::VectorXd load, int max_iterations
   return info.status == SolverStatus::certified;
 }
 
+namespace {
+
+// What the optimum's multipliers leave moving at a joint that does not move,
+// in the program's dual units (mechanism.hpp: dual_unit). At the optimum a
+// vertex carrying a force x (compression or friction, scaled) closes or
+// slips at force_weight / n * x, the force regularisation's gradient, where
+// a vertex that must open (it carries the tension the verdict needs) opens
+// at 1 or more, the linear penalty's; the solver's tolerance bounds the
+// rest. Ten times their sum: the arch at 1.02 times its load factor keeps
+// its four hinges and drops the joints that closed or slipped at a few
+// 1e-7 of the fastest block.
+double limit_noise(const AnalysisSettings& settings, const EquilibriumProblem& problem, const Eigen::VectorXd& x) {
+  constexpr double kMargin = 10.0;
+  const double largest = x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
+  return kMargin * (settings.problem.force_weight / std::max(problem.body_count, 1) * largest +
+                    settings.solver.tolerance);
+}
+
+}  // namespace
+
 EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   if (!structure_) throw std::logic_error("EquilibriumAnalysis::solve: a QP without a structure (solve_qp)");
   if (!floating_gaps_found_ && !problem_.floating_blocks.empty()) {  // part of the setup
@@ -213,8 +233,10 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
     result.infeasibility = result.stable ? 0.0 : penalised / bodies;
     result.penalty = info.objective / bodies;
     if (!result.stable) {
-      result.mechanism = mechanism_of(*structure_, problem_, solution_.y.data());
-      result.limit = limit_interfaces(*structure_, interfaces, result.mechanism);
+      double dual_unit = 0.0;
+      result.mechanism = mechanism_of(*structure_, problem_, solution_.y.data(), &dual_unit);
+      result.limit = limit_interfaces(*structure_, interfaces, result.mechanism,
+                                      dual_unit > 0.0 ? limit_noise(settings_, problem_, x) / dual_unit : 0.0);
     }
   }
   result.seconds = setup_seconds_ + seconds_since(start);

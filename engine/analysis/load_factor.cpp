@@ -172,6 +172,31 @@ std::vector<Eigen::Matrix<double, 6, 1>> pattern_rhs(const Structure& structure,
   return rhs;
 }
 
+}  // namespace
+
+Structure structure_at_factor(const Structure& structure, const LoadFactorSettings& settings, double factor) {
+  if (!std::isfinite(factor)) {
+    throw InvalidArgument("load factor: the structure at the factor needs a finite factor, got " +
+                          std::to_string(factor));
+  }
+  Structure loaded = structure;
+  if (settings.pattern == LoadPattern::body_force) {
+    if (!(settings.direction.norm() > 0.0)) throw InvalidArgument("load factor: direction must not be zero");
+    const Vec3 direction = settings.direction.normalized();
+    for (int j = 0; j < structure.size(); ++j) {
+      if (structure.is_support(j)) continue;
+      const Block& block = structure.block(j);
+      loaded.add_load({j, factor * block.mass() * kGravity * direction, block.centroid()});
+    }
+  } else {
+    loaded.clear_loads();
+    for (const PointLoad& load : structure.loads()) loaded.add_load({load.block, factor * load.force, load.at});
+  }
+  return loaded;
+}
+
+namespace {
+
 // Iterations the live load's own verdict (live_load_stands_alone) is
 // given. Over a sweep of 72 load factors (an arch, domes, a vault, a wall
 // planar and 3D; six directions; mu = 0.7 and no sliding) the 20 unbounded

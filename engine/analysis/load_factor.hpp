@@ -64,6 +64,14 @@ struct LoadFactor {
 LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& settings,
                        const ProgressCount& progress = {});
 
+// The structure with the load that `factor` multiplies applied as point
+// loads: a body force factor * weight * direction at every free block's
+// centroid added (body_force), or its point loads multiplied by factor
+// (point_loads). Analysed at the load factor, it is the equilibrium at the
+// limit, whose line of thrust touches the hinges. Throws InvalidArgument
+// for a non-finite factor or a zero direction.
+Structure structure_at_factor(const Structure& structure, const LoadFactorSettings& settings, double factor);
+
 struct FrictionDemandSettings {
   // The cone approximation (friction_model, friction_sides) and the
   // contacts; its friction is ignored: it is what the search finds.

@@ -45,13 +45,28 @@ struct BlockMotion {
 // The blocks' virtual motions from the multipliers of the balance rows
 // (problem.row_count of them, scaled as the problem): with their sign
 // negated, the direction in which the loads do positive work. Supports and
-// unanalysed blocks stand still.
+// unanalysed blocks stand still. `dual_unit`, when given, receives what one
+// mechanism unit of a vertex's relative velocity along a contact force is
+// in the program's dual units (the multipliers times the force's column):
+// the rate, per scaled unit of that force, at which it changes the
+// objective.
 std::vector<BlockMotion> mechanism_of(const Structure& structure, const EquilibriumProblem& problem,
-                                      const double* multipliers);
+                                      const double* multipliers, double* dual_unit = nullptr);
 
-// Interfaces whose vertices move apart in the mechanism, relative to the
-// fastest relative motion anywhere (smaller is numerical noise).
+// The block as the mechanism moves it, rigidly: turned about its centroid
+// by scale x |rotation|, then shifted by scale x velocity (scale in m per
+// mechanism unit: the fastest centroid moves scale metres).
+Block moved_by_mechanism(const Block& block, const BlockMotion& motion, double scale);
+// Point p of a block whose centroid is `centroid`, moved likewise.
+Vec3 moved_point(const Vec3& p, const Vec3& centroid, const BlockMotion& motion, double scale);
+
+// Interfaces whose vertices move apart in the mechanism: by more than 1e-6
+// of the fastest relative motion anywhere and by more than `noise`
+// (mechanism units: what the multipliers' accuracy leaves moving at joints
+// that do not move; 0 for the exact multipliers of a simplex vertex).
+// Opening and slip count towards the mode only above 1e-3 of the
+// interface's own fastest vertex and above `noise` likewise.
 std::vector<LimitInterface> limit_interfaces(const Structure& structure, const std::vector<Interface>& interfaces,
-                                             const std::vector<BlockMotion>& motion);
+                                             const std::vector<BlockMotion>& motion, double noise = 0.0);
 
 }  // namespace ashlar

@@ -10,10 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <sstream>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/mechanism.hpp"
 #include "core/error.hpp"
 #include "io/cairo_canvas.hpp"
 #include "io/option_checks.hpp"
@@ -109,6 +111,27 @@ void check_options(const Structure& structure, const ElevationOptions& options) 
   }
   check_result_of_structure(structure, options.result, options.forces, options.thrust,
                             options.contact, "draw");
+  check_color(options.mechanism_color, "mechanism_color", "draw");
+  if (!(options.mechanism_scale >= 0.0) || !std::isfinite(options.mechanism_scale)) {
+    throw InvalidArgument("draw: mechanism must be a finite distance >= 0 (m), got " +
+                          std::to_string(options.mechanism_scale));
+  }
+  if (options.mechanism_scale > 0.0 && !options.mechanism) {
+    throw InvalidArgument("draw: mechanism needs a result with a mechanism (a load factor's, or an unstable analysis's)");
+  }
+  if (options.mechanism && options.mechanism->size() != static_cast<size_t>(structure.size())) {
+    throw InvalidArgument("draw: the mechanism has " + std::to_string(options.mechanism->size()) +
+                          " blocks, the structure " + std::to_string(structure.size()));
+  }
+  if (options.limit) {
+    const size_t count = structure.interfaces(options.contact)->size();
+    for (const LimitInterface& entry : *options.limit) {
+      if (entry.interface < 0 || static_cast<size_t>(entry.interface) >= count) {
+        throw InvalidArgument("draw: a limit interface " + std::to_string(entry.interface + 1) +
+                              " is not one of the structure's " + std::to_string(count) + " interfaces");
+      }
+    }
+  }
 }
 
 struct ProjectedFace {
@@ -117,13 +140,25 @@ struct ProjectedFace {
   int block = -1;
 };
 
-// Every face of every block that turns towards the viewer, farthest first;
-// faces at equal depth stay in block order.
-std::vector<ProjectedFace> visible_faces(const Structure& structure,
+// The free blocks moved by the options' mechanism, the supports where
+// they stand.
+std::vector<Block> moved_blocks(const Structure& structure, const ElevationOptions& options) {
+  std::vector<Block> blocks;
+  for (int i = 0; i < structure.size(); ++i) {
+    blocks.push_back(structure.is_support(i)
+                         ? structure.block(i)
+                         : moved_by_mechanism(structure.block(i), (*options.mechanism)[i], options.mechanism_scale));
+  }
+  return blocks;
+}
+
+// Every face of every block (block_of(i), i < count) that turns towards the
+// viewer, farthest first; faces at equal depth stay in block order.
+std::vector<ProjectedFace> visible_faces(int count, const std::function<const Block&(int)>& block_of,
                                          const ElevationProjection& projection) {
   std::vector<ProjectedFace> faces;
-  for (int i = 0; i < structure.size(); ++i) {
-    const Block& block = structure.block(i);
+  for (int i = 0; i < count; ++i) {
+    const Block& block = block_of(i);
     for (size_t f = 0; f < block.faces().size(); ++f) {
       if (block.face_planes()[f].normal.dot(projection.view()) > -kFacingViewer) continue;
       ProjectedFace face;
@@ -146,7 +181,8 @@ std::vector<ProjectedFace> visible_faces(const Structure& structure,
 void paint_blocks(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
                   const ElevationOptions& options, const Metrics& metrics) {
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for (const ProjectedFace& face : visible_faces(structure, projection)) {
+  const auto standing = [&](int i) -> const Block& { return structure.block(i); };
+  for (const ProjectedFace& face : visible_faces(structure.size(), standing, projection)) {
     const bool support = structure.is_support(face.block);
     const Rgb fill = options.block_colors.empty() ? (support ? kSupportFill : kFreeBlockFill)
                                                   : options.block_colors[face.block];
@@ -260,6 +296,63 @@ void paint_thrust(cairo_t* cr, const Structure& structure, const ElevationProjec
   cairo_fill(cr);
 }
 
+// The free blocks displaced by the mechanism, outlined with dashes over the
+// structure.
+void paint_displaced(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
+                     const ElevationOptions& options, const Metrics& metrics) {
+  const double dash[] = {5.0 * metrics.line, 3.0 * metrics.line};
+  cairo_set_dash(cr, dash, 2, 0.0);
+  cairo_set_line_width(cr, 1.2 * metrics.line);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  set_color(cr, options.mechanism_color);
+  const std::vector<Block> moved = moved_blocks(structure, options);
+  const auto moved_of = [&](int i) -> const Block& { return moved[i]; };
+  for (const ProjectedFace& face : visible_faces(structure.size(), moved_of, projection)) {
+    if (structure.is_support(face.block)) continue;
+    cairo_new_path(cr);
+    for (size_t k = 0; k < face.outline.size(); ++k) move_or_line(cr, face.outline[k], k == 0);
+    cairo_close_path(cr);
+    cairo_stroke(cr);
+  }
+  cairo_set_dash(cr, nullptr, 0, 0.0);
+}
+
+// A marker per limit interface: a filled dot at a hinge's pivot, a hollow
+// square at a sliding joint's centre (both for hinge_sliding), a hollow
+// circle at a separating joint's centre; black with a white rim, on top.
+void paint_limit(cairo_t* cr, const Structure& structure, const ElevationProjection& projection,
+                 const ElevationOptions& options, const Metrics& metrics) {
+  const std::shared_ptr<const std::vector<Interface>> interfaces = structure.interfaces(options.contact);
+  const double size = 5.0 * metrics.line;
+  const auto stroke = [&](bool fill) {
+    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+    cairo_set_line_width(cr, 3.0 * metrics.line);
+    cairo_stroke_preserve(cr);
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    cairo_set_line_width(cr, 1.5 * metrics.line);
+    if (fill) cairo_fill_preserve(cr);
+    cairo_stroke(cr);
+  };
+  for (const LimitInterface& entry : *options.limit) {
+    const Vec2 centre = projection((*interfaces)[entry.interface].center);
+    const Vec2 pivot = projection(entry.pivot);
+    if (entry.mode == LimitMode::sliding || entry.mode == LimitMode::hinge_sliding) {
+      cairo_new_path(cr);
+      cairo_rectangle(cr, centre.x() - size, centre.y() - size, 2.0 * size, 2.0 * size);
+      stroke(false);
+    }
+    if (entry.mode == LimitMode::hinge || entry.mode == LimitMode::hinge_sliding) {
+      cairo_new_path(cr);
+      cairo_arc(cr, pivot.x(), pivot.y(), size, 0.0, 2.0 * kPi);
+      stroke(true);
+    } else if (entry.mode == LimitMode::separation) {
+      cairo_new_path(cr);
+      cairo_arc(cr, centre.x(), centre.y(), size, 0.0, 2.0 * kPi);
+      stroke(false);
+    }
+  }
+}
+
 // A bar of round length under the drawing's left end, half black and half
 // white, with its length written after it.
 void paint_scale_bar(cairo_t* cr, const ElevationProjection& projection, const ImageRect& fitted,
@@ -301,11 +394,18 @@ double title_band(const ElevationOptions& options, const Metrics& metrics) {
   return options.title.empty() ? 0.0 : 2.2 * metrics.font;
 }
 
-std::vector<Vec3> fitted_points(const Structure& structure) {
+// Every block vertex and cable end, and the moved blocks' vertices when
+// the mechanism is drawn.
+std::vector<Vec3> fitted_points(const Structure& structure, const ElevationOptions& options) {
   std::vector<Vec3> points;
   for (int i = 0; i < structure.size(); ++i) {
     const auto& vertices = structure.block(i).vertices();
     points.insert(points.end(), vertices.begin(), vertices.end());
+  }
+  if (options.mechanism_scale > 0.0) {
+    for (const Block& block : moved_blocks(structure, options)) {
+      points.insert(points.end(), block.vertices().begin(), block.vertices().end());
+    }
   }
   for (const Cable& cable : structure.cables()) {
     points.push_back(cable.from.point);
@@ -397,7 +497,8 @@ ElevationProjection elevation_projection(const Structure& structure,
                                          const ElevationOptions& options) {
   if (structure.size() == 0) throw InvalidArgument("draw: the structure has no blocks");
   try {
-    return ElevationProjection(options.view_direction, fitted_points(structure),
+    return ElevationProjection(options.view_direction,
+                               fitted_points(structure, options),
                                elevation_area(options));
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(std::string("draw: ") + e.what());
@@ -409,7 +510,7 @@ void draw_elevation(const Structure& structure, const std::string& path,
   const ImageFormat format = drawing_format(path, "draw");
   check_options(structure, options);
   const ElevationProjection projection = elevation_projection(structure, options);
-  const ImageRect fitted = covered_rect(projection, fitted_points(structure));
+  const ImageRect fitted = covered_rect(projection, fitted_points(structure, options));
   const Metrics metrics(options.width, options.height);
   render_file(path, format, options.width, options.height, "draw", [&](cairo_t* cr) {
     paint_blocks(cr, structure, projection, options, metrics);
@@ -417,6 +518,8 @@ void draw_elevation(const Structure& structure, const std::string& path,
     // Arrows run along the thrust line: on top, so that they show.
     if (options.thrust) paint_thrust(cr, structure, projection, options, metrics);
     if (options.forces) paint_forces(cr, structure, projection, options, metrics);
+    if (options.mechanism_scale > 0.0) paint_displaced(cr, structure, projection, options, metrics);
+    if (options.limit) paint_limit(cr, structure, projection, options, metrics);
     paint_scale_bar(cr, projection, fitted, options.height, metrics);
     if (!options.title.empty()) paint_title(cr, options.title, options.width, metrics);
   });

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/mechanism.hpp"
 #include "core/types.hpp"
 #include "io/image_rect.hpp"
 #include "io/mesh_io.hpp"
@@ -75,6 +76,20 @@ struct ElevationOptions {
   // mean size (bounding-box diagonal) of the free blocks.
   double force_scale = 0.0;
   Rgb thrust_color{0.93, 0.26, 0.05};
+
+  // A collapse mechanism (ashlar.load_factor's, or an unstable analysis's),
+  // not owned, outliving the call; none when null. `limit` (interface
+  // indices into structure.interfaces(contact)) gets markers: a filled dot
+  // at a hinge's pivot, a hollow square at a sliding joint's centre (both
+  // for hinge_sliding), a hollow circle at a separating joint's centre.
+  const std::vector<LimitInterface>* limit = nullptr;
+  // One motion per block; with mechanism_scale > 0 (m) the free blocks are
+  // outlined (dashed, mechanism_color) where the mechanism moves them:
+  // moved_by_mechanism, the fastest centroid mechanism_scale metres (as the
+  // export's ExportOptions::mechanism_scale); 0 draws none.
+  const std::vector<BlockMotion>* mechanism = nullptr;
+  double mechanism_scale = 0.0;
+  Rgb mechanism_color{0.45, 0.1, 0.55};
 };
 
 

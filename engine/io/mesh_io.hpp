@@ -14,6 +14,8 @@
 namespace ashlar {
 
 struct EquilibriumResult;
+struct BlockMotion;
+struct LimitInterface;
 
 struct ImportOptions {
   double density = kDefaultDensity;  // kg/m^3 for every imported block
@@ -130,8 +132,23 @@ struct ExportOptions {
   // How the result's mechanism moves the blocks: each free block drawn
   // displaced by its virtual motion (a rigid motion: rotation about its
   // centroid, then translation), scaled so that the fastest centroid moves
-  // this far (m). 0: blocks where they are. Needs an unstable result.
+  // this far (m). 0: blocks where they are. Needs a mechanism: `mechanism`,
+  // or an unstable result's.
   double mechanism_scale = 0.0;
+  // A collapse mechanism that is not the result's (ashlar.load_factor's,
+  // whose `result` is the equilibrium at its factor): one motion per block;
+  // not owned. Null: the result's own, if any.
+  const std::vector<BlockMotion>* mechanism = nullptr;
+  // The interfaces at their limit (indices into
+  // structure.interfaces(contact)), marked in a layer "limit": a hinge as a
+  // rod along its axis (the blocks' relative rotation) across the joint,
+  // node "hinge a-b"; a sliding or separating joint as a flat disc on the
+  // joint at its centre, node "sliding a-b" or "separation a-b"
+  // (hinge_sliding gets both). Radii 4 % (rod) and 15 % (disc) of the mean
+  // free-block size. Not owned; null or empty: none.
+  const std::vector<LimitInterface>* limit = nullptr;
+  Rgb hinge_color{0.05, 0.05, 0.05};
+  Rgb sliding_color{0.1, 0.45, 0.95};
 };
 
 // Format from the extension: .glb, .gltf (glTF 2.0), .obj, .ply, .stl, or

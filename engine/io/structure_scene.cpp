@@ -12,11 +12,14 @@
 // drawn, since they run inside the blocks.
 #include "io/structure_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <string>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/mechanism.hpp"
 #include "core/error.hpp"
 #include "core/text.hpp"
 #include "geometry/polygon.hpp"
@@ -26,6 +29,66 @@
 
 namespace ashlar {
 namespace {
+
+// The markers of the limit interfaces (ExportOptions::limit): a rod along
+// a hinge's axis, the relative rotation of its blocks (the joint's first
+// tangent without a mechanism), spanning the joint's vertices along it; a
+// disc on a sliding or separating joint.
+std::vector<NamedGlyph> limit_glyphs(const Structure& structure, const ExportOptions& options,
+                                     const std::vector<BlockMotion>* motion) {
+  const std::shared_ptr<const std::vector<Interface>> contacts = structure.interfaces(options.contact);
+  const double size = mean_free_block_size(structure);
+  std::vector<NamedGlyph> glyphs;
+  for (const LimitInterface& entry : *options.limit) {
+    const Interface& contact = (*contacts)[entry.interface];
+    // With the blocks moved, the marker moves with the joint's free block (a, unless a is a support).
+    const int carrier = structure.is_support(contact.a) ? contact.b : contact.a;
+    const bool carried = options.mechanism_scale > 0.0 && motion && !structure.is_support(carrier);
+    const auto place = [&](GlyphFaces faces) {
+      if (!carried) return faces;
+      for (std::vector<Vec3>& face : faces) {
+        for (Vec3& p : face) {
+          p = moved_point(p, structure.block(carrier).centroid(), (*motion)[carrier], options.mechanism_scale);
+        }
+      }
+      return faces;
+    };
+    const std::string pair = std::to_string(contact.a + 1) + "-" + std::to_string(contact.b + 1);
+    const bool hinge = entry.mode == LimitMode::hinge || entry.mode == LimitMode::hinge_sliding;
+    const bool moves = entry.mode != LimitMode::hinge;
+    if (hinge) {
+      Vec3 axis = contact.u;
+      if (motion) {
+        const Vec3 relative = (*motion)[contact.b].rotation - (*motion)[contact.a].rotation;
+        if (relative.norm() > 0.0) axis = relative.normalized();
+      }
+      double lo = 0.0, hi = 0.0;
+      for (const Vec3& p : contact.vertices) {
+        lo = std::min(lo, (p - entry.pivot).dot(axis));
+        hi = std::max(hi, (p - entry.pivot).dot(axis));
+      }
+      // A corner hinge (a point): a rod as long as it is thick, and a little.
+      const double half = 0.04 * size;
+      if (hi - lo < 2.0 * half) lo = -half, hi = half;
+      glyphs.push_back({"hinge " + pair, place(tube_faces({entry.pivot + lo * axis, entry.pivot + hi * axis}, 0.04 * size, 8)),
+                        options.hinge_color, SceneLayer::limit, entry.interface});
+    }
+    if (moves) {
+      const double half = 0.01 * size;
+      glyphs.push_back({(entry.mode == LimitMode::separation ? "separation " : "sliding ") + pair,
+                        place(tube_faces({contact.center - half * contact.normal, contact.center + half * contact.normal},
+                                         0.15 * size, 12)),
+                        options.sliding_color, SceneLayer::limit, entry.interface});
+    }
+  }
+  return glyphs;
+}
+
+// The motions the blocks are drawn moved by: the options' own, or the result's.
+const std::vector<BlockMotion>* scene_mechanism(const ExportOptions& options) {
+  if (options.mechanism) return options.mechanism;
+  return options.result && !options.result->mechanism.empty() ? &options.result->mechanism : nullptr;
+}
 
 void check_options(const Structure& structure, const ExportOptions& options) {
   check_block_colors(structure, options.block_colors, "export");
@@ -49,7 +112,20 @@ void check_options(const Structure& structure, const ExportOptions& options) {
     throw InvalidArgument("export: mechanism must be a finite distance >= 0 (m), got " +
                           std::to_string(options.mechanism_scale));
   }
-  if (options.mechanism_scale > 0.0 && (!options.result || options.result->mechanism.empty())) {
+  if (options.mechanism && options.mechanism->size() != static_cast<std::size_t>(structure.size())) {
+    throw InvalidArgument("export: the mechanism has " + std::to_string(options.mechanism->size()) +
+                          " blocks, the structure " + std::to_string(structure.size()));
+  }
+  if (options.limit) {
+    const std::size_t count = structure.interfaces(options.contact)->size();
+    for (const LimitInterface& entry : *options.limit) {
+      if (entry.interface < 0 || static_cast<std::size_t>(entry.interface) >= count) {
+        throw InvalidArgument("export: a limit interface " + std::to_string(entry.interface + 1) +
+                              " is not one of the structure's " + std::to_string(count) + " interfaces");
+      }
+    }
+  }
+  if (options.mechanism_scale > 0.0 && !scene_mechanism(options)) {
     throw InvalidArgument(std::string("export: mechanism needs ") +
                           (options.result ? "an unstable result: this one stands, it has no mechanism"
                                           : "the result of an analysis (result = r) that found the structure unstable"));
@@ -67,13 +143,6 @@ void check_options(const Structure& structure, const ExportOptions& options) {
   }
 }
 
-// Block i as the mechanism moves it, its fastest centroid `scale` metres.
-Block moved_by_mechanism(const Block& block, const BlockMotion& motion, double scale) {
-  const double angle = scale * motion.rotation.norm();
-  const Block turned = angle > 0.0 ? block.rotated(motion.rotation, angle, block.centroid()) : block;
-  return turned.translated(scale * motion.velocity);
-}
-
 }  // namespace
 
 std::vector<SceneObject> structure_scene(const Structure& structure, const ExportOptions& options) {
@@ -84,7 +153,7 @@ std::vector<SceneObject> structure_scene(const Structure& structure, const Expor
   const double opacity = options.block_opacity.value_or(glyphs_inside ? 0.35 : 1.0);
   for (int i = 0; i < structure.size(); ++i) {
     const bool moves = options.mechanism_scale > 0.0 && !structure.is_support(i);
-    const Block drawn = moves ? moved_by_mechanism(structure.block(i), options.result->mechanism[i],
+    const Block drawn = moves ? moved_by_mechanism(structure.block(i), (*scene_mechanism(options))[i],
                                                    options.mechanism_scale)
                               : structure.block(i);
     SceneObject object;
@@ -119,7 +188,12 @@ std::vector<SceneObject> structure_scene(const Structure& structure, const Expor
       objects.push_back(std::move(object));
     }
   }
-  for (NamedGlyph& glyph : equilibrium_glyphs(structure, options)) {
+  std::vector<NamedGlyph> glyphs = equilibrium_glyphs(structure, options);
+  if (options.limit) {
+    std::vector<NamedGlyph> markers = limit_glyphs(structure, options, scene_mechanism(options));
+    glyphs.insert(glyphs.end(), std::make_move_iterator(markers.begin()), std::make_move_iterator(markers.end()));
+  }
+  for (NamedGlyph& glyph : glyphs) {
     SceneObject object;
     object.layer = glyph.layer;
     object.name = std::move(glyph.name);

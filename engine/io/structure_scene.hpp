@@ -18,15 +18,16 @@ namespace ashlar {
 
 // Which kind of thing an object draws: the HTML viewer switches each on and
 // off.
-enum class SceneLayer { blocks, interfaces, forces, thrust, edges, cables, traces };
+enum class SceneLayer { blocks, interfaces, forces, thrust, edges, cables, traces, limit };
 
-inline constexpr EnumNames<SceneLayer, 7> kSceneLayerNames{{{{SceneLayer::blocks, "blocks"},
+inline constexpr EnumNames<SceneLayer, 8> kSceneLayerNames{{{{SceneLayer::blocks, "blocks"},
                                                              {SceneLayer::interfaces, "interfaces"},
                                                              {SceneLayer::forces, "forces"},
                                                              {SceneLayer::thrust, "thrust"},
                                                              {SceneLayer::edges, "edges"},
                                                              {SceneLayer::cables, "cables"},
-                                                             {SceneLayer::traces, "traces"}}}};
+                                                             {SceneLayer::traces, "traces"},
+                                                             {SceneLayer::limit, "limit"}}}};
 
 struct ArrowShape {
   double shaft_radius = 0.0;  // m

@@ -100,6 +100,16 @@ Rows object_rows(const Structure& structure, const SceneObject& object, const Ex
     case SceneLayer::forces: return interface_rows(structure, object.interface, options);
     case SceneLayer::thrust: return {{"what", "the line of thrust: centres of pressure joined through each block"}};
     case SceneLayer::traces: return {{"what", "paths of the loads down to the supports"}};
+    case SceneLayer::limit: {
+      // "hinge a-b", "sliding a-b" or "separation a-b", over the joint's own rows.
+      const std::string kind = object.name.substr(0, object.name.find(' '));
+      Rows rows{{"what", kind == "hinge"     ? "a hinge of the collapse mechanism"
+                         : kind == "sliding" ? "a joint that slides in the collapse mechanism"
+                                             : "a joint that separates in the collapse mechanism"}};
+      const Rows joint = interface_rows(structure, object.interface, options);
+      rows.insert(rows.end(), joint.begin(), joint.end());
+      return rows;
+    }
     case SceneLayer::cables:
     case SceneLayer::edges: break;
   }

@@ -81,7 +81,7 @@ describe("ashlar.draw", function()
     local r = ashlar.analyze(s)
     local path = dir .. "/a.svg"
     expect_error({ "bad argument #3", "unknown option 'thrsut'",
-                   "allowed: color, force_scale, forces, height, result, thrust" },
+                   "allowed: color, force_scale, forces, height, limit, mechanism, mechanism_color, result, thrust" },
       ashlar.draw, s, path, { result = r, thrsut = true })
     expect_error({ "view: expected 'front', 'side' or a horizontal direction", "'top'" },
       ashlar.draw, s, path, { view = "top" })
