@@ -18,13 +18,7 @@ local models = require "ashlar.models"
 package.path = (arg[0]:match("^(.*)/[^/]+$") or ".") .. "/?.lua;" .. package.path
 local support = require "script_support"
 
-local folder = arg[1] or "docs/figures/mechanisms"
-local pages = arg[2]
-if not pages then
-  pages = os.tmpname()
-  os.remove(pages)
-end
-support.make_folders(folder, pages)
+local folder, pages = support.output_folders("docs/figures/mechanisms")
 
 local n = 64
 local arch = models.arch{ radius = 1, thickness = 0.15, voussoirs = n }

@@ -16,6 +16,19 @@ function support.make_folders(...)
   end
 end
 
+-- The folders a figure script writes to: arg[1] (default `default_folder`)
+-- for its pictures, arg[2] (default a new temporary folder) for the HTML
+-- pages it screenshots; both created.
+function support.output_folders(default_folder)
+  local folder, pages = arg[1] or default_folder, arg[2]
+  if not pages then
+    pages = os.tmpname()
+    os.remove(pages)
+  end
+  support.make_folders(folder, pages)
+  return folder, pages
+end
+
 function support.write_atomically(path, text)
   local temporary = path .. ".tmp"
   local file = assert(io.open(temporary, "w"))

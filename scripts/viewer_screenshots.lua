@@ -17,13 +17,7 @@ local models = require "ashlar.models"
 package.path = (arg[0]:match("^(.*)/[^/]+$") or ".") .. "/?.lua;" .. package.path
 local support = require "script_support"
 
-local folder = arg[1] or "docs/figures/viewer"
-local pages = arg[2]
-if not pages then
-  pages = os.tmpname()
-  os.remove(pages)
-end
-support.make_folders(folder, pages)
+local folder, pages = support.output_folders("docs/figures/viewer")
 print("pages in " .. pages)
 local pictures = support.can_screenshot()
 if not pictures then print("chromium not found: only the .html pages are written") end

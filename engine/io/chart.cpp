@@ -347,12 +347,7 @@ void paint_chart(void* context) {
   plwind(0.0, 1.0, 0.0, 1.0);
   // Text in the text colour (plinit left colour 1 current, as it was then).
   plcol0(kText);
-  // The title, centred on the page (measured down from its top edge).
-  if (!chart.title.empty()) {
-    plplot_font(chart.title_font);
-    plmtex("t", -(m.margin + 0.7 * m.font) / (kPlplotCharacterHeight * chart.title_font), 0.5, 0.5,
-           chart.title.c_str());
-  }
+  plplot_page_title(chart.title, chart.title_font, m.margin + 0.7 * m.font);
   const PLFLT right = std::min(chart.right, paint_legend(chart));
   plvpor(chart.left, right, chart.bottom, chart.top);
   plwind(world(chart.x.lo, chart.x.log), world(chart.x.hi, chart.x.log),

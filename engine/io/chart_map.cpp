@@ -333,11 +333,7 @@ void paint_map(void* context) {
   plwind(0.0, 1.0, 0.0, 1.0);
   // Text in the text colour (plinit left colour 1 current, as it was then).
   plcol0(kText);
-  if (!map.title.empty()) {
-    plplot_font(map.title_font);
-    plmtex("t", -(m.margin + 0.7 * m.font) / (kPlplotCharacterHeight * map.title_font), 0.5, 0.5,
-           map.title.c_str());
-  }
+  plplot_page_title(map.title, map.title_font, m.margin + 0.7 * m.font);
   plvpor(map.left, map.right, map.bottom, map.top);
   plwind(map.ex.front(), map.ex.back(), map.ey.front(), map.ey.back());
 

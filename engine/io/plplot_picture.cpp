@@ -149,6 +149,12 @@ void plplot_boolean_label(PLINT, PLFLT value, char* text, PLINT length, PLPointe
   std::snprintf(text, static_cast<size_t>(length), "%s", label);
 }
 
+void plplot_page_title(const std::string& title, double font_size, double top_offset) {
+  if (title.empty()) return;
+  plplot_font(font_size);
+  plmtex("t", -top_offset / (kPlplotCharacterHeight * font_size), 0.5, 0.5, title.c_str());
+}
+
 void plplot_color(PLINT index, const Rgb& color) {
   const auto byte = [](double channel) { return static_cast<PLINT>(std::lround(channel * 255)); };
   plscol0(index, byte(color.r), byte(color.g), byte(color.b));

@@ -47,6 +47,12 @@ std::string plplot_text(const std::string& text);
 // axes whose options have 'o'.
 void plplot_boolean_label(PLINT axis, PLFLT value, char* text, PLINT length, PLPointer data);
 
+// A chart's title, centred at the top of the page: its baseline
+// top_offset px below the page's top edge, in a font of font_size px, in
+// the current colour. Nothing for an empty title. The viewport and window
+// must span the page (plvpor and plwind over [0, 1]).
+void plplot_page_title(const std::string& title, double font_size, double top_offset);
+
 // Sets entry `index` of colour map 0 (opacity ignored).
 void plplot_color(PLINT index, const Rgb& color);
 
