@@ -8,6 +8,8 @@
 --                   per interface (its resultant, at its centre of
 --                   pressure), the thrust line, the key and the force scale
 --   dome_weights    a 12 x 8 dome coloured by ashlar.important_weights
+--   dome_tension    the same dome 0.15 m thick (too thin to stand), coloured
+--                   by the tension its best equilibrium needs, legend from 0
 --   arcade_thrust   a two-span arcade (models.arch_bridge{ spans = 2,
 --                   spandrel = false }): its thrust line branching at the pier
 -- Prints the time of each analysis and export.
@@ -66,6 +68,16 @@ end
 page("dome_weights", dome, { color = { values = shown, map = "viridis", range = { 0, hi } },
                              legend = "important weight (kN/m³)",
                              title = "Dome, 12 × 8: which blocks' weight holds it up" })
+
+print("thin dome, 12 meridians x 8 parallels, coloured by tension")
+local thin = models.dome{ meridians = 12, parallels = 8, thickness = 0.15 }
+local rt = timed("analyze", function() return ashlar.analyze(thin, { friction = 0.7 }) end)
+local tension = {}
+for i = 1, #thin do tension[i] = rt.blocks[i].tension / 1000 end  -- kN; supports 0
+-- No range given: the legend starts at 0, tension being never negative.
+page("dome_tension", thin, { color = { values = tension, map = "magma" }, legend = "tension through the block's joints (kN)",
+                             title = ("Thin dome, t/R 0.03: the tension equilibrium needs (infeasibility %.3f)"):format(
+                               rt.infeasibility) })
 
 print("two-span arcade")
 local arcade = models.arch_bridge{ spans = 2, spandrel = false }
