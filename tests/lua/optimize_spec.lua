@@ -181,11 +181,7 @@ describe("ashlar.optimize", function()
         assert.is_true(r.params.t >= reference - 1e-5 and r.params.t <= reference + 1e-3 + 1e-5,
           ("from %g: %.6f against the bisection's %.6f"):format(start, r.params.t, reference))
         assert.is_true(ashlar.analyze(r.structure, NO_SLIDING).stable)
-        local free = 0
-        for i = 1, #r.structure do
-          if not r.structure:is_support(i) then free = free + r.structure:block(i):volume() end
-        end
-        near(r.value, free, 1e-12, "value is the free blocks' volume")
+        near(r.value, support.free_volume(r.structure), 1e-12, "value is the free blocks' volume")
         for k = 2, #r.history do  -- once the target is reached the volume only falls
           if r.history[k - 1].stable then assert.is_true(r.history[k].value < r.history[k - 1].value) end
         end

@@ -6,13 +6,7 @@ local models = require "ashlar.models"
 local support = require "spec_support"
 local near, expect_error = support.near, support.expect_error
 
-local function total_mass(s)
-  local mass = 0
-  for i = 1, #s do
-    if not s:is_support(i) then mass = mass + s:block(i):mass() end
-  end
-  return mass
-end
+local function total_mass(s) return support.free_total(s, "mass") end
 
 describe("s:remove", function()
   it("removes one block: count, weight and the renumbering of loads, cables and names", function()

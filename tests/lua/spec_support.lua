@@ -89,13 +89,19 @@ function support.sorted_keys(t)
   return keys
 end
 
-function support.free_volume(s)
-  local volume = 0
+-- The sum of a Block method's value ("volume", "mass") over the free blocks.
+function support.free_total(s, quantity)
+  local total = 0
   for i = 1, #s do
-    if not s:is_support(i) then volume = volume + s:block(i):volume() end
+    if not s:is_support(i) then
+      local block = s:block(i)
+      total = total + block[quantity](block)
+    end
   end
-  return volume
+  return total
 end
+
+function support.free_volume(s) return support.free_total(s, "volume") end
 
 -- A new empty folder under /tmp, and its removal.
 function support.temp_folder()

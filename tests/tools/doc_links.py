@@ -18,8 +18,8 @@ FENCE = re.compile(r"^\s*(`{3,}|~{3,})")
 INLINE_CODE = re.compile(r"(`+)(?:(?!\1).)+?\1")
 
 
-def prose_lines(path):
-    """(number, line) of the lines outside fenced code, inline code removed."""
+def outside_fences(path):
+    """(number, line) of the lines outside fenced code blocks."""
     fence = None
     with open(path, encoding="utf-8") as f:
         for n, line in enumerate(f, 1):
@@ -31,7 +31,13 @@ def prose_lines(path):
             if m:
                 fence = m.group(1)
                 continue
-            yield n, INLINE_CODE.sub("", line)
+            yield n, line
+
+
+def prose_lines(path):
+    """(number, line) of the lines outside fenced code, inline code removed."""
+    for n, line in outside_fences(path):
+        yield n, INLINE_CODE.sub("", line)
 
 
 def slug(heading):
@@ -43,27 +49,17 @@ def slug(heading):
 
 def heading_anchors(path):
     found, seen = set(), {}
-    fence = None
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            m = FENCE.match(line)
-            if fence:
-                if m and m.group(1)[0] == fence[0] and len(m.group(1)) >= len(fence):
-                    fence = None
-                continue
-            if m:
-                fence = m.group(1)
-                continue
-            h = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
-            if not h:
-                continue
-            s = slug(h.group(1))
-            if s in seen:
-                seen[s] += 1
-                s = "%s-%d" % (s, seen[s])
-            else:
-                seen[s] = 0
-            found.add(s)
+    for _, line in outside_fences(path):
+        h = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if not h:
+            continue
+        s = slug(h.group(1))
+        if s in seen:
+            seen[s] += 1
+            s = "%s-%d" % (s, seen[s])
+        else:
+            seen[s] = 0
+        found.add(s)
     return found
 
 
