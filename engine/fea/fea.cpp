@@ -419,7 +419,7 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
   const double tension_threshold =
       ties.empty() ? 0 : settings.tension_tolerance * assembly.total_weight / static_cast<double>(ties.size());
   const double bound = settings.max_displacement * size;
-  double elastic_scale = 0, overlap_threshold = 0;  // from the first solve (m)
+  double elastic_scale = 0;  // m, the first solve's largest displacement
 
   // Solves the current contact state (holds) and says what violates it:
   // closed nodes in tension, open ones overlapping (unilateral).
@@ -440,10 +440,7 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
     report.factorized = solution.factorized;
     if (solution.factorized && !solution.interrupted) {
       const double largest = solution.displacements.cwiseAbs().maxCoeff();
-      if (elastic_scale == 0) {
-        elastic_scale = largest;
-        overlap_threshold = kOverlapTolerance * largest;
-      }
+      if (elastic_scale == 0) elastic_scale = largest;
       report.beyond_limit = !(largest <= bound);
       for (size_t t = 0; t < ties.size(); ++t) {
         const double normal_force = -sides[t] * normals[t].dot(multipliers[t]);
@@ -454,7 +451,7 @@ FeaResult analyze_fea(const Structure& structure, const FeaMesh& mesh, const Fea
           iteration.tension -= normal_force;
           iteration.max_tension = std::max(iteration.max_tension, -normal_force);
         }
-        if (holds[t] == Hold::Tangential && opening < -overlap_threshold)
+        if (holds[t] == Hold::Tangential && opening < -kOverlapTolerance * elastic_scale)
           report.overlapping.push_back(static_cast<int>(t));
       }
       iteration.tensile = static_cast<int>(report.tensile.size());
