@@ -99,7 +99,7 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
     const std::shared_ptr<const EquilibriumResult> result = result_option(L, options);
     compas.result = result.get();
     for (const char* key : {"color", "interfaces", "forces", "thrust", "force_scale", "opacity", "cable_color",
-                            "traces", "trace_color", "mechanism", "edges", "title", "legend", "limit"}) {
+                            "traces", "trace_color", "mechanism", "edges", "title", "legend", "limit", "autoplay"}) {
       if (options.has(key)) {
         throw ArgError(options.arg(), std::string(key) + ": does not apply to a COMPAS assembly (.json), which "
                                                          "holds blocks, supports, interfaces and, with result, "
@@ -125,11 +125,39 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
   exported.result = result.analysis.get();
   exported.mechanism = result.mechanism();
   if (options.boolean("limit").value_or(result.factor.has_value())) exported.limit = result.limit();
-  exported.forces = options.boolean("forces").value_or(false);
+  // forces = true draws the resultants; a ForceMode's name chooses.
+  if (options.push("forces") == LUA_TSTRING) {
+    exported.forces = true;
+    exported.force_mode = *options.choice("forces", kForceModeNames);
+  } else if (lua_type(L, -1) != LUA_TNIL && lua_type(L, -1) != LUA_TBOOLEAN) {
+    throw ArgError(options.arg(), "forces: expected true, false or one of " + kForceModeNames.list() + ", got " +
+                                      type_name(L, -1));
+  } else {
+    exported.forces = lua_toboolean(L, -1);
+  }
+  lua_pop(L, 1);
   // A load factor's result is drawn for its limit state: the thrust line at the factor.
   exported.thrust = options.boolean("thrust").value_or(result.factor.has_value());
   exported.force_scale = options.positive("force_scale", 0.0, true);
-  exported.mechanism_scale = options.positive("mechanism", 0.0, true);
+  // mechanism = false: the HTML page is a still, with the blocks where they stand.
+  if (options.push("mechanism") == LUA_TBOOLEAN) {
+    if (lua_toboolean(L, -1)) {
+      throw ArgError(options.arg(), "mechanism: expected a distance >= 0 (m) or false, got true");
+    }
+    exported.animate_mechanism = false;
+  } else {
+    exported.mechanism_scale = options.positive("mechanism", 0.0, true);
+  }
+  lua_pop(L, 1);
+  if (const std::optional<bool> autoplay = options.boolean("autoplay")) {
+    const bool has_mechanism = exported.mechanism || (exported.result && !exported.result->mechanism.empty());
+    if (!(html && exported.animate_mechanism && has_mechanism)) {
+      throw ArgError(options.arg(), "autoplay: applies to a page (.html) that plays a collapse mechanism (a result "
+                                    "with one: a load factor's, an unstable analysis's), got " +
+                                        std::string(*autoplay ? "true" : "false"));
+    }
+    exported.autoplay = *autoplay;
+  }
   if (options.push("cable_color") != LUA_TNIL) {
     exported.cable_color = to_rgb(L, -1, options.arg(), "cable_color");
   }

@@ -15,7 +15,7 @@ namespace ashlar::lua {
 // The option names of ashlar.export.
 #define ASHLAR_EXPORT_OPTIONS                                                                          \
   "format", "color", "interfaces", "tolerance", "result", "forces", "thrust", "force_scale", "opacity", \
-      "cable_color", "traces", "trace_color", "mechanism", "edges", "title", "legend", "limit"
+      "cable_color", "traces", "trace_color", "mechanism", "edges", "title", "legend", "limit", "autoplay"
 
 // The options that say how the blocks look, read from `options` as
 // ashlar.export reads them: color (with legend and the colour scale only

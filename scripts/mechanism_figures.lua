@@ -10,7 +10,9 @@
 --   arch_four_hinges_viewer.png   the HTML viewer of ashlar.export with the
 --                                 same result (headless chromium; skipped
 --                                 when it is not installed), the page in
---                                 `pages` (default: a new temporary folder)
+--                                 `pages` (default: a new temporary folder):
+--                                 it plays the mechanism; the picture is the
+--                                 page as it opens, paused at the extreme
 -- and prints the factor and the hinges' joints.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
@@ -37,7 +39,8 @@ for _, ext in ipairs{ "svg", "png" } do
 end
 
 local html = ("%s/arch_four_hinges.html"):format(pages)
-ashlar.export(arch, html, { result = f, mechanism = 0.15, title = title })
+-- Paused as it opens (autoplay = false): the picture is the extreme.
+ashlar.export(arch, html, { result = f, mechanism = 0.15, autoplay = false, title = title })
 print("page " .. html)
 if support.can_screenshot() then
   if html:sub(1, 1) ~= "/" then html = os.getenv("PWD") .. "/" .. html end

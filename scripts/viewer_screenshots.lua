@@ -12,6 +12,11 @@
 --                   by the tension its best equilibrium needs, legend from 0
 --   arcade_thrust   a two-span arcade (models.arch_bridge{ spans = 2,
 --                   spandrel = false }): its thrust line branching at the pier
+--   groin_vault_network  the groin vault (models.groin_vault{}), friction
+--                   0.7: its thrust network, tubes as thick as their joints'
+--                   forces, blocks translucent
+-- and prints each page's size (the issue's budget: the arch with forces,
+-- a 16 x 18 dome with forces and the groin vault, each written here).
 -- Prints the time of each analysis and export.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
@@ -26,10 +31,13 @@ if not pictures then print("chromium not found: only the .html pages are written
 
 local timed = support.timed
 
-local function page(name, s, options)
+local function page(name, s, options, no_picture)
   local html = ("%s/%s.html"):format(pages, name)
   timed("export " .. name .. ".html", function() ashlar.export(s, html, options) end)
-  if pictures then
+  local file = assert(io.open(html, "rb"))
+  print(("  %s.html: %.2f MB"):format(name, file:seek("end") / 1e6))
+  file:close()
+  if pictures and not no_picture then
     -- chromium needs an absolute file:// address.
     if html:sub(1, 1) ~= "/" then html = os.getenv("PWD") .. "/" .. html end
     timed("screenshot " .. name .. ".png", function()
@@ -84,3 +92,15 @@ local arcade = models.arch_bridge{ spans = 2, spandrel = false }
 local ra = timed("analyze", function() return ashlar.analyze(arcade, { friction = 0.7 }) end)
 page("arcade_thrust", arcade, { result = ra, thrust = true,
                                 title = "Two-span arcade: the thrust line branches at the pier" })
+
+print("groin vault")
+local vault = models.groin_vault{}
+local rv = timed("analyze", function() return ashlar.analyze(vault, { friction = 0.7 }) end)
+page("groin_vault_network", vault, { result = rv, thrust = true, opacity = 0.25,
+                                     title = ("Groin vault, %d blocks: the thrust network (tube thickness: force)"):format(#vault) })
+
+print("dome, 16 meridians x 18 parallels, with forces (size only)")
+local big = models.dome{ meridians = 16, parallels = 18 }
+local rb = timed("analyze", function() return ashlar.analyze(big, { friction = 0.7 }) end)
+page("dome_16x18_forces", big, { result = rb, forces = true }, true)
+page("arch_default_forces", models.arch{}, { result = ashlar.analyze(models.arch{}, { friction = 0.7 }), forces = true }, true)

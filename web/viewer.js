@@ -5,12 +5,13 @@
 // values; the check boxes show and hide each layer. The page of a
 // simulation also plays it (play and pause, a time slider, loop): its
 // blocks and their outlines move through the key frames the engine wrote,
-// playing as the page opens unless the scene says not to. Buttons show the
+// playing as the page opens unless the scene says not to; so does the
+// collapse mechanism of a still's result. Buttons show the
 // structure from the front, the side, the top or obliquely (iso), in
 // perspective or orthographic; a planar structure opens in the front view,
 // orthographic. A key names the colour of each role drawn (compression,
-// tension, interfaces, thrust line, ...) and a scale bar reads the arrows'
-// length as a force.
+// tension, friction, interfaces, thrust line or network, ...) and a scale
+// bar reads the arrows' length as a force.
 // Coordinates are ashlar's: metres, z up.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
@@ -77,6 +78,7 @@ for (const { name } of scene_data.layers) {
 
 const pickable = [];
 const block_materials = [];
+const equilibrium_materials = [];
 const meshes = [];
 // A force arrow from what the scene holds of it: tail and tip (m), the
 // shaft's and the head's radius, the head's length (m), and the sides of
@@ -93,10 +95,46 @@ function arrow_geometry([tx, ty, tz, px, py, pz, shaft, head, head_length, sides
   return geometry;
 }
 
+// The tubes of a thrust network from what the scene holds of them: per
+// tube its ends (m) and radius (m); open prisms of six sides, as the
+// engine's tube_faces draws them (their ends meet inside blocks and joints).
+function tube_geometry(tubes) {
+  const sides = 6;
+  const positions = [];
+  const axis = new THREE.Vector3(), first = new THREE.Vector3(), second = new THREE.Vector3();
+  const from = new THREE.Vector3(), to = new THREE.Vector3(), offset = new THREE.Vector3();
+  const ring = (center, j, radius) => {
+    const angle = (2 * Math.PI * j) / sides;
+    offset.copy(first).multiplyScalar(Math.cos(angle)).addScaledVector(second, Math.sin(angle)).multiplyScalar(radius);
+    return center.clone().add(offset).toArray();
+  };
+  for (let k = 0; k + 7 <= tubes.length; k += 7) {
+    from.fromArray(tubes, k);
+    to.fromArray(tubes, k + 3);
+    const radius = tubes[k + 6];
+    axis.subVectors(to, from);
+    if (axis.length() <= 1e-3 * radius) continue;
+    axis.normalize();
+    // Perpendicular to the axis, from the coordinate axis least aligned with it.
+    const least = [Math.abs(axis.x), Math.abs(axis.y), Math.abs(axis.z)].reduce((m, v, i, a) => (v < a[m] ? i : m), 0);
+    first.crossVectors(axis, new THREE.Vector3().setComponent(least, 1)).normalize();
+    second.crossVectors(axis, first);
+    for (let j = 0; j < sides; ++j) {
+      const a = ring(from, j, radius), b = ring(from, j + 1, radius), c = ring(to, j + 1, radius), d = ring(to, j, radius);
+      positions.push(...a, ...b, ...c, ...a, ...c, ...d);
+    }
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
+  return geometry;
+}
+
 for (const object of scene_data.objects) {
   let geometry;
   if (object.arrow) {
     geometry = arrow_geometry(object.arrow);
+  } else if (object.tubes) {
+    geometry = tube_geometry(object.tubes);
   } else {
     geometry = new THREE.BufferGeometry();
     geometry.setAttribute("position", new THREE.Float32BufferAttribute(object.positions, 3));
@@ -107,8 +145,8 @@ for (const object of scene_data.objects) {
   const [r, g, b, a] = object.color;
   const material = new THREE.MeshLambertMaterial({
     color: srgb([r, g, b]),
-    // Arrows are drawn from both sides, whichever way the lathe winds them.
-    side: object.two_sided || object.arrow ? THREE.DoubleSide : THREE.FrontSide,
+    // Arrows and tubes are drawn from both sides, whichever way they wind.
+    side: object.two_sided || object.arrow || object.tubes ? THREE.DoubleSide : THREE.FrontSide,
   });
   const mesh = new THREE.Mesh(geometry, material);
   mesh.name = object.name;
@@ -120,6 +158,7 @@ for (const object of scene_data.objects) {
     material.polygonOffsetFactor = -1;
     material.polygonOffsetUnits = -4;
   }
+  if (["forces", "thrust", "interfaces"].includes(object.layer)) equilibrium_materials.push(material);
   if (object.layer === "blocks") {
     block_materials.push(material);
   } else {
@@ -161,8 +200,9 @@ if (animation) {
     const [first, last] = track.outline;
     moving.fill(1, first, last);
     const [cx, cy, cz] = track.centroid;
-    // Both are drawn about the centroid, then placed by the pose.
-    const parts = [meshes[track.object]];
+    // Its objects (the block, the limit markers it carries) and its outline
+    // are drawn about the centroid, then placed by the pose.
+    const parts = track.objects.map((k) => meshes[k]);
     if (last > first) parts.push(outline_lines(scene_data.outline.slice(3 * first, 3 * last)));
     for (const part of parts) part.geometry.translate(-cx, -cy, -cz);
     bodies.push({ parts, track });
@@ -187,6 +227,12 @@ function show_time(t) {
   }
   const next = Math.min(k + 1, times.length - 1);
   const f = next > k ? Math.min(Math.max((t - times[k]) / (times[next] - times[k]), 0), 1) : 0;
+  if (animation.mechanism > 0) {
+    // The forces and the thrust are the equilibrium of the blocks as they
+    // stand: they fade as the mechanism moves the blocks away.
+    const shown = 1 - 0.8 * Math.min(Math.max(1 - Math.abs(t - 1), 0), 1);
+    for (const material of equilibrium_materials) set_opacity(material, shown * material.userData.alpha);
+  }
   for (const { parts, track } of bodies) {
     const p = track.positions;
     pose.position.set(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
@@ -486,7 +532,10 @@ resize();
 reset_view();
 
 // The player: play and pause, the time slider, loop. Simulated time runs at
-// the wall clock's pace.
+// the wall clock's pace. A mechanism's page plays rest, the mechanism at its
+// extreme, rest, over 2 s, opening at the extreme; its read-out is the
+// fastest centroid's displacement (the summary says so), and the forces and
+// thrust fade as the blocks leave where they stand.
 if (animation) {
   const times = animation.times;
   const start = times[0], end = times[times.length - 1];
@@ -501,10 +550,13 @@ if (animation) {
   let playing = false;
   let last_frame = 0;
 
+  const reach = animation.mechanism;
   const set_time = (t) => {
     time = Math.min(Math.max(t, start), end);
     slider.value = time;
-    time_text.textContent = `${time.toFixed(digits)} s / ${end.toFixed(digits)} s`;
+    time_text.textContent = reach > 0
+      ? `mechanism ${Number((reach * (1 - Math.abs(time - 1))).toPrecision(3))} m / ${Number(reach.toPrecision(4))} m`
+      : `${time.toFixed(digits)} s / ${end.toFixed(digits)} s`;
     show_time(time);
     request_render();
   };
@@ -537,7 +589,7 @@ if (animation) {
     set_playing(!playing);
   });
   slider.addEventListener("input", () => set_time(Number(slider.value)));
-  set_time(start);
+  set_time(animation.start ?? start);
   document.getElementById("player").classList.remove("hidden");
   if (animation.autoplay !== false) set_playing(true);
 }

@@ -122,6 +122,12 @@ bool finite(const Vec3& v) { return v.allFinite(); }
 // Joint normals closer than this to horizontal (or to a coordinate plane)
 // count as lying in it: round-off must not flip an arrow.
 constexpr double kFlatNormal = 1e-9;
+// Joints whose normal force is under this fraction of the largest carry no
+// thrust (round-off, blocks that merely touch), as in thrust_polylines.
+constexpr double kNegligibleThrust = 1e-3;
+// A joint normal within this (as the cosine to the plane's normal) of a
+// vertical plane lies in it: generated arches are exact to round-off.
+constexpr double kInPlane = 1e-6;
 
 // Whether the unit normal n points upward: z up, then +x, then +y.
 bool points_up(const Vec3& n) {
@@ -141,43 +147,113 @@ double round_number(double value) {
   return best;
 }
 
-double largest_resultant(const EquilibriumResult& result) {
-  double largest = 0.0;
+// Thicker than the thrust line: a network's tubes are its only picture of
+// the forces, read by their thickness.
+constexpr double kNetworkRadiusOfBlockSize = 0.04;
+
+// The interfaces' names in arrows: "a-b" (1-based blocks), "a-b #2" for a
+// second interface between the same blocks, and so on.
+std::vector<std::string> pair_labels(const EquilibriumResult& result) {
+  std::map<std::string, int> uses;
+  std::vector<std::string> labels;
+  labels.reserve(result.interfaces.size());
   for (const InterfaceForces& f : result.interfaces) {
-    if (finite(f.resultant)) largest = std::max(largest, f.resultant.norm());
+    std::string label = std::to_string(f.a + 1) + "-" + std::to_string(f.b + 1);
+    const int use = ++uses[label];
+    if (use > 1) label += " #" + std::to_string(use);
+    labels.push_back(std::move(label));
+  }
+  return labels;
+}
+
+// The parts of the force at contact vertex j acting on block b (N): normal
+// (along the joint's normal, positive in compression) and friction.
+struct VertexParts {
+  Vec3 normal = Vec3::Zero(), friction = Vec3::Zero();
+};
+VertexParts vertex_parts(const EquilibriumResult& result, const Interface& contact, std::size_t j) {
+  const Eigen::Vector4d& f = result.vertex_forces[j];
+  return {(f(0) - f(1)) * contact.normal, f(2) * contact.u + f(3) * contact.v};
+}
+
+// The largest force an arrow draws (N): a resultant, or a vertex's normal or
+// friction part.
+double largest_drawn_force(const Structure& structure, const ExportOptions& options) {
+  const EquilibriumResult& result = *options.result;
+  double largest = 0.0;
+  if (options.force_mode == ForceMode::resultants) {
+    for (const InterfaceForces& f : result.interfaces) {
+      if (finite(f.resultant)) largest = std::max(largest, f.resultant.norm());
+    }
+    return largest;
+  }
+  const std::shared_ptr<const std::vector<Interface>> contacts = structure.interfaces(options.contact);
+  for (std::size_t j = 0; j < result.vertex_forces.size(); ++j) {
+    const VertexParts parts = vertex_parts(result, contacts->at(result.vertex_interface[j]), j);
+    for (const Vec3& part : {parts.normal, parts.friction}) {
+      if (finite(part)) largest = std::max(largest, part.norm());
+    }
   }
   return largest;
 }
 
+// An arrow of `force` (N) from `tail`, `metres_per_newton` long per newton,
+// proportioned to the largest arrow (m).
+NamedGlyph force_arrow(std::string name, const Vec3& tail, const Vec3& force, double metres_per_newton,
+                       double largest_arrow, const Rgb& color, int interface) {
+  const double length = metres_per_newton * force.norm();
+  ArrowShape shape;
+  shape.sides = kGlyphSides;
+  shape.shaft_radius = kShaftRadiusOfLargestArrow * largest_arrow;
+  shape.head_radius = kHeadRadiusOfLargestArrow * largest_arrow;
+  // Short arrows keep a shaft, so that their direction still reads.
+  shape.head_length = std::min(kHeadLengthOfLargestArrow * largest_arrow, 0.5 * length);
+  const Vec3 tip = tail + metres_per_newton * force;
+  return {std::move(name), arrow_faces(tail, tip, shape), color, SceneLayer::forces, interface,
+          ArrowGlyph{tail, tip, shape, force}};
+}
+
 void add_force_arrows(const Structure& structure, const EquilibriumResult& result, const ExportOptions& options,
                       std::vector<NamedGlyph>& glyphs) {
-  const double largest = largest_resultant(result);
+  const double largest = largest_drawn_force(structure, options);
   if (largest == 0.0) return;
   const double metres_per_newton = force_arrow_scale(structure, options);
   const double largest_arrow = metres_per_newton * largest;
   const double negligible = options.negligible_force * largest;
   const std::shared_ptr<const std::vector<Interface>> contacts = structure.interfaces(options.contact);
-  std::map<std::string, int> uses;
-  for (std::size_t k = 0; k < result.interfaces.size(); ++k) {
+  const std::vector<std::string> labels = pair_labels(result);
+  if (options.force_mode == ForceMode::resultants) {
+    for (std::size_t k = 0; k < result.interfaces.size(); ++k) {
+      const InterfaceForces& f = result.interfaces[k];
+      if (!(f.resultant.norm() > negligible) || !finite(f.resultant) || !finite(f.center_of_pressure)) continue;
+      const ArrowForce drawn = arrow_force(structure, contacts->at(k), f);
+      const bool pulls = f.tension > negligible;
+      glyphs.push_back(force_arrow("force " + labels[k], f.center_of_pressure, drawn.force, metres_per_newton,
+                                   largest_arrow, pulls ? options.tension_color : options.compression_color,
+                                   static_cast<int>(k)));
+    }
+    return;
+  }
+  std::vector<int> vertices_seen(result.interfaces.size(), 0);
+  for (std::size_t j = 0; j < result.vertex_forces.size(); ++j) {
+    const int k = result.vertex_interface[j];
+    const Interface& contact = contacts->at(k);
     const InterfaceForces& f = result.interfaces[k];
-    const double size = f.resultant.norm();
-    if (!(size > negligible) || !finite(f.resultant) || !finite(f.center_of_pressure)) continue;
-    const double length = metres_per_newton * size;
-    ArrowShape shape;
-    shape.sides = kGlyphSides;
-    shape.shaft_radius = kShaftRadiusOfLargestArrow * largest_arrow;
-    shape.head_radius = kHeadRadiusOfLargestArrow * largest_arrow;
-    // Short arrows keep a shaft, so that their direction still reads.
-    shape.head_length = std::min(kHeadLengthOfLargestArrow * largest_arrow, 0.5 * length);
-    std::string name = "force " + std::to_string(f.a + 1) + "-" + std::to_string(f.b + 1);
-    const int use = ++uses[name];
-    if (use > 1) name += " #" + std::to_string(use);
-    const ArrowForce drawn = arrow_force(structure, contacts->at(k), f);
-    const Vec3 tip = f.center_of_pressure + length * drawn.force / size;
-    const bool pulls = f.tension > negligible;
-    glyphs.push_back({std::move(name), arrow_faces(f.center_of_pressure, tip, shape),
-                      pulls ? options.tension_color : options.compression_color, SceneLayer::forces,
-                      static_cast<int>(k), ArrowGlyph{f.center_of_pressure, tip, shape}});
+    const std::string vertex = labels[k] + " vertex " + std::to_string(++vertices_seen[k]);
+    // On the block the resultant's arrow acts on.
+    const double sign = arrow_force(structure, contact, f).on == f.b ? 1.0 : -1.0;
+    const VertexParts parts = vertex_parts(result, contact, j);
+    const Vec3& at = result.vertex_positions[j];
+    if (!finite(at)) continue;
+    if (parts.normal.norm() > negligible && finite(parts.normal)) {
+      const bool pulls = parts.normal.dot(contact.normal) < 0.0;
+      glyphs.push_back(force_arrow("force " + vertex, at, sign * parts.normal, metres_per_newton, largest_arrow,
+                                   pulls ? options.tension_color : options.compression_color, k));
+    }
+    if (parts.friction.norm() > negligible && finite(parts.friction)) {
+      glyphs.push_back(force_arrow("friction " + vertex, at, sign * parts.friction, metres_per_newton,
+                                   largest_arrow, options.friction_color, k));
+    }
   }
 }
 
@@ -217,11 +293,55 @@ ArrowForce arrow_force(const Structure& structure, const Interface& contact, con
 }
 
 double force_arrow_scale(const Structure& structure, const ExportOptions& options) {
-  const double largest = largest_resultant(*options.result);
+  const double largest = largest_drawn_force(structure, options);
   if (largest == 0.0) return 0.0;
   if (options.force_scale > 0.0) return options.force_scale;
   const double newtons_per_metre = round_number(largest / (kLargestArrowOfBlockSize * mean_free_block_size(structure)));
   return 1.0 / newtons_per_metre;
+}
+
+bool thrust_in_one_plane(const Structure& structure, const std::vector<Interface>& contacts,
+                         const EquilibriumResult& result) {
+  if (structure.planar()) return true;
+  double largest = 0.0;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (std::isfinite(f.normal_force)) largest = std::max(largest, f.normal_force);
+  }
+  // The plane's horizontal normal, from the first joint that is not level.
+  std::optional<Vec3> across;
+  for (std::size_t k = 0; k < result.interfaces.size(); ++k) {
+    if (!(result.interfaces[k].normal_force > kNegligibleThrust * largest)) continue;
+    const Vec3& n = contacts.at(k).normal;
+    const Vec3 horizontal(n.x(), n.y(), 0.0);
+    if (horizontal.norm() < kFlatNormal) continue;
+    if (!across) {
+      across = Vec3(-horizontal.y(), horizontal.x(), 0.0).normalized();
+    } else if (std::abs(n.dot(*across)) > kInPlane) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<TubeSegment> thrust_network(const Structure& structure, const EquilibriumResult& result,
+                                        double largest_radius) {
+  double largest_normal = 0.0, largest_resultant = 0.0;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (std::isfinite(f.normal_force)) largest_normal = std::max(largest_normal, f.normal_force);
+    if (finite(f.resultant)) largest_resultant = std::max(largest_resultant, f.resultant.norm());
+  }
+  std::vector<TubeSegment> segments;
+  for (const InterfaceForces& f : result.interfaces) {
+    if (!(f.normal_force > kNegligibleThrust * largest_normal) || !finite(f.center_of_pressure) ||
+        !finite(f.resultant)) {
+      continue;
+    }
+    const double radius = largest_radius * std::sqrt(f.resultant.norm() / largest_resultant);
+    for (const int block : {f.a, f.b}) {
+      if (!structure.is_support(block)) segments.push_back({structure.block(block).centroid(), f.center_of_pressure, radius});
+    }
+  }
+  return segments;
 }
 
 std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
@@ -255,7 +375,19 @@ std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
   if (!traces.empty()) glyphs.push_back({"load traces", std::move(traces), options.trace_color, SceneLayer::traces});
   if (!options.result) return glyphs;
   if (options.forces) add_force_arrows(structure, *options.result, options, glyphs);
-  if (options.thrust) {  // every branch, as the drawings show it
+  if (options.thrust && !thrust_in_one_plane(structure, *structure.interfaces(options.contact), *options.result)) {
+    const std::vector<TubeSegment> network =
+        thrust_network(structure, *options.result, kNetworkRadiusOfBlockSize * block_size);
+    GlyphFaces tubes;
+    for (const TubeSegment& segment : network) {
+      GlyphFaces tube = tube_faces({segment.from, segment.to}, segment.radius, kGlyphSides);
+      tubes.insert(tubes.end(), std::make_move_iterator(tube.begin()), std::make_move_iterator(tube.end()));
+    }
+    if (!tubes.empty()) {
+      glyphs.push_back({"thrust network", std::move(tubes), options.thrust_color, SceneLayer::thrust, -1,
+                        std::nullopt, -1, network});
+    }
+  } else if (options.thrust) {  // every branch, as the drawings show it
     GlyphFaces tubes;
     for (std::vector<Vec3> points : thrust_polylines(structure, *options.result)) {
       const auto not_finite = [](const Vec3& p) { return !finite(p); };

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,10 +56,31 @@ ArrowForce arrow_force(const Structure& structure, const Interface& contact, con
 // Arrow length per newton (m/N) of the force arrows options ask for:
 // options.force_scale when given, else the round scale (1, 2 or 5 x 10^k N
 // per metre of arrow) nearest (on a log scale) the one that draws the
-// largest resultant a quarter of the mean free-block size long: it is
-// then 0.16 to 0.35 of that size. 0 when
-// options.result holds no finite non-zero resultant. Needs options.result.
+// largest arrow (resultant, or with ForceMode::vertices the normal or
+// friction part at a vertex) a quarter of the mean free-block size long: it
+// is then 0.16 to 0.35 of that size. 0 when options.result holds no finite
+// non-zero force to draw. Needs options.result.
 double force_arrow_scale(const Structure& structure, const ExportOptions& options);
+
+// Whether the thrust is drawn as a line (thrust_polylines) rather than a
+// network: the structure is planar (Structure::planar), or the normal of
+// every joint in compression lies in one vertical plane (an arch, an
+// arcade, a wall one block thick, a column), so that the line through the
+// centres of pressure is the picture of its thrust. Otherwise (a vault, a
+// dome) the thrust network. `result` is an analysis of the structure whose
+// interfaces are `contacts`.
+bool thrust_in_one_plane(const Structure& structure, const std::vector<Interface>& contacts,
+                         const EquilibriumResult& result);
+
+// The thrust network of a vault or a dome: per free block, a tube from its
+// centroid to the centre of pressure of each joint of it in compression
+// (normal force over 1e-3 of the largest), so that tubes meet at the
+// joints and run along the load paths from block to block down to the
+// supports. A tube's cross-section is in proportion to its joint's
+// resultant: the largest has radius `largest_radius` (m), radius
+// largest_radius * sqrt(|R| / |R|max).
+std::vector<TubeSegment> thrust_network(const Structure& structure, const EquilibriumResult& result,
+                                        double largest_radius);
 
 struct NamedGlyph {
   std::string name;
@@ -67,11 +89,13 @@ struct NamedGlyph {
   SceneLayer layer;
   int interface = -1;  // forces: the arrow's interface (index into result.interfaces)
   std::optional<ArrowGlyph> arrow = std::nullopt;  // forces: what `faces` draws
+  int block = -1;                                  // limit: the block the marker moves with
+  std::vector<TubeSegment> tubes = {};             // thrust network: what `faces` draws
 };
 
 // Every cable as a tube, node "cable c" (1-based), the load traces as one
-// node "load traces", then the force arrows and the thrust line that
-// `options` asks for (see ExportOptions). Expects options already checked against
+// node "load traces", then the force arrows and the thrust line or network
+// that `options` asks for (see ExportOptions). Expects options already checked against
 // the structure: options.result set when forces or thrust are.
 std::vector<NamedGlyph> equilibrium_glyphs(const Structure& structure,
                                            const ExportOptions& options);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "geometry/block.hpp"
 #include "geometry/block_builders.hpp"
 #include "io/color.hpp"
@@ -67,15 +68,32 @@ struct ColorScale {
   std::string label;  // what the values mean, with units; may be empty
 };
 
+// What the force arrows of an export draw: one arrow per interface, its
+// resultant at its centre of pressure ("resultants", the engineer's usual
+// picture), or the forces at each contact vertex, split into a normal arrow
+// (compression or tension) and a friction arrow ("vertices": how the
+// solver spread the force over the joint).
+enum class ForceMode { resultants, vertices };
+inline constexpr EnumNames<ForceMode, 2> kForceModeNames{
+    {{{ForceMode::resultants, "resultants"}, {ForceMode::vertices, "vertices"}}}};
+
 struct ExportOptions {
   // One colour per block (size() == structure.size()), or empty for the
   // default grey.
   std::vector<Rgb> block_colors;
   // HTML viewer only: the values block_colors came from, if any.
   std::optional<ColorScale> color_scale;
-  // HTML viewer only, a simulation's page: it plays as it opens (false:
-  // paused at the first key frame).
+  // HTML viewer only, a simulation's or a mechanism's page: it plays as it
+  // opens (false: paused at the frame it opens at).
   bool autoplay = true;
+  // HTML viewer only: a page with a mechanism (`mechanism`, or an unstable
+  // result's) plays it (viewer_page.hpp), the blocks drawn where they stand
+  // and moved by the player, the fastest centroid mechanism_scale metres at
+  // the extreme (0: kAutomaticMechanismOfSize, viewer_page.hpp, of the
+  // structure's size).
+  // False: a still, the blocks drawn moved by mechanism_scale as in the mesh
+  // files.
+  bool animate_mechanism = true;
   // HTML viewer only: the page's title; empty: the file's name.
   std::string title;
   bool interfaces = false;  // also write each contact polygon as a node
@@ -96,8 +114,19 @@ struct ExportOptions {
   // block above), its length proportional to the resultant's size. Interfaces whose resultant is
   // below `negligible_force` of the largest get none.
   bool forces = false;
-  // The thrust line, every branch of it (thrust_polylines(structure, *result)), as thin tubes in one node
-  // "thrust line"; none when it has fewer than two points.
+  // What the arrows draw when `forces` is set (ForceMode above). With
+  // vertices, arrows "force a-b vertex j" (the normal part of the force at
+  // the joint's j-th contact vertex, 1-based, on the same block as the
+  // resultant's arrow) and "friction a-b vertex j" (its tangential part),
+  // from the vertex.
+  ForceMode force_mode = ForceMode::resultants;
+  // The thrust (thrust_network in force_glyphs.hpp): for a structure in one
+  // vertical plane, the thrust line, every branch of it
+  // (thrust_polylines(structure, *result)), as thin tubes in one node
+  // "thrust line"; for a vault or a dome, the thrust network, one node
+  // "thrust network" of tubes from each free block's centroid to the centres
+  // of pressure of its compressed joints, each as thick as its joint's
+  // force. None when there is nothing to draw.
   bool thrust = false;
   // Arrow length per newton (m/N); 0: a round number of newtons per metre
   // that draws the largest arrow about a quarter of the mean size
@@ -109,6 +138,9 @@ struct ExportOptions {
   double negligible_force = 1e-3;
   Rgb compression_color{0.0, 0.467, 0.733};  // arrows of interfaces in compression only (Tol blue)
   Rgb tension_color{0.8, 0.2, 0.067};        // arrows of interfaces carrying tension (Tol red)
+  // Friction arrows (force_mode vertices): Tol vibrant magenta, apart from
+  // both arrow colours for every kind of colour vision.
+  Rgb friction_color{0.933, 0.2, 0.467};
   Rgb thrust_color{0.902, 0.624, 0.0};         // Okabe-Ito orange
   Rgb cable_color{0.2, 0.2, 0.22};  // cables are always drawn, as thin tubes
   // Load traces (ForceFlow::polylines of trace_loads, m), drawn as thin

@@ -44,6 +44,7 @@ std::vector<NamedGlyph> limit_glyphs(const Structure& structure, const ExportOpt
     // With the blocks moved, the marker moves with the joint's free block (a, unless a is a support).
     const int carrier = structure.is_support(contact.a) ? contact.b : contact.a;
     const bool carried = options.mechanism_scale > 0.0 && motion && !structure.is_support(carrier);
+    const int mover = structure.is_support(carrier) ? -1 : carrier;
     const auto place = [&](GlyphFaces faces) {
       if (!carried) return faces;
       for (std::vector<Vec3>& face : faces) {
@@ -71,14 +72,14 @@ std::vector<NamedGlyph> limit_glyphs(const Structure& structure, const ExportOpt
       const double half = 0.04 * size;
       if (hi - lo < 2.0 * half) lo = -half, hi = half;
       glyphs.push_back({"hinge " + pair, place(tube_faces({entry.pivot + lo * axis, entry.pivot + hi * axis}, 0.04 * size, 8)),
-                        options.hinge_color, SceneLayer::limit, entry.interface});
+                        options.hinge_color, SceneLayer::limit, entry.interface, std::nullopt, mover});
     }
     if (moves) {
       const double half = 0.01 * size;
       glyphs.push_back({(entry.mode == LimitMode::separation ? "separation " : "sliding ") + pair,
                         place(tube_faces({contact.center - half * contact.normal, contact.center + half * contact.normal},
                                          0.15 * size, 12)),
-                        options.sliding_color, SceneLayer::limit, entry.interface});
+                        options.sliding_color, SceneLayer::limit, entry.interface, std::nullopt, mover});
     }
   }
   return glyphs;
@@ -96,6 +97,7 @@ void check_options(const Structure& structure, const ExportOptions& options) {
   check_color(options.compression_color, "compression_color", "export");
   check_color(options.tension_color, "tension_color", "export");
   check_color(options.thrust_color, "thrust_color", "export");
+  check_color(options.friction_color, "friction_color", "export");
   if (options.block_opacity && !(*options.block_opacity >= 0.0 && *options.block_opacity <= 1.0)) {
     throw InvalidArgument("export: block_opacity must lie in [0, 1], got " +
                           std::to_string(*options.block_opacity));
@@ -202,7 +204,9 @@ std::vector<SceneObject> structure_scene(const Structure& structure, const Expor
     }
     object.color = glyph.color;
     object.interface = glyph.interface;
+    object.block = glyph.block;
     object.arrow = glyph.arrow;
+    object.tubes = std::move(glyph.tubes);
     objects.push_back(std::move(object));
   }
   return objects;

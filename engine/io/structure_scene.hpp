@@ -40,6 +40,14 @@ struct ArrowShape {
 struct ArrowGlyph {
   Vec3 tail = Vec3::Zero(), tip = Vec3::Zero();  // m
   ArrowShape shape;
+  Vec3 force = Vec3::Zero();  // N: the force it draws
+};
+
+// One straight tube of a thrust network, as tube_faces draws it with
+// kGlyphSides sides.
+struct TubeSegment {
+  Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // m
+  double radius = 0.0;                           // m
 };
 
 struct SceneObject {
@@ -49,12 +57,14 @@ struct SceneObject {
   Rgb color;
   double opacity = 1.0;  // in [0, 1], multiplies color.a
   bool two_sided = false;
-  int block = -1;      // blocks: the block (0-based)
+  int block = -1;      // blocks: the block (0-based); limit: the block it moves with (-1: none)
   int interface = -1;  // interfaces, forces: index into structure.interfaces(options.contact)
   // blocks: every edge of the block as drawn (displaced by a mechanism too).
   std::vector<std::array<Vec3, 2>> outline;
   // forces: the arrow `mesh` holds, for a viewer that builds it itself.
   std::optional<ArrowGlyph> arrow;
+  // thrust network: the tubes `mesh` holds, likewise.
+  std::vector<TubeSegment> tubes;
 };
 
 // Checks `options` against the structure (InvalidArgument, messages

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "analysis/equilibrium.hpp"
+#include "analysis/mechanism.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/text.hpp"
@@ -93,12 +94,36 @@ Rows interface_rows(const Structure& structure, int k, const ExportOptions& opti
   return rows;
 }
 
+// A vertex's arrow: what it draws, then its joint's rows.
+Rows vertex_arrow_rows(const Structure& structure, const SceneObject& object, const ExportOptions& options) {
+  const Vec3& f = object.arrow->force;
+  const bool friction = object.name.rfind("friction ", 0) == 0;
+  Rows rows{{friction ? "friction at the vertex" : "normal force at the vertex", force(f.norm())},
+            {"its components", "(" + readout(f.x()) + ", " + readout(f.y()) + ", " + readout(f.z()) + ") N"},
+            {"vertex", point(object.arrow->tail)}};
+  const Rows joint = interface_rows(structure, object.interface, options);
+  rows.insert(rows.end(), joint.begin(), joint.end());
+  return rows;
+}
+
+Rows thrust_rows(const SceneObject& object) {
+  if (object.tubes.empty()) return {{"what", "the line of thrust: centres of pressure joined through each block"}};
+  double thickest = 0.0;
+  for (const TubeSegment& tube : object.tubes) thickest = std::max(thickest, tube.radius);
+  return {{"what", "the thrust network: from each block's centroid to the centres of pressure of its joints in "
+                   "compression, along the load paths"},
+          {"thickness", "cross-section in proportion to the joint's resultant; the largest has radius " +
+                            readout(thickest) + " m"}};
+}
+
 Rows object_rows(const Structure& structure, const SceneObject& object, const ExportOptions& options) {
   switch (object.layer) {
     case SceneLayer::blocks: return block_rows(structure, object.block, options);
-    case SceneLayer::interfaces:
-    case SceneLayer::forces: return interface_rows(structure, object.interface, options);
-    case SceneLayer::thrust: return {{"what", "the line of thrust: centres of pressure joined through each block"}};
+    case SceneLayer::forces:
+      if (options.force_mode == ForceMode::vertices) return vertex_arrow_rows(structure, object, options);
+      return interface_rows(structure, object.interface, options);
+    case SceneLayer::interfaces: return interface_rows(structure, object.interface, options);
+    case SceneLayer::thrust: return thrust_rows(object);
     case SceneLayer::traces: return {{"what", "paths of the loads down to the supports"}};
     case SceneLayer::limit: {
       // "hinge a-b", "sliding a-b" or "separation a-b", over the joint's own rows.
@@ -141,6 +166,18 @@ json object_json(const Structure& structure, const SceneObject& object, const Ex
     item["arrow"] = std::move(values);
     return item;
   }
+  if (!object.tubes.empty()) {
+    // Likewise the thrust network's tubes: ends and radius each.
+    json values = json::array();
+    for (const TubeSegment& tube : object.tubes) {
+      for (const Vec3& p : {tube.from, tube.to}) {
+        for (int axis = 0; axis < 3; ++axis) values.push_back(rounded(p[axis]));
+      }
+      values.push_back(rounded(tube.radius));
+    }
+    item["tubes"] = std::move(values);
+    return item;
+  }
   json positions = json::array(), triangles = json::array();
   for (const Vec3& p : object.mesh.positions) {
     for (int axis = 0; axis < 3; ++axis) positions.push_back(rounded(p[axis]));
@@ -163,16 +200,21 @@ std::string summary(const Structure& structure, const ExportOptions& options) {
   return text;
 }
 
-// The page's key: what each colour drawn means, for the layers present.
-json key_json(const ExportOptions& options, const bool present[]) {
+// The page's key: what each colour drawn means, for the objects present.
+json key_json(const ExportOptions& options, const std::vector<SceneObject>& objects, const bool present[]) {
   json key = json::array();
   const auto add = [&](const std::string& label, const Rgb& c) { key.push_back({{"label", label}, {"color", {c.r, c.g, c.b}}}); };
   if (present[static_cast<int>(SceneLayer::forces)]) {
     add("compression", options.compression_color);
     add("tension", options.tension_color);
+    const auto friction = [](const SceneObject& o) { return o.layer == SceneLayer::forces && o.name.rfind("friction ", 0) == 0; };
+    if (std::any_of(objects.begin(), objects.end(), friction)) add("friction", options.friction_color);
   }
   if (present[static_cast<int>(SceneLayer::interfaces)]) add("contact interfaces", options.interface_color);
-  if (present[static_cast<int>(SceneLayer::thrust)]) add("thrust line", options.thrust_color);
+  for (const SceneObject& object : objects) {
+    if (object.layer != SceneLayer::thrust) continue;
+    add(object.tubes.empty() ? "thrust line" : "thrust network (thickness: force)", options.thrust_color);
+  }
   if (present[static_cast<int>(SceneLayer::cables)]) add("cables", options.cable_color);
   if (present[static_cast<int>(SceneLayer::traces)]) add("load traces", options.trace_color);
   return key;
@@ -244,11 +286,14 @@ std::string fill(std::string_view page, std::vector<std::pair<std::string, std::
   return text;
 }
 
-// The page's scene (everything but an animation), and where each block's
-// outline lies in scene["outline"]: vertices [first, second).
+// The page's scene (everything but an animation), where each block's
+// outline lies in scene["outline"] (vertices [first, second)), and the
+// objects that move with each block (its own, then the limit markers it
+// carries; indices into scene["objects"]).
 struct PageScene {
   json data;
   std::vector<std::pair<std::size_t, std::size_t>> block_outline;
+  std::vector<std::vector<int>> carried;
 };
 
 PageScene page_scene(const Structure& structure, const std::string& path, const ExportOptions& options) {
@@ -259,6 +304,7 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
 
   PageScene page;
   page.block_outline.resize(structure.size());
+  page.carried.resize(structure.size());
   json& scene = page.data;
   scene["title"] = options.title.empty() ? file_name(path) : options.title;
   scene["summary"] = summary(structure, options);
@@ -270,6 +316,9 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
   json items = json::array();
   for (const SceneObject& object : objects) {
     present[static_cast<int>(object.layer)] = true;
+    if ((object.layer == SceneLayer::blocks || object.layer == SceneLayer::limit) && object.block >= 0) {
+      page.carried[object.block].push_back(static_cast<int>(items.size()));
+    }
     if (object.layer == SceneLayer::blocks) {
       opacity = object.opacity;
       page.block_outline[object.block] = {outline.size() / 3, outline.size() / 3 + 2 * object.outline.size()};
@@ -288,7 +337,7 @@ PageScene page_scene(const Structure& structure, const std::string& path, const 
     layers.push_back({{"name", name}, {"visible", layer != SceneLayer::edges || options.edges}});
   }
   scene["layers"] = std::move(layers);
-  scene["key"] = key_json(options, present);
+  scene["key"] = key_json(options, objects, present);
   // Arrow length per newton (m/N), for the page's scale bar.
   scene["force_scale"] = present[static_cast<int>(SceneLayer::forces)] ? json(force_arrow_scale(structure, options))
                                                                         : json(nullptr);
@@ -321,10 +370,72 @@ std::string simulation_summary(const Structure& structure, const SimulationResul
   return text + (result.settled ? ", settled" : ", still moving at the end");
 }
 
+// A moving block's track: its objects, centroid, outline and poses per key
+// frame, single precision.
+json track_json(const Structure& structure, const PageScene& page, int block, const std::vector<RigidPose>& poses) {
+  json positions = json::array(), rotations = json::array();
+  for (const RigidPose& pose : poses) {
+    for (int axis = 0; axis < 3; ++axis) positions.push_back(static_cast<float>(pose.position[axis]));
+    for (double c : {pose.rotation.x(), pose.rotation.y(), pose.rotation.z(), pose.rotation.w()}) {
+      rotations.push_back(static_cast<float>(c));
+    }
+  }
+  const Vec3& centroid = structure.block(block).centroid();
+  return {{"objects", page.carried[block]},
+          {"centroid", {centroid.x(), centroid.y(), centroid.z()}},
+          {"outline", {page.block_outline[block].first, page.block_outline[block].second}},
+          {"positions", std::move(positions)},
+          {"rotations", std::move(rotations)}};
+}
+
+// The mechanism a page plays, if any: options.mechanism or the result's.
+const std::vector<BlockMotion>* page_mechanism(const ExportOptions& options) {
+  if (!options.animate_mechanism) return nullptr;
+  if (options.mechanism) return options.mechanism;
+  return options.result && !options.result->mechanism.empty() ? &options.result->mechanism : nullptr;
+}
+
 }  // namespace
 
 void write_viewer_page(const Structure& structure, const std::string& path, const ExportOptions& options) {
-  write_page(path, page_scene(structure, path, options).data);
+  const std::vector<BlockMotion>* mechanism = page_mechanism(options);
+  if (!mechanism) {
+    write_page(path, page_scene(structure, path, options).data);
+    return;
+  }
+  if (!(options.mechanism_scale >= 0.0) || !std::isfinite(options.mechanism_scale)) {
+    throw InvalidArgument("export: mechanism must be a finite distance >= 0 (m), got " +
+                          std::to_string(options.mechanism_scale));
+  }
+  // Drawn where they stand (the scene checks the mechanism against the
+  // structure); the player moves them.
+  ExportOptions at_rest = options;
+  at_rest.mechanism_scale = 0.0;
+  PageScene page = page_scene(structure, path, at_rest);
+  const double scale = options.mechanism_scale > 0.0 ? options.mechanism_scale
+                                                     : kAutomaticMechanismOfSize * structure.bounds().diagonal();
+  // Rest, the mechanism at `scale`, rest again: the loop runs smoothly. A
+  // rigid motion's slerp and lerp between rest and the extreme are the
+  // mechanism at every fraction of it.
+  json tracks = json::array();
+  for (int i = 0; i < structure.size(); ++i) {
+    if (structure.is_support(i)) continue;
+    const BlockMotion& motion = (*mechanism)[i];
+    const Vec3& centroid = structure.block(i).centroid();
+    RigidPose rest{centroid, Quat::Identity()}, moved = rest;
+    moved.position += scale * motion.velocity;
+    const double angle = scale * motion.rotation.norm();
+    if (angle > 0.0) moved.rotation = Quat(Eigen::AngleAxisd(angle, motion.rotation.normalized()));
+    tracks.push_back(track_json(structure, page, i, {rest, moved, rest}));
+  }
+  page.data["summary"] = page.data["summary"].get<std::string>() + "; the collapse mechanism plays, the fastest " +
+                         "block's centroid moved " + readout(scale) + " m at its extreme";
+  page.data["animation"] = {{"times", {0.0, 1.0, 2.0}},
+                            {"tracks", std::move(tracks)},
+                            {"autoplay", options.autoplay},
+                            {"start", 1.0},
+                            {"mechanism", scale}};
+  write_page(path, page.data);
 }
 
 void write_viewer_page(const Structure& structure, const SimulationResult& result, double fps,
@@ -341,20 +452,9 @@ void write_viewer_page(const Structure& structure, const SimulationResult& resul
   json tracks = json::array();
   for (int i = 0; i < structure.size(); ++i) {
     if (structure.is_support(i)) continue;
-    json positions = json::array(), rotations = json::array();
-    for (const std::vector<RigidPose>& frame : frames.poses) {
-      const RigidPose& pose = frame[i];
-      for (int axis = 0; axis < 3; ++axis) positions.push_back(static_cast<float>(pose.position[axis]));
-      for (double c : {pose.rotation.x(), pose.rotation.y(), pose.rotation.z(), pose.rotation.w()}) {
-        rotations.push_back(static_cast<float>(c));
-      }
-    }
-    const Vec3& centroid = structure.block(i).centroid();
-    tracks.push_back({{"object", i},
-                      {"centroid", {centroid.x(), centroid.y(), centroid.z()}},
-                      {"outline", {page.block_outline[i].first, page.block_outline[i].second}},
-                      {"positions", std::move(positions)},
-                      {"rotations", std::move(rotations)}});
+    std::vector<RigidPose> poses;
+    for (const std::vector<RigidPose>& frame : frames.poses) poses.push_back(frame[i]);
+    tracks.push_back(track_json(structure, page, i, poses));
   }
   page.data["animation"] = {{"times", frames.times}, {"tracks", std::move(tracks)}, {"autoplay", options.autoplay}};
   write_page(path, page.data);

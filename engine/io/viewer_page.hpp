@@ -16,6 +16,18 @@
 // front view, orthographic). The page of a simulation also plays it, from
 // the moment it opens unless options.autoplay is false: play and pause, a
 // time slider, the time, and looping.
+//
+// The page of a still whose options hold a collapse mechanism
+// (options.mechanism, or an unstable result's) plays it too, unless
+// options.animate_mechanism is false: the scene is drawn with the blocks
+// where they stand (options.mechanism_scale does not move them), and the
+// "animation" (as a simulation's, below) moves every free block, its
+// outline and the limit markers it carries rigidly through three key
+// frames at times 0, 1, 2: rest, the mechanism's extreme (turned about the
+// centroid by s |rotation|, shifted by s velocity, s = mechanism_scale or
+// kAutomaticMechanismOfSize of the structure's size), rest. Its "start"
+// (1: the page opens at the extreme) and "mechanism" (s, m) tell the player
+// so; the summary states s.
 #pragma once
 
 #include <string>
@@ -25,6 +37,12 @@
 
 namespace ashlar {
 
+// A mechanism's page moves the fastest centroid this fraction of the
+// structure's size (bounding-box diagonal) unless options say how far:
+// plainly visible, yet small enough that the blocks still read as the
+// structure.
+inline constexpr double kAutomaticMechanismOfSize = 0.05;
+
 // Writes the page to `path` atomically, whatever its extension. Checks the
 // options as export_structure does (InvalidArgument); IoError on failure.
 void write_viewer_page(const Structure& structure, const std::string& path, const ExportOptions& options);
@@ -32,8 +50,9 @@ void write_viewer_page(const Structure& structure, const std::string& path, cons
 // The page of `result`, a simulation of `structure`: the blocks (drawn as
 // `options` says) and their outlines move through the key frames of
 // animation_frames(result, fps) (simulation_export.hpp), which the scene's
-// "animation" holds: "times" (s) and per free block a track, "object" (its
-// index in "objects", the block's own), "centroid" (m, where the block was
+// "animation" holds: "times" (s) and per free block a track, "objects" (the
+// indices in "objects" of what moves with it: the block's own, then the
+// limit markers it carries), "centroid" (m, where the block was
 // built), "outline" (its vertices [first, last) in "outline"), and per key
 // frame its pose, "positions" (centroid, m: x y z) and "rotations" (unit
 // quaternion from the built block: x y z w), single precision. The player

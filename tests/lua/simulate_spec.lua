@@ -92,7 +92,7 @@ describe("ashlar.simulate", function()
       local scene = support.read_file(folder .. "/" .. name)
         :match('<script type="application/json" id="ashlar%-scene">(.-)</script>')
       assert.truthy(scene:find('"animation":{"times":[0.0,', 1, true), name)
-      assert.truthy(scene:find('"tracks":[{"object":1,', 1, true), name)
+      assert.truthy(scene:find('"tracks":[{"objects":[1],', 1, true), name)
       assert.truthy(scene:find('"autoplay":true', 1, true), name)  -- plays as it opens
     end
     sim:export(folder .. "/paused.html", { autoplay = false })

@@ -96,13 +96,71 @@ describe("ashlar.export to HTML", function()
     local falls = ashlar.analyze(thin, { friction = 0.7 })
     assert.is_false(falls.stable)
     ashlar.export(thin, folder .. "/falls.html", { result = falls, mechanism = 0.3, title = "thin" })
-    ashlar.export(thin, folder .. "/stands.html", { result = falls, title = "thin" })
+    ashlar.export(thin, folder .. "/stands.html", { result = falls, mechanism = false, title = "thin" })
     local moved, still = scene_of(folder .. "/falls.html"), scene_of(folder .. "/stands.html")
     assert.truthy(moved:find('"summary":"7 blocks: unstable, infeasibility ', 1, true))
-    -- The free blocks and their outlines moved, and nothing else changed.
-    local function without_geometry(scene) return (scene:gsub('"positions":%b[]', ""):gsub('"outline":%b[]', "")) end
-    assert.are_not.equal(still, moved)
-    assert.are.equal(without_geometry(still), without_geometry(moved))
+    -- The page plays the mechanism: the blocks drawn where they stand (the
+    -- still's objects), moved by the player, the fastest centroid 0.3 m.
+    assert.truthy(still:find('"animation":null', 1, true))
+    assert.truthy(moved:find('"start":1.0,"mechanism":0.3}', 1, true))
+    assert.truthy(moved:find("the fastest block's centroid moved 0.3 m at its extreme", 1, true))
+    local function objects(scene) return scene:match('"objects":(%b[])') end
+    assert.are.equal(objects(still), objects(moved))
+  end)
+
+  it("plays a load factor's mechanism: each block moved rigidly by its virtual motion", function()
+    local arch = models.arch{ radius = 1, thickness = 0.15, voussoirs = 16 }
+    local f = ashlar.load_factor(arch, { friction = math.huge })
+    ashlar.export(arch, folder .. "/mechanism.html", { result = f, mechanism = 0.2, autoplay = false })
+    local json = scene_of(folder .. "/mechanism.html")
+    assert.truthy(json:find('"autoplay":false', 1, true))
+    local function numbers(text)
+      local list = {}
+      for number in text:gmatch("[-%d.eE+]+") do list[#list + 1] = tonumber(number) end
+      return list
+    end
+    -- One track per free block, in block order: rest, the extreme (its
+    -- centroid moved by 0.2 x its velocity in f.mechanism), rest.
+    local tracks = {}
+    for centroid, positions in json:match('"tracks":(%b[])'):gmatch('"centroid":(%b[]),"outline":%b[],"positions":(%b[])') do
+      tracks[#tracks + 1] = { centroid = numbers(centroid), positions = numbers(positions) }
+    end
+    local k = 0
+    for i = 1, #arch do
+      if not arch:is_support(i) then
+        k = k + 1
+        local c, v, track = arch:block(i):centroid(), f.mechanism[i].velocity, tracks[k]
+        for axis = 1, 3 do
+          assert.near(c[axis], track.positions[axis], 1e-6)
+          assert.near(c[axis] + 0.2 * v[axis], track.positions[3 + axis], 1e-6)
+          assert.near(c[axis], track.positions[6 + axis], 1e-6)
+        end
+      end
+    end
+    assert.are.equal(k, #tracks)
+    -- The hinges move with their blocks: each is in a track's objects.
+    assert.truthy(json:find('"name":"hinge ', 1, true))
+  end)
+
+  it("draws a vault's thrust as a network and an arch's as a line, and forces at vertices with friction", function()
+    local dome = models.dome{ meridians = 8, parallels = 4 }
+    local rd = ashlar.analyze(dome, { friction = 0.7 })
+    ashlar.export(dome, folder .. "/dome.html", { result = rd, thrust = true, forces = "vertices" })
+    local page = scene_of(folder .. "/dome.html")
+    assert.truthy(page:find('"name":"thrust network"', 1, true))
+    assert.truthy(page:find('"tubes":[', 1, true))
+    assert.is_nil(page:find('"name":"thrust line"', 1, true))
+    assert.truthy(page:find('"name":"force %d+%-%d+ vertex 1"'))
+    assert.truthy(page:find('"name":"friction %d+%-%d+ vertex %d"'))
+    for _, label in ipairs{ "compression", "friction", "thrust network (thickness: force)" } do
+      assert.truthy(page:find('{"label":"' .. label .. '"', 1, true), label)
+    end
+    -- An arch not flagged planar still has a line: its joints face one plane.
+    ashlar.export(s, folder .. "/line.html", { result = r, thrust = true, forces = "resultants" })
+    local line = scene_of(folder .. "/line.html")
+    assert.truthy(line:find('"name":"thrust line"', 1, true))
+    assert.truthy(line:find('"name":"force 3-4"', 1, true))
+    assert.is_nil(line:find('"label":"friction"', 1, true))
   end)
 
   it("names the option at fault", function()
@@ -118,6 +176,14 @@ describe("ashlar.export to HTML", function()
     expect_error({ "forces needs the result of an analysis" }, ashlar.export, s, folder .. "/x.html",
                  { forces = true })
     expect_error({ "unknown option 'colour'" }, ashlar.export, s, folder .. "/x.html", { colour = { 1, 0, 0 } })
+    expect_error({ "forces: 'vertex' is not one of" }, ashlar.export, s, folder .. "/x.html",
+                 { result = r, forces = "vertex" })
+    expect_error({ "forces: expected true, false or one of", "got number" }, ashlar.export, s,
+                 folder .. "/x.html", { result = r, forces = 1 })
+    expect_error({ "autoplay: applies to a page (.html) that plays a collapse mechanism", "got false" },
+                 ashlar.export, s, folder .. "/x.html", { result = r, autoplay = false })
+    expect_error({ "mechanism: expected a distance >= 0 (m) or false, got true" }, ashlar.export, s,
+                 folder .. "/x.html", { result = r, mechanism = true })
     assert.is_nil(io.open(folder .. "/x.html"))
   end)
 end)

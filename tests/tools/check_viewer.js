@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Opens a page of ashlar's HTML viewer in Debian's chromium (headless,
 // WebGL through SwiftShader) and checks what a user would see.
-// Usage: node check_viewer.js ASHLAR OUT arch|dome|animation
+// Usage: node check_viewer.js ASHLAR OUT arch|dome|animation|mechanism|network
 //   ASHLAR  the ashlar program, which writes the page (viewer_pages.lua)
 //   OUT     a folder for the page and the screenshots
 // Every case checks that the page loads without console errors and draws
@@ -19,7 +19,18 @@
 //   animation: a simulation's page has a player (the still pages have
 //         none) and plays as it opens; the red block it drops is lower on
 //         the screen at the last frame than at the first, and hovering it
-//         there names it; playing moves the time on, pausing stops it.
+//         there names it; playing moves the time on, pausing stops it;
+//   mechanism: a load factor's page plays its mechanism: it has a player,
+//         opens paused at the extreme and says how far the fastest centroid
+//         moved; the red (fastest) block lies where the load factor's
+//         mechanism puts it: from the rest frame to the extreme its middle
+//         moves on the screen by the mechanism's displacement (Lua's own,
+//         mechanism.json) at the page's scale; the key, the force-free page
+//         and the hinges (the limit layer, which switches off);
+//   network: a dome's thrust network and the forces at the contact
+//         vertices: orange tubes, blue normal and magenta friction arrows,
+//         a key naming compression, friction and the thrust network, the
+//         scale bar; the network goes when switched off.
 // Exits 77 (ctest: skipped) when chromium is not installed, 2 when
 // puppeteer-core is not (npm ci in this folder), 1 when a check fails.
 'use strict';
@@ -32,8 +43,9 @@ const CHROMIUM = process.env.ASHLAR_CHROMIUM || '/usr/bin/chromium';
 const WIDTH = 800, HEIGHT = 600;
 
 const [ashlar, out, name] = process.argv.slice(2);
-if (!ashlar || !out || !['arch', 'dome', 'animation'].includes(name)) {
-  console.error('usage: node check_viewer.js ASHLAR OUT arch|dome|animation');
+const CASES = ['arch', 'dome', 'animation', 'mechanism', 'network'];
+if (!ashlar || !out || !CASES.includes(name)) {
+  console.error(`usage: node check_viewer.js ASHLAR OUT ${CASES.join('|')}`);
   process.exit(1);
 }
 if (!fs.existsSync(CHROMIUM)) {
@@ -58,7 +70,8 @@ function check(ok, what) {
 // Pixel statistics of a PNG screenshot, decoded by the browser itself,
 // within `region` ([x0, y0, x1, y1], default all) and outside the viewer's
 // panels. Classes: background, saturated blue (hue 190-250), orange
-// (20-50), red (<= 12 or >= 348), and everything else drawn.
+// (20-50), red (<= 12 or >= 348), magenta (320-345), and everything else
+// drawn.
 async function analyse(browser, shot, region) {
   const page = await browser.newPage();
   try {
@@ -73,7 +86,7 @@ async function analyse(browser, shot, region) {
       context.drawImage(image, 0, 0);
       const { data } = context.getImageData(0, 0, image.width, image.height);
       const [x0, y0, x1, y1] = region || [0, 0, image.width, image.height];
-      const counts = { drawn: 0, blue: 0, orange: 0, red: 0, total: 0 };
+      const counts = { drawn: 0, blue: 0, orange: 0, red: 0, magenta: 0, total: 0 };
       const drawn_rows = [];
       const blue_points = [];
       let warmth = 0, top = image.height, bottom = -1, left = image.width, right = -1;
@@ -100,6 +113,7 @@ async function analyse(browser, shot, region) {
           else hue = 60 * (r - g) / (max - min) + 240;
           if (hue >= 190 && hue <= 250) { counts.blue += 1; blue_points.push([x, y]); }
           else if (hue >= 20 && hue <= 50) counts.orange += 1;
+          else if (hue >= 320 && hue <= 345) counts.magenta += 1;
           else if (hue <= 12 || hue >= 348) {
             counts.red += 1;
             red_box[0] = Math.min(red_box[0], x); red_box[1] = Math.min(red_box[1], y);
@@ -345,6 +359,78 @@ async function check_animation(browser, page) {
   check(later === paused && button === 'play', `pausing stops it: ${paused} s, 0.3 s later ${later} s`);
 }
 
+async function set_slider(page, value) {
+  await page.$eval('#time', (slider, value) => {
+    slider.value = value;
+    slider.dispatchEvent(new Event('input'));
+  }, value);
+}
+
+async function check_mechanism(browser, page) {
+  const expected = JSON.parse(fs.readFileSync(path.join(out, 'mechanism.json'), 'utf8'));
+  const player = await page.$eval('#player', (element) => ({
+    shown: getComputedStyle(element).display !== 'none',
+    button: element.querySelector('#play').textContent,
+    value: Number(element.querySelector('#time').value),
+    text: element.querySelector('#time-text').textContent,
+  }));
+  check(player.shown && player.button === 'play' && player.value === 1,
+        `a load factor's page has a player, paused at the mechanism's extreme: ${JSON.stringify(player)}`);
+  check(player.text === 'mechanism 0.2 m / 0.2 m', `it states the scale: ${player.text}`);
+  const summary = await page.$eval('#summary', (element) => element.textContent);
+  check(summary.includes("the fastest block's centroid moved 0.2 m at its extreme"), `so does the summary: ${summary}`);
+
+  const moved = await analyse(browser, await screenshot(page, 'mechanism_extreme.png'));
+  await set_slider(page, 0);
+  const rest_shot = await screenshot(page, 'mechanism_rest.png');
+  const rest = await analyse(browser, rest_shot);
+  check(rest.red > 100 && moved.red > 100, `the fastest block is red at rest and at the extreme (${rest.red}, ${moved.red} pixels)`);
+  // The page's scale from the rest frame: the arch's width on the screen over its width in metres.
+  const pixels_per_metre = (rest.box[2] - rest.box[0]) / expected.width;
+  const middle = (box) => [(box[0] + box[2]) / 2, (box[1] + box[3]) / 2];
+  const [x0, y0] = middle(rest.red_box), [x1, y1] = middle(moved.red_box);
+  const want = [expected.shift[0] * pixels_per_metre, -expected.shift[1] * pixels_per_metre];  // screen y runs down
+  const got = [x1 - x0, y1 - y0];
+  const miss = Math.hypot(got[0] - want[0], got[1] - want[1]);
+  check(Math.hypot(...want) > 20 && miss < 0.15 * Math.hypot(...want) + 4,
+        `the extreme moves block ${expected.block} by the mechanism's displacement: ${got.map((v) => v.toFixed(1))} px, ` +
+        `expected ${want.map((v) => v.toFixed(1))} px (${pixels_per_metre.toFixed(1)} px/m), off by ${miss.toFixed(1)} px`);
+  await set_slider(page, 2);
+  const back = await analyse(browser, await screenshot(page, 'mechanism_back.png'));
+  check(Math.abs(middle(back.red_box)[0] - x0) <= 1 && Math.abs(middle(back.red_box)[1] - y0) <= 1,
+        'and back at rest at the end of the loop');
+
+  await set_slider(page, 0);
+  const limit_box = await page.$('#layer-limit');
+  check(limit_box !== null, 'the hinges have their layer');
+  if (limit_box) {
+    await limit_box.click();
+    const without = await screenshot(page, 'mechanism_no_hinges.png');
+    const changed = await difference(browser, rest_shot, without) * WIDTH * HEIGHT;
+    check(changed > 20, `switching the hinges off removes them (${changed.toFixed(0)} pixels change)`);
+  }
+  const key = await page.$eval('#key', (element) => element.innerText);
+  check(key.includes('thrust line'), `the key names the thrust line at the factor: ${JSON.stringify(key)}`);
+}
+
+async function check_network(browser, page) {
+  const shot = await screenshot(page, 'network.png');
+  const drawn = await analyse(browser, shot);
+  const panels = await page.evaluate(() => ({
+    key: document.getElementById('key').innerText,
+    scale: getComputedStyle(document.getElementById('scale')).display !== 'none',
+  }));
+  check(['compression', 'tension', 'friction', 'thrust network (thickness: force)'].every((l) => panels.key.includes(l)),
+        `the key names compression, tension, friction and the network: ${JSON.stringify(panels.key)}`);
+  check(panels.scale, 'the scale bar shows');
+  check(drawn.orange > 300, `the thrust network shows in orange (${drawn.orange} pixels)`);
+  check(drawn.blue > 100, `normal forces at the vertices in blue (${drawn.blue} pixels)`);
+  check(drawn.magenta > 30, `friction at the vertices in magenta (${drawn.magenta} pixels)`);
+  await page.click('#layer-thrust');
+  const bare = await analyse(browser, await screenshot(page, 'network_off.png'));
+  check(bare.orange < drawn.orange / 10, `switching the thrust off removes the network (${bare.orange} orange pixels left)`);
+}
+
 (async () => {
   fs.rmSync(out, { recursive: true, force: true });
   fs.mkdirSync(out, { recursive: true });
@@ -372,10 +458,13 @@ async function check_animation(browser, page) {
     check(!/<script[^>]+src=|<link[^>]+href=/.test(html), 'the page loads no other file');
     if (name === 'animation') {
       await check_animation(browser, page);
+    } else if (name === 'mechanism') {
+      await check_mechanism(browser, page);
     } else {
       const player = await page.$eval('#player', (element) => getComputedStyle(element).display);
       check(player === 'none', 'a still has no player');
       if (name === 'arch') await check_arch(browser, page);
+      else if (name === 'network') await check_network(browser, page);
       else await check_dome(browser, page);
     }
     check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);

@@ -261,7 +261,7 @@ TEST(ViewerPage, AnimationTracksHoldTheSimulationsKeyFrames) {
     // One track, the free block's; the ground stands still.
     ASSERT_EQ(animation["tracks"].size(), 1u);
     const json& track = animation["tracks"][0];
-    EXPECT_EQ(track["object"], 1);
+    EXPECT_EQ(track["objects"], json({1}));  // its block, which carries nothing else
     EXPECT_EQ(scene["objects"][1]["name"], "falling");
     for (int axis = 0; axis < 3; ++axis) {
       EXPECT_NEAR(track["centroid"][axis].get<double>(), Vec3(0.5, 0.0, 0.55)[axis], 1e-12);
