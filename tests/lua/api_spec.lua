@@ -313,7 +313,7 @@ describe("export of an analysis", function()
     end
     assert.is_truthy(export_error{ forces = true }:find("needs the result", 1, true))
     assert.is_truthy(export_error{ result = s, thrust = true }:find("result: expected a Result", 1, true))
-    assert.is_truthy(export_error{ result = r, forces = "yes" }:find("forces: expected a boolean", 1, true))
+    assert.is_truthy(export_error{ result = r, forces = "yes" }:find("forces: 'yes' is not one of", 1, true))
     local unknown = export_error{ result = r, force = true }
     assert.is_truthy(unknown:find("unknown option", 1, true) and unknown:find("forces", 1, true))
     s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 1.25 } })

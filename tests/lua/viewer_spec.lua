@@ -155,6 +155,11 @@ describe("ashlar.export to HTML", function()
     for _, label in ipairs{ "compression", "friction", "thrust network (thickness: force)" } do
       assert.truthy(page:find('{"label":"' .. label .. '"', 1, true), label)
     end
+    -- The mesh files get the same objects.
+    ashlar.export(dome, folder .. "/dome.obj", { result = rd, thrust = true, forces = "vertices" })
+    local obj = read(folder .. "/dome.obj")
+    assert.truthy(obj:find("thrust network", 1, true))
+    assert.truthy(obj:find("friction %d+%-%d+ vertex %d"))
     -- An arch not flagged planar still has a line: its joints face one plane.
     ashlar.export(s, folder .. "/line.html", { result = r, thrust = true, forces = "resultants" })
     local line = scene_of(folder .. "/line.html")
