@@ -124,6 +124,7 @@ void export_with_options(lua_State* L, const Structure& s, const std::string& pa
   const ResultOption result = result_with_mechanism(L, options, s, exported.contact);
   exported.result = result.analysis.get();
   exported.mechanism = result.mechanism();
+  if (result.factor) exported.load_factor = result.factor->factor;
   if (options.boolean("limit").value_or(result.factor.has_value())) exported.limit = result.limit();
   // forces = true draws the resultants; a ForceMode's name chooses.
   if (options.push("forces") == LUA_TSTRING) {

@@ -171,6 +171,10 @@ struct ExportOptions {
   // whose `result` is the equilibrium at its factor): one motion per block;
   // not owned. Null: the result's own, if any.
   const std::vector<BlockMotion>* mechanism = nullptr;
+  // ashlar.load_factor's factor when `result` is the equilibrium at it: the
+  // viewer's summary then says the structure is at that limit, not
+  // "stable".
+  std::optional<double> load_factor;
   // The interfaces at their limit (indices into
   // structure.interfaces(contact)), marked in a layer "limit": a hinge as a
   // rod along its axis (the blocks' relative rotation) across the joint,

@@ -193,7 +193,13 @@ json object_json(const Structure& structure, const SceneObject& object, const Ex
 std::string summary(const Structure& structure, const ExportOptions& options) {
   std::string text = std::to_string(structure.size()) + " blocks";
   if (const EquilibriumResult* result = options.result) {
-    text += result->stable ? ": stable" : ": unstable, infeasibility " + readout(result->infeasibility);
+    // A load factor's result is the equilibrium at the factor: at its limit,
+    // where "stable" would read as a verdict on the structure as loaded.
+    if (options.load_factor) {
+      text += ": at its limit, load factor " + readout(*options.load_factor);
+    } else {
+      text += result->stable ? ": stable" : ": unstable, infeasibility " + readout(result->infeasibility);
+    }
     text += std::string(" (") + kAnalysisMethodNames.name(result->method) + " method, solver " +
             kSolverStatusNames.name(result->status) + ")";
   }

@@ -114,6 +114,9 @@ describe("ashlar.export to HTML", function()
     ashlar.export(arch, folder .. "/mechanism.html", { result = f, mechanism = 0.2, autoplay = false })
     local json = scene_of(folder .. "/mechanism.html")
     assert.truthy(json:find('"autoplay":false', 1, true))
+    -- The equilibrium at the factor is at its limit: the summary says so
+    -- with the factor, not "stable".
+    assert.truthy(json:find(('"summary":"%d blocks: at its limit, load factor %.4g'):format(#arch, f.factor), 1, true))
     local function numbers(text)
       local list = {}
       for number in text:gmatch("[-%d.eE+]+") do list[#list + 1] = tonumber(number) end
