@@ -412,11 +412,15 @@ Vec3 axis_direction(lua_State* L, int idx, int arg, const std::string& what) {
   throw ArgError(arg, what + ": expected an axis \"x\", \"y\" or \"z\", got " + got);
 }
 
-// The components of one file: its columns along `directions` (one per column).
-void add_file_components(const std::string& path, const std::vector<Vec3>& directions, bool at2,
+// The components of one file: its columns along `directions` (one per
+// column; none given: along x, y, z in turn).
+void add_file_components(const std::string& path, std::vector<Vec3> directions, bool at2,
                          std::optional<AccelerationUnit> unit, double scale, Baseline baseline,
                          std::vector<GroundMotion::Component>& components) {
   const RecordColumns record = at2 ? read_at2(path) : read_acceleration_table(path);
+  if (directions.empty()) {
+    for (size_t c = 0; c < record.columns.size(); ++c) directions.push_back(Vec3::Unit(static_cast<int>(c)));
+  }
   if (directions.size() != record.columns.size()) {
     throw ArgError(1, "component: \"" + path + "\" has " + std::to_string(record.columns.size()) +
                           " acceleration column(s) but component names " + std::to_string(directions.size()) +
@@ -502,13 +506,7 @@ int w_ground_motion(lua_State* L) {
         throw ArgError(1, "units: required for a table (\"" + path +
                               "\" does not state its units): \"g\", \"m/s2\" or \"cm/s2\"");
       }
-      std::vector<Vec3> axes = given_axes;
-      if (axes.empty()) {
-        // Default: the columns along x, y, z in turn; read the file once to count them.
-        const RecordColumns record = at2 ? read_at2(path) : read_acceleration_table(path);
-        for (size_t c = 0; c < record.columns.size(); ++c) axes.push_back(Vec3::Unit(static_cast<int>(c)));
-      }
-      add_file_components(path, axes, at2, unit, scale, baseline, components);
+      add_file_components(path, given_axes, at2, unit, scale, baseline, components);
     }
     auto motion = std::make_shared<GroundMotion>(std::move(components));
     push_boxed(L, std::move(motion), kGroundMotionMeta);

@@ -74,5 +74,15 @@ describe("a collapse map of a rocking block under one-sine pulses", function()
     assert.is_true(#map.boundary >= 1)
     assert.equal(#ratios * #amplitudes, map.cells)
     os.remove(path)
+    local support = require "spec_support"
+    support.expect_error({ "curves[1][2]: expected {x, y}, got number" }, function()
+      study:chart{ path = path, x = "ratio", y = "amplitude", z = "collapsed", kind = "map", curves = { { { 1, 2 }, 3 } } }
+    end)
+    support.expect_error({ "chart: map: curve 1 must have at least 2 points" }, function()
+      study:chart{ path = path, x = "ratio", y = "amplitude", z = "collapsed", kind = "map", curves = { { { 1, 2 } } } }
+    end)
+    support.expect_error({ "curves: taken by kind = \"map\" only" }, function()
+      study:chart{ path = path, x = "ratio", y = "amplitude", curves = { { { 1, 2 }, { 2, 3 } } } }
+    end)
   end)
 end)
