@@ -1,11 +1,16 @@
 #include "wrap_Simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/text.hpp"
+#include "dynamics/ground_motion.hpp"
+#include "dynamics/simulation_summary.hpp"
+#include "io/chart.hpp"
 #include "io/mesh_io.hpp"
 #include "io/simulation_export.hpp"
 #include "io/viewer_page.hpp"
@@ -20,13 +25,20 @@ namespace ashlar::lua {
 namespace {
 
 constexpr const char* kSimulationMeta = "ashlar.Simulation";
+constexpr const char* kGroundMotionMeta = "ashlar.GroundMotion";
 
 // What a Lua Simulation holds: the run and the structure it ran on (a copy:
-// the Lua structure may change afterwards; blocks are shared).
+// the Lua structure may change afterwards; blocks are shared), and the
+// run's moved_fraction, the summary's default.
 struct SimulationRecord {
   Structure structure;
   SimulationResult result;
+  double moved_fraction = SimulationOptions{}.moved_fraction;
 };
+
+std::shared_ptr<GroundMotion> check_ground_motion(lua_State* L, int idx) {
+  return check_boxed<GroundMotion>(L, idx, kGroundMotionMeta, "GroundMotion");
+}
 
 std::shared_ptr<SimulationRecord> check_record(lua_State* L, int idx) {
   return check_boxed<SimulationRecord>(L, idx, kSimulationMeta, "Simulation");
@@ -160,6 +172,156 @@ void push_displacements(lua_State* L, const SimulationResult& r) {
   }
 }
 
+// A block (index or name) or a list of them at stack index idx; 0-based.
+std::vector<int> block_list(lua_State* L, const Structure& s, int idx, int arg, const char* what) {
+  std::vector<int> blocks;
+  if (lua_type(L, idx) != LUA_TTABLE) {
+    blocks.push_back(check_block_index(L, s, idx, arg, what));
+    return blocks;
+  }
+  const lua_Unsigned count = lua_rawlen(L, idx);
+  if (count == 0) throw ArgError(arg, std::string(what) + ": expected a block or a list of blocks, got an empty table");
+  for (lua_Unsigned k = 1; k <= count; ++k) {
+    lua_rawgeti(L, idx, static_cast<lua_Integer>(k));
+    const std::string item = std::string(what) + "[" + std::to_string(k) + "]";
+    blocks.push_back(check_block_index(L, s, lua_gettop(L), arg, item.c_str()));
+    lua_pop(L, 1);
+  }
+  return blocks;
+}
+
+void push_block_numbers(lua_State* L, const std::vector<double>& values) {
+  lua_createtable(L, static_cast<int>(values.size()), 0);
+  for (size_t i = 0; i < values.size(); ++i) {
+    lua_pushnumber(L, values[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+int w_Simulation_summary(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const OptionTable options(L, 2, {"moved_fraction", "fall_fraction", "fall_level"});
+    SummaryOptions o;
+    o.moved_fraction = options.positive("moved_fraction", record->moved_fraction);
+    o.fall_fraction = options.positive("fall_fraction", o.fall_fraction);
+    o.fall_level = options.number("fall_level");
+    const SimulationSummary summary = summarize(record->structure, record->result, o);
+    const bool verdict = record->result.status == SimulationStatus::completed;
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 12);
+      set_field(L, "peak_displacement", summary.peak);
+      set_field(L, "residual_displacement", summary.residual);
+      if (summary.peak_block >= 0) set_index_field(L, "peak_block", summary.peak_block);
+      if (summary.residual_block >= 0) set_index_field(L, "residual_block", summary.residual_block);
+      push_block_numbers(L, summary.peak_displacement);
+      lua_setfield(L, -2, "peak_displacements");
+      push_block_numbers(L, summary.residual_displacement);
+      lua_setfield(L, -2, "residual_displacements");
+      if (summary.first_movement) set_field(L, "first_movement", *summary.first_movement);
+      if (verdict) set_boolean(L, "collapsed", summary.collapse_time.has_value());
+      if (summary.collapse_time) set_field(L, "collapse_time", *summary.collapse_time);
+      lua_createtable(L, static_cast<int>(summary.fallen.size()), 0);
+      for (size_t k = 0; k < summary.fallen.size(); ++k) {
+        lua_pushinteger(L, summary.fallen[k] + 1);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "fallen");
+      push_block_numbers(L, summary.fall_times);
+      lua_setfield(L, -2, "fall_times");
+      return 1;
+    });
+  });
+}
+
+int w_Simulation_drift(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::vector<int> blocks = block_list(L, record->structure, 2, 2, "blocks");
+    const Drift d = drift(record->structure, record->result, blocks);
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 5);
+      set_field(L, "height", d.height);
+      set_field(L, "peak", d.peak);
+      set_field(L, "residual", d.residual);
+      push_block_numbers(L, record->result.times);
+      lua_setfield(L, -2, "times");
+      push_block_numbers(L, d.values);
+      lua_setfield(L, -2, "values");
+      return 1;
+    });
+  });
+}
+
+// The blocks a chart shows by default: the free blocks of largest peak
+// displacement, at most this many.
+constexpr std::size_t kChartedBlocks = 5;
+
+int w_Simulation_chart(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const Structure& s = record->structure;
+    const SimulationResult& r = record->result;
+    const OptionTable options(L, 2, {"path", "blocks", "quantity", "title", "width", "height"});
+    const std::optional<std::string> given = options.string("path");
+    if (!given) throw ArgError(2, "path: required, the file to write (.png, .svg or .pdf)");
+    const std::string path = sandbox::require_access(L, 2, "path", *given, sandbox::Access::write);
+    const std::string quantity = options.string("quantity").value_or("displacement");
+    if (quantity != "displacement" && quantity != "drift") {
+      throw ArgError(2, "quantity: expected \"displacement\" or \"drift\", got \"" + quantity + "\"");
+    }
+    std::vector<int> blocks;
+    if (options.push("blocks") != LUA_TNIL) {
+      blocks = block_list(L, s, lua_gettop(L), 2, "blocks");
+    } else {
+      for (int i = 0; i < static_cast<int>(s.size()); ++i) {
+        if (!s.is_support(i)) blocks.push_back(i);
+      }
+      std::stable_sort(blocks.begin(), blocks.end(), [&](int a, int b) { return r.displacement[a] > r.displacement[b]; });
+      if (quantity == "displacement" && blocks.size() > kChartedBlocks) blocks.resize(kChartedBlocks);
+    }
+    lua_pop(L, 1);
+    const auto label = [&](int i) { return s.name(i).empty() ? "block " + std::to_string(i + 1) : s.name(i); };
+    ChartSpec spec;
+    spec.kind = ChartKind::lines;
+    spec.title = options.string("title").value_or("");
+    spec.x_label = "time (s)";
+    spec.width = image_size(options, "width", spec.width);
+    spec.height = image_size(options, "height", spec.height);
+    const auto series_of = [&](std::string name, const std::vector<double>& values) {
+      ChartSeries line{std::move(name), {}};
+      for (size_t k = 0; k < values.size(); ++k) line.points.emplace_back(r.times[k], values[k]);
+      return line;
+    };
+    if (quantity == "drift") {
+      spec.y_label = "drift";
+      const Drift d = drift(s, r, blocks);
+      std::string name = blocks.size() == 1 ? label(blocks[0]) : std::to_string(blocks.size()) + " blocks";
+      spec.series.push_back(series_of("drift of " + name, d.values));
+    } else {
+      spec.y_label = "displacement (m)";
+      for (const int i : blocks) {
+        if (s.is_support(i)) throw ArgError(2, "blocks: block " + std::to_string(i + 1) + " is a support, which does not move");
+        spec.series.push_back(series_of(label(i), displacement_history(s, r, i)));
+      }
+    }
+    draw_chart(path, spec);
+    return call_protected(L, 0, [&](lua_State* L) {
+      lua_createtable(L, 0, 2);
+      set_string(L, "path", path.c_str());
+      lua_createtable(L, static_cast<int>(spec.series.size()), 0);
+      for (size_t k = 0; k < spec.series.size(); ++k) {
+        lua_createtable(L, 0, 2);
+        set_string(L, "name", spec.series[k].name.c_str());
+        set_field(L, "points", static_cast<int>(spec.series[k].points.size()));
+        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      }
+      lua_setfield(L, -2, "series");
+      return 1;
+    });
+  });
+}
+
 int w_Simulation_index(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
@@ -174,6 +336,9 @@ int w_Simulation_index(lua_State* L) {
       if (is("trajectory")) lua_pushcfunction(L, w_Simulation_trajectory);
       else if (is("export")) lua_pushcfunction(L, w_Simulation_export);
       else if (is("structure")) lua_pushcfunction(L, w_Simulation_structure);
+      else if (is("summary")) lua_pushcfunction(L, w_Simulation_summary);
+      else if (is("drift")) lua_pushcfunction(L, w_Simulation_drift);
+      else if (is("chart")) lua_pushcfunction(L, w_Simulation_chart);
       else if (is("status")) lua_pushstring(L, kSimulationStatusNames.name(r.status));
       else if (is("moved")) {
         if (!verdict) return 0;
@@ -227,10 +392,164 @@ int w_simulate(lua_State* L) {
     settings.contact = contact_options(options, "contact_tolerance", "contact_angle", nullptr, nullptr);
     SimulationResult result = simulate(*structure, settings);
     if (progress) progress->finish(result);
-    luax_pushSimulation(L, *structure, std::move(result));
+    luax_pushSimulation(L, *structure, std::move(result), settings.moved_fraction);
     return 1;
   });
 }
+
+constexpr const char* kAxisNames[] = {"x", "y", "z"};
+
+// An axis name "x", "y" or "z" at stack index idx: its unit vector.
+Vec3 axis_direction(lua_State* L, int idx, int arg, const std::string& what) {
+  if (lua_type(L, idx) == LUA_TSTRING) {
+    const std::string name = lua_tostring(L, idx);
+    for (int k = 0; k < 3; ++k) {
+      if (name == kAxisNames[k]) return Vec3::Unit(k);
+    }
+  }
+  const std::string got = lua_type(L, idx) == LUA_TSTRING ? "\"" + std::string(lua_tostring(L, idx)) + "\""
+                                                           : type_name(L, idx);
+  throw ArgError(arg, what + ": expected an axis \"x\", \"y\" or \"z\", got " + got);
+}
+
+// The components of one file: its columns along `directions` (one per
+// column; none given: along x, y, z in turn).
+void add_file_components(const std::string& path, std::vector<Vec3> directions, bool at2,
+                         std::optional<AccelerationUnit> unit, double scale, Baseline baseline,
+                         std::vector<GroundMotion::Component>& components) {
+  const RecordColumns record = at2 ? read_at2(path) : read_acceleration_table(path);
+  if (directions.empty()) {
+    for (size_t c = 0; c < record.columns.size(); ++c) directions.push_back(Vec3::Unit(static_cast<int>(c)));
+  }
+  if (directions.size() != record.columns.size()) {
+    throw ArgError(1, "component: \"" + path + "\" has " + std::to_string(record.columns.size()) +
+                          " acceleration column(s) but component names " + std::to_string(directions.size()) +
+                          " axis(es): give one axis per column");
+  }
+  for (size_t c = 0; c < directions.size(); ++c) {
+    components.push_back(record_component(record, static_cast<int>(c), unit.value_or(AccelerationUnit::g), scale,
+                                          baseline, directions[c]));
+  }
+}
+
+int w_ground_motion(lua_State* L) {
+  return guard(L, [&] {
+    if (lua_type(L, 1) != LUA_TTABLE) {
+      throw ArgError(1, "expected an option table {path = \"record.at2\" | \"record.csv\", ...}, got " +
+                            type_name(L, 1));
+    }
+    const OptionTable options(L, 1, {"path", "format", "units", "scale", "component", "baseline"});
+    const double scale = options.number("scale", 1.0);
+    const std::optional<AccelerationUnit> unit = options.choice("units", kAccelerationUnitNames);
+    const Baseline baseline = options.choice("baseline", kBaselineNames).value_or(Baseline::none);
+    const std::optional<std::string> format = options.string("format");
+    if (format && *format != "at2" && *format != "table") {
+      throw ArgError(1, "format: expected \"at2\" (PEER NGA) or \"table\" (time and accelerations), got \"" +
+                            *format + "\"");
+    }
+    // (path, axes) per file: `path` a string with `component`, or {x = path, y = path, z = path}.
+    std::vector<std::pair<std::string, std::vector<Vec3>>> files;
+    const int path_type = options.push("path");
+    const int path_index = lua_gettop(L);
+    if (path_type == LUA_TSTRING) {
+      const std::string path = sandbox::checked_path(L, path_index, "path", sandbox::Access::read);
+      std::vector<Vec3> axes;
+      const int component_type = options.push("component");
+      if (component_type == LUA_TTABLE) {
+        const lua_Unsigned count = lua_rawlen(L, -1);
+        for (lua_Unsigned k = 1; k <= count; ++k) {
+          lua_rawgeti(L, -1, static_cast<lua_Integer>(k));
+          axes.push_back(axis_direction(L, lua_gettop(L), 1, "component[" + std::to_string(k) + "]"));
+          lua_pop(L, 1);
+        }
+      } else if (component_type != LUA_TNIL) {
+        axes.push_back(axis_direction(L, lua_gettop(L), 1, "component"));
+      }
+      lua_pop(L, 1);
+      files.emplace_back(path, axes);
+    } else if (path_type == LUA_TTABLE) {
+      if (options.has("component")) {
+        throw ArgError(1, "component: path = {x = ..., y = ..., z = ...} names the axis of each file already");
+      }
+      lua_pushnil(L);
+      while (lua_next(L, path_index) != 0) {
+        const std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "";
+        lua_pushvalue(L, -2);
+        const Vec3 axis = axis_direction(L, lua_gettop(L), 1, "path's key");
+        lua_pop(L, 1);
+        if (lua_type(L, -1) != LUA_TSTRING) {
+          throw ArgError(1, "path." + key + ": expected a file name, got " + type_name(L, -1));
+        }
+        const std::string what = "path." + key;
+        files.emplace_back(sandbox::checked_path(L, lua_gettop(L), what.c_str(), sandbox::Access::read),
+                           std::vector<Vec3>{axis});
+        lua_pop(L, 1);
+      }
+      if (files.empty()) throw ArgError(1, "path: expected a file, or {x = file, y = file, z = file}, got an empty table");
+      // Key order is Lua's; keep x, y, z.
+      std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) {
+        return a.second[0].dot(Vec3(0, 1, 2)) < b.second[0].dot(Vec3(0, 1, 2));
+      });
+    } else {
+      throw ArgError(1, "path: required, a file (.at2, or a table of time and acceleration such as .csv) or "
+                        "{x = file, y = file, z = file}, got " + type_name(L, -1));
+    }
+    lua_pop(L, 1);
+    std::vector<GroundMotion::Component> components;
+    for (const auto& [path, given_axes] : files) {
+      const bool at2 = format ? *format == "at2" : file_extension(path) == "at2";
+      if (at2 && unit) {
+        throw ArgError(1, "units: an AT2 file states its units in its header (\"" + path +
+                              "\"); units applies to tables");
+      }
+      if (!at2 && !unit) {
+        throw ArgError(1, "units: required for a table (\"" + path +
+                              "\" does not state its units): \"g\", \"m/s2\" or \"cm/s2\"");
+      }
+      add_file_components(path, given_axes, at2, unit, scale, baseline, components);
+    }
+    auto motion = std::make_shared<GroundMotion>(std::move(components));
+    push_boxed(L, std::move(motion), kGroundMotionMeta);
+    return 1;
+  });
+}
+
+int w_GroundMotion_call(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<GroundMotion> motion = check_ground_motion(L, 1);
+    const Vec3 a = (*motion)(check_number(L, 2, "t"));
+    for (int k = 0; k < 3; ++k) lua_pushnumber(L, a[k]);
+    return 3;
+  });
+}
+
+int w_GroundMotion_index(lua_State* L) {
+  return guard(L, [&] {
+    const std::shared_ptr<GroundMotion> motion = check_ground_motion(L, 1);
+    const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : nullptr;
+    if (!key) return 0;
+    const std::string name = key;
+    if (name == "duration") lua_pushnumber(L, motion->duration());
+    else if (name == "peak") lua_pushnumber(L, motion->peak());
+    else if (name == "peak_time") lua_pushnumber(L, motion->peak_time());
+    else if (name == "components") lua_pushinteger(L, static_cast<lua_Integer>(motion->components().size()));
+    else if (name == "samples") lua_pushinteger(L, static_cast<lua_Integer>(motion->components().front().times.size()));
+    else return 0;
+    return 1;
+  });
+}
+
+int w_GroundMotion_tostring(lua_State* L) {
+  if (push_if_closed<GroundMotion>(L, kGroundMotionMeta, "GroundMotion")) return 1;
+  return guard(L, [&] {
+    const std::shared_ptr<GroundMotion> motion = check_ground_motion(L, 1);
+    return push_string(L, "GroundMotion (" + std::to_string(motion->components().size()) + " component(s), " +
+                              message_number(motion->duration()) + " s, peak " + message_number(motion->peak()) +
+                              " m/s^2 at " + message_number(motion->peak_time()) + " s)");
+  });
+}
+
+int w_GroundMotion_gc(lua_State* L) { return release_boxed<GroundMotion>(L, kGroundMotionMeta); }
 
 }  // namespace
 
@@ -273,13 +592,18 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
   o.max_sweeps = static_cast<int>(options.whole("max_sweeps", 1, 1 << 30, "a whole number >= 1").value_or(o.max_sweeps));
   o.tolerance = options.positive("tolerance", o.tolerance);
   const int type = options.push("ground_acceleration");
-  if (type == LUA_TFUNCTION) {
+  if (type == LUA_TUSERDATA && test_boxed<GroundMotion>(L, -1, kGroundMotionMeta)) {
+    std::shared_ptr<const GroundMotion> motion = check_ground_motion(L, lua_gettop(L));
+    lua_pop(L, 1);
+    o.ground_acceleration = [motion](double t) { return (*motion)(t); };
+  } else if (type == LUA_TFUNCTION) {
     // Stays on the stack for the run.
     const int function = lua_gettop(L);
     o.ground_acceleration = [L, function, arg](double t) { return call_ground_acceleration(L, function, arg, t); };
   } else {
     if (type != LUA_TNIL) {
-      throw ArgError(arg, "ground_acceleration: expected a function(t) returning ax, ay, az (m/s^2), got " +
+      throw ArgError(arg, "ground_acceleration: expected a GroundMotion (ashlar.ground_motion) or a function(t) "
+                          "returning ax, ay, az (m/s^2), got " +
                               type_name(L, -1));
     }
     lua_pop(L, 1);
@@ -294,8 +618,8 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
   return o;
 }
 
-void luax_pushSimulation(lua_State* L, const Structure& structure, SimulationResult result) {
-  auto record = std::make_shared<SimulationRecord>(SimulationRecord{structure, std::move(result)});
+void luax_pushSimulation(lua_State* L, const Structure& structure, SimulationResult result, double moved_fraction) {
+  auto record = std::make_shared<SimulationRecord>(SimulationRecord{structure, std::move(result), moved_fraction});
   push_boxed(L, std::move(record), kSimulationMeta, 1);
 }
 
@@ -307,10 +631,18 @@ void register_Simulation(lua_State* L) {
                                          {"__close", w_Simulation_gc},
                                          {nullptr, nullptr}};
   register_type(L, kSimulationMeta, nullptr, metamethods);
+  // Callable, so that it serves wherever a function(t) returning ax, ay, az does.
+  static const luaL_Reg motion_metamethods[] = {{"__index", w_GroundMotion_index},
+                                                {"__call", w_GroundMotion_call},
+                                                {"__tostring", w_GroundMotion_tostring},
+                                                {"__gc", w_GroundMotion_gc},
+                                                {"__close", w_GroundMotion_gc},
+                                                {nullptr, nullptr}};
+  register_type(L, kGroundMotionMeta, nullptr, motion_metamethods);
 }
 
 void set_simulation_functions(lua_State* L) {
-  static const luaL_Reg functions[] = {{"simulate", w_simulate}, {nullptr, nullptr}};
+  static const luaL_Reg functions[] = {{"simulate", w_simulate}, {"ground_motion", w_ground_motion}, {nullptr, nullptr}};
   luaL_setfuncs(L, functions, 0);
 }
 

@@ -1,6 +1,9 @@
 // Lua type "ashlar.Simulation": the outcome of ashlar.simulate (rigid-block
 // dynamics). Its fields (moved, max_displacement, settled, steps, ...) are
-// read on access; sim:trajectory(i) and sim:export(path, opts) are methods.
+// read on access; sim:trajectory(i), sim:export(path, opts), sim:summary(opts),
+// sim:drift(blocks) and sim:chart(opts) are methods. Lua type
+// "ashlar.GroundMotion": a recorded accelerogram (ashlar.ground_motion),
+// callable as a ground_acceleration function.
 #pragma once
 
 #include <lua.hpp>
@@ -50,8 +53,9 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
                                      std::shared_ptr<SimulationProgress>& progress);
 
 // A new Simulation of `structure` (copied: the Lua structure may change
-// afterwards) holding `result`.
-void luax_pushSimulation(lua_State* L, const Structure& structure, SimulationResult result);
+// afterwards) holding `result` of a run with that moved_fraction.
+void luax_pushSimulation(lua_State* L, const Structure& structure, SimulationResult result,
+                         double moved_fraction = SimulationOptions{}.moved_fraction);
 
 void register_Simulation(lua_State* L);
 // ashlar.simulate: set into the table on top of the stack.

@@ -122,7 +122,7 @@ void push_chart_result(lua_State* L, const std::string& path, const RowSeries& l
 const std::vector<std::pair<const char*, bool>> kKindOptions = {
     {"series", false}, {"log_x", false}, {"log_y", false}, {"x_range", false},
     {"y_range", false}, {"z", true},     {"levels", true}, {"boundary", true},
-    {"map", true},      {"z_label", true}};
+    {"map", true},      {"z_label", true}, {"curves", true}};
 
 void check_kind_options(const OptionTable& options, bool map) {
   lua_State* L = options.state();
@@ -188,6 +188,31 @@ int chart_map(lua_State* L, const OptionTable& options, const std::string& path,
   if (options.push("levels") != LUA_TNIL) spec.levels = to_numbers(L, -1, 1, "levels");
   lua_pop(L, 1);
   spec.boundary = options.number("boundary");
+  if (options.push("curves") != LUA_TNIL) {
+    if (!lua_istable(L, -1)) throw ArgError(1, "curves: expected a list of curves, each a list of {x, y}, got " + type_name(L, -1));
+    const lua_Unsigned count = lua_rawlen(L, -1);
+    for (lua_Unsigned k = 1; k <= count; ++k) {
+      lua_rawgeti(L, -1, static_cast<lua_Integer>(k));
+      const std::string what = "curves[" + std::to_string(k) + "]";
+      if (!lua_istable(L, -1)) throw ArgError(1, what + ": expected a list of {x, y}, got " + type_name(L, -1));
+      std::vector<Vec2> curve;
+      const lua_Unsigned points = lua_rawlen(L, -1);
+      for (lua_Unsigned i = 1; i <= points; ++i) {
+        lua_rawgeti(L, -1, static_cast<lua_Integer>(i));
+        const std::string point = what + "[" + std::to_string(i) + "]";
+        if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) {
+          throw ArgError(1, point + ": expected {x, y}, got " + type_name(L, -1));
+        }
+        lua_rawgeti(L, -1, 1);
+        lua_rawgeti(L, -2, 2);
+        curve.emplace_back(check_number(L, -2, 1, (point + "[1]").c_str()), check_number(L, -1, 1, (point + "[2]").c_str()));
+        lua_pop(L, 3);
+      }
+      spec.curves.push_back(std::move(curve));
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
   spec.map = options.string("map").value_or(spec.map);
   spec.title = options.string("title").value_or("");
   spec.x_label = options.string("x_label").value_or(x);
@@ -213,7 +238,7 @@ int w_chart(lua_State* L) {
     const OptionTable options(L, 1,
                               {"path", "data", "x", "y", "z", "series", "kind", "title", "x_label",
                                "y_label", "z_label", "log_x", "log_y", "x_range", "y_range",
-                               "levels", "boundary", "map", "width", "height"});
+                               "levels", "boundary", "map", "curves", "width", "height"});
     const std::string path = sandbox::require_access(
         L, 1, "path", required_string(options, "path", "the file to write (.png, .svg or .pdf)"),
         sandbox::Access::write);

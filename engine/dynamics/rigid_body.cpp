@@ -1,5 +1,6 @@
 #include "dynamics/rigid_body.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ashlar {
@@ -43,6 +44,14 @@ Block posed_block(const Block& block, const RigidPose& pose) {
   const double angle = rotation.norm();
   const Block turned = angle > 0.0 ? block.rotated(rotation / angle, angle, block.centroid()) : block;
   return turned.translated(pose.position - block.centroid());
+}
+
+double vertex_distance(const Block& block, const RigidPose& x, const RigidPose& y) {
+  double largest = 0.0;
+  for (const Vec3& p : block.vertices()) {
+    largest = std::max(largest, (x.apply(p, block.centroid()) - y.apply(p, block.centroid())).norm());
+  }
+  return largest;
 }
 
 }  // namespace ashlar

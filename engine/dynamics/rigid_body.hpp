@@ -42,4 +42,7 @@ Quat quaternion_from_rotation_vector(const Vec3& w);
 // with the same faces, density and name.
 Block posed_block(const Block& block, const RigidPose& pose);
 
+// Largest distance (m) between the block's vertices at poses x and y.
+double vertex_distance(const Block& block, const RigidPose& x, const RigidPose& y);
+
 }  // namespace ashlar

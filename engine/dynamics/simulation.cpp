@@ -72,15 +72,6 @@ struct BodyData {
   std::vector<std::pair<Vec3, Vec3>> loads;  // (arm from the reference centroid, force)
 };
 
-// Largest distance (m) between block i's vertices at poses x and y.
-double vertex_distance(const Block& block, const RigidPose& x, const RigidPose& y) {
-  double largest = 0.0;
-  for (const Vec3& p : block.vertices()) {
-    largest = std::max(largest, (x.apply(p, block.centroid()) - y.apply(p, block.centroid())).norm());
-  }
-  return largest;
-}
-
 class Run {
 public:
   Run(const Structure& structure, const SimulationOptions& options)

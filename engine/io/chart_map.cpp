@@ -168,6 +168,13 @@ void check_map(const MapSpec& spec) {
                             values + "}");
     }
   }
+  for (size_t k = 0; k < spec.curves.size(); ++k) {
+    const std::vector<Vec2>& curve = spec.curves[k];
+    if (curve.size() < 2 || std::any_of(curve.begin(), curve.end(), [](const Vec2& p) { return !p.allFinite(); })) {
+      throw InvalidArgument("chart: map: curve " + std::to_string(k + 1) +
+                            " must have at least 2 points, each of finite numbers");
+    }
+  }
   if (spec.boundary && !std::isfinite(*spec.boundary)) {
     throw InvalidArgument("chart: map: boundary must be a finite value of z, got " +
                           number_text(*spec.boundary));
@@ -183,6 +190,7 @@ struct PreparedMap {
   // Per cell (x fastest): its colour map 1 position, or NaN for no data.
   std::vector<PLFLT> cell_color;
   std::vector<std::vector<PLFLT>> boundary_x, boundary_y;
+  std::vector<std::vector<PLFLT>> curve_x, curve_y;  // the reference curves
   // Colour map 1's control points.
   std::vector<PLFLT> positions, red, green, blue;
   // The colour bar: its kind (PL_COLORBAR_GRADIENT or _SHADE (| _SHADE_LABEL)),
@@ -252,6 +260,15 @@ PreparedMap prepare(const MapSpec& spec, double lo, double hi,
     for (const Vec2& p : line) {
       map.boundary_x.back().push_back(p.x());
       map.boundary_y.back().push_back(p.y());
+    }
+  }
+
+  for (const std::vector<Vec2>& curve : spec.curves) {
+    map.curve_x.emplace_back();
+    map.curve_y.emplace_back();
+    for (const Vec2& p : curve) {
+      map.curve_x.back().push_back(p.x());
+      map.curve_y.back().push_back(p.y());
     }
   }
 
@@ -361,6 +378,13 @@ void paint_map(void* context) {
     plline(static_cast<PLINT>(map.boundary_x[k].size()), map.boundary_x[k].data(),
            map.boundary_y[k].data());
   }
+  // Reference curves dashed (PLplot's style 3), so that they read apart
+  // from the boundary where the two coincide.
+  pllsty(3);
+  for (size_t k = 0; k < map.curve_x.size(); ++k) {
+    plline(static_cast<PLINT>(map.curve_x[k].size()), map.curve_x[k].data(), map.curve_y[k].data());
+  }
+  pllsty(1);
 
   plcol0(kText);
   plwidth(m.line);

@@ -24,6 +24,10 @@ struct MapSpec {
   // A boolean z always has its boundary: the cell edges between false and
   // true cells.
   std::optional<double> boundary;
+  // Reference curves drawn dashed over the cells (a closed form to compare
+  // the boundary with, say): polylines of at least 2 finite points in data
+  // units, cut off at the plot's frame.
+  std::vector<std::vector<Vec2>> curves;
   std::string map = "viridis";  // number z: one of color_map_names()
   std::string title;            // above the plot; none when empty
   std::string x_label, y_label, z_label;  // axes and colour bar; none when empty

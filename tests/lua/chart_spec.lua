@@ -178,7 +178,7 @@ describe("ashlar.chart", function()
       return ashlar.chart(full)
     end
     expect_error({ "bad argument #1", "expected an option table" }, ashlar.chart, path)
-    expect_error({ "bad argument #1", "unknown option 'colour'", "(allowed: boundary, data, height, kind, levels, "
+    expect_error({ "bad argument #1", "unknown option 'colour'", "(allowed: boundary, curves, data, height, kind, levels, "
                    .. "log_x, log_y, map, path, series, title, width, x, x_label, x_range, y, y_label, y_range, z, "
                    .. "z_label)" }, chart,
                  { colour = "red" })

@@ -168,7 +168,7 @@ describe("ashlar.simulate", function()
     support.expect_error({ "friction: expected a number >= 0", "got -0.5" },
       function() ashlar.simulate(s, { friction = -0.5 }) end)
     support.expect_error({ "unknown", "durration" }, function() ashlar.simulate(s, { durration = 1 }) end)
-    support.expect_error({ "ground_acceleration: expected a function", "got number" },
+    support.expect_error({ "ground_acceleration: expected a GroundMotion (ashlar.ground_motion) or a function", "got number" },
       function() ashlar.simulate(s, { ground_acceleration = 3 }) end)
     support.expect_error({ "ground_acceleration: the function must return three finite numbers", "result 2 is nil" },
       function() ashlar.simulate(s, { duration = 0.01, ground_acceleration = function(t) return 1 end }) end)

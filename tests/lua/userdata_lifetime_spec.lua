@@ -16,6 +16,7 @@ local makers = {
   ["ashlar.Result"] = function() return ashlar.analyze(models.stack{}) end,
   ["ashlar.FeaResult"] = function() return ashlar.fea(models.stack{}) end,
   ["ashlar.Simulation"] = function() return ashlar.simulate(models.stack{}, { duration = 0.01 }) end,
+  ["ashlar.GroundMotion"] = function() return ashlar.ground_motion{ path = "../data/ground_motion/triangle.at2" } end,
   ["ashlar.Study"] = function()
     return ashlar.study{ name = "lifetime", params = { x = { 1, 2 } }, workers = 1, progress = false,
                          run = function(p) return { y = 2 * p.x } end }
