@@ -419,13 +419,15 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   double before_global_step = -1.0;  // the residual of the sweep before the last global step
   int worse = 0;                     // global steps that left a larger residual
   while (report.sweeps < settings.max_sweeps && groups > 0) {
-    if (global_steps && report.sweeps % kSweepsPerGlobalStep == 0) {
+    // After the first sweep (a structure at rest needs no more) and every
+    // kSweepsPerGlobalStep after it.
+    if (global_steps && report.sweeps % kSweepsPerGlobalStep == 1) {
       // Points the step left pulling are released, and the step taken
       // again without them, a few times at most.
       int released = global_step();
       for (int again = 1; again < kGlobalStepRepeats && released > 0; ++again) released = global_step();
       global_steps = released != -2;
-      before_global_step = released >= 0 && report.sweeps > 0 ? report.residual : -1.0;
+      before_global_step = released >= 0 ? report.residual : -1.0;
     }
     ++report.sweeps;
     double largest_residual = 0.0;
@@ -451,7 +453,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     }
     // Global steps that made things worse kGlobalStepsWorse times are not
     // taken again: the sweeps finish the solve.
-    if (before_global_step >= 0.0 && report.sweeps % kSweepsPerGlobalStep == 1 &&
+    if (before_global_step >= 0.0 && report.sweeps % kSweepsPerGlobalStep == 2 &&
         largest_residual > before_global_step && ++worse == kGlobalStepsWorse) {
       global_steps = false;
     }
