@@ -16,6 +16,7 @@ readonly DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev liblua5.4-dev lua5.4 libsuitesparse-dev libopenblas0-pthread libcgal-dev libgmp-dev libmpfr-dev
   libassimp-dev liblbfgspp-dev libsqlite3-dev zlib1g-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev coinor-libclp-dev coinor-libipopt-dev libcairo2-dev libplplot-dev plplot-driver-cairo
+  libbullet-dev
   googletest libgtest-dev lua-busted valgrind libreadline-dev
   nodejs npm python3 python3-cvxopt python3-numpy python3-scipy chromium
 )

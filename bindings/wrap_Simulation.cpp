@@ -358,6 +358,20 @@ int w_Simulation_index(lua_State* L) {
       else if (is("unconverged_steps")) lua_pushinteger(L, r.unconverged_steps);
       else if (is("searches")) lua_pushinteger(L, r.searches);
       else if (is("max_active_contacts")) lua_pushinteger(L, r.max_active_contacts);
+      else if (is("global_steps")) lua_pushinteger(L, static_cast<lua_Integer>(r.global_steps));
+      else if (is("factorizations")) lua_pushinteger(L, static_cast<lua_Integer>(r.factorizations));
+      else if (is("max_residual")) lua_pushnumber(L, r.max_residual);
+      else if (is("max_residual_time")) {
+        if (r.max_residual_blocks.first < 0) return 0;
+        lua_pushnumber(L, r.max_residual_time);
+      } else if (is("max_residual_blocks")) {
+        if (r.max_residual_blocks.first < 0) return 0;
+        lua_createtable(L, 2, 0);
+        lua_pushinteger(L, r.max_residual_blocks.first + 1);
+        lua_rawseti(L, -2, 1);
+        lua_pushinteger(L, r.max_residual_blocks.second + 1);
+        lua_rawseti(L, -2, 2);
+      }
       else if (is("displacements")) return push_cached_table(L, "displacements", r, push_displacements);
       else return 0;
       return 1;

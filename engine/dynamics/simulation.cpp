@@ -115,6 +115,9 @@ private:
   BodyVelocities bodies_;
   std::vector<ContactPoint> contacts_;
   ContactSolverSettings solver_;
+  // The steps' solves and the overlap corrections' (each keeps its
+  // factorisation from step to step).
+  ContactSolver contact_solver_, overlap_solver_;
   SimulationResult result_;
 };
 
@@ -340,7 +343,7 @@ void Run::correct_overlaps(const std::vector<int>& active) {
   if (rows.empty()) return;
   BodyVelocities pseudo{std::vector<Vec3>(n_, Vec3::Zero()), std::vector<Vec3>(n_, Vec3::Zero()),
                         bodies_.inverse_mass, bodies_.inverse_inertia};
-  solve_contacts(rows, pseudo, solver_);
+  overlap_solver_.solve(rows, pseudo, solver_);
   for (int i = 0; i < n_; ++i) {
     if (fixed_[i]) continue;
     poses_[i].position += h_ * pseudo.linear[i];
@@ -374,9 +377,16 @@ SimulationResult Run::go() {
     const std::vector<Vec3> linear0 = bodies_.linear, angular0 = bodies_.angular;
     free_velocities((1.0 - o_.theta) * ground_before + o_.theta * ground_after);
     std::vector<ContactRow> rows = contact_rows(active, linear0, angular0);
-    const ContactSolverReport report = solve_contacts(rows, bodies_, solver_);
+    const ContactSolverReport report = contact_solver_.solve(rows, bodies_, solver_);
     result_.sweeps += report.sweeps;
+    result_.global_steps += report.global_steps;
+    result_.factorizations += report.factorizations;
     if (!report.converged) ++result_.unconverged_steps;
+    if (report.worst_row >= 0 && report.residual > result_.max_residual) {
+      result_.max_residual = report.residual;
+      result_.max_residual_time = t;
+      result_.max_residual_blocks = {rows[report.worst_row].a, rows[report.worst_row].b};
+    }
     result_.max_active_contacts = std::max(result_.max_active_contacts, static_cast<int>(rows.size()));
     for (ContactPoint& c : contacts_) c.impulse.setZero();
     for (size_t r = 0; r < rows.size(); ++r) contacts_[active[r]].impulse = rows[r].frame.transpose() * rows[r].impulse;

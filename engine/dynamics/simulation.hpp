@@ -9,7 +9,7 @@
 //   q+ = q + h ((1 - theta) v + theta v+) (positions; rotations likewise)
 // where f_theta is the theta-weighted external force (gravity, point loads,
 // the ground motion's inertia force) and P the contact impulses, found by
-// projected Gauss-Seidel (contact_solver.hpp): unilateral contact with
+// projected Gauss-Seidel with global steps (contact_solver.hpp): unilateral contact with
 // Newton's impact law (restitution e) and Coulomb friction, no dilatancy.
 // A contact point takes part in a step when its gap, predicted half a step
 // ahead, is within the contact tolerance. The solve starts from the last
@@ -39,6 +39,7 @@
 #pragma once
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "core/enum_names.hpp"
@@ -113,6 +114,17 @@ struct SimulationResult {
   int unconverged_steps = 0;
   int searches = 0;
   int max_active_contacts = 0;
+  // The contact solve (contact_solver.hpp): its global steps and the
+  // factorisations they made, summed over the steps; the largest residual
+  // (m/s) any step's solve ended with (at most the tolerance, tolerance x
+  // 9.81 m/s^2 x step, when every step converged), the end time (s) of
+  // that step and the two blocks (0-based) of the contact point where it
+  // was (-1, -1 when no step had a contact).
+  long long global_steps = 0;
+  long long factorizations = 0;
+  double max_residual = 0.0;
+  double max_residual_time = 0.0;
+  std::pair<int, int> max_residual_blocks{-1, -1};
 
   // Recorded frames: times[k] (s) and poses[k][i] of every block i
   // (supports keep their place).

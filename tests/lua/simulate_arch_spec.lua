@@ -66,6 +66,7 @@ describe("ashlar.simulate on arches", function()
     assert.is_true(sim.settled)
     assert.equal("completed", sim.status)
     assert.equal(2000, sim.steps)
+    assert.equal(0, sim.unconverged_steps)
   end)
 
   it("collapses a thinner arch, with the hinges of the equilibrium at the minimum thickness", function()

@@ -56,6 +56,29 @@ describe("ashlar.simulate", function()
     support.expect_error({ "closed Simulation" }, function() return sim.moved end)
   end)
 
+  it("solves every step of a tipping stack, or says how far it is from solved and where", function()
+    local s = cases.stack(1.2)
+    local sim = ashlar.simulate(s, { duration = 0.2 })
+    assert.equal(0, sim.unconverged_steps)
+    -- Solved: every step's residual within the tolerance, 1e-4 g h.
+    assert.is_true(sim.max_residual <= 1e-4 * 9.81 * 1e-3)
+    -- Held to 1e-12 g h with one sweep a step, steps are cut short: the
+    -- largest residual is reported with its step and contact.
+    local cut = ashlar.simulate(s, { duration = 0.01, max_sweeps = 1, tolerance = 1e-12 })
+    assert.is_true(cut.unconverged_steps > 0)
+    assert.is_true(cut.max_residual > 1e-12 * 9.81 * 1e-3)
+    assert.is_true(cut.max_residual_time > 0 and cut.max_residual_time <= 0.01 + 1e-12)
+    local a, b = cut.max_residual_blocks[1], cut.max_residual_blocks[2]
+    assert.is_true(a >= 1 and a <= #s and b >= 1 and b <= #s and a ~= b)
+    -- A block falling freely has no contact: no residual, nowhere.
+    local lone = ashlar.structure()
+    lone:add(ashlar.box{ size = { 1, 1, 1 } })
+    local fall = ashlar.simulate(lone, { duration = 0.01 })
+    assert.equal(0, fall.max_residual)
+    assert.is_nil(fall.max_residual_blocks)
+    assert.is_nil(fall.max_residual_time)
+  end)
+
   it("writes an animated .glb and a still of any frame", function()
     local folder = os.tmpname()
     os.remove(folder)

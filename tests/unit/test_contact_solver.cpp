@@ -1,0 +1,135 @@
+// The contact solver (dynamics/contact_solver.hpp) on one step of a column
+// of blocks standing on the ground, against statics: the ground's impulse
+// carries the column's weight times the step, and the friction the
+// horizontal body force times the step; no block moves. With its global
+// steps the solve takes tens of sweeps; the sweeps alone (the same fixed
+// point) more than ten times as many; a solve cut short reports its
+// largest residual and where.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "dynamics/contact_solver.hpp"
+
+using namespace ashlar;
+
+namespace {
+
+constexpr double kStep = 1e-3;
+constexpr double kSide = 0.5, kHeight = 0.2, kDensity = 2400.0;
+constexpr double kMass = kDensity * kSide * kSide * kHeight;
+
+struct Column {
+  std::vector<ContactRow> rows;
+  BodyVelocities bodies;
+};
+
+// Body 0 the ground (fixed), bodies 1..n boxes kSide x kSide x kHeight
+// stacked on it, their velocities the step's free ones under gravity and a
+// horizontal body force `sideways` (m/s^2, along x); each joint's four
+// corners a row, the column's top joint first (the simulation's order).
+Column column(int n, double sideways, double friction) {
+  Column c;
+  const double inertia_xy = kMass / 12.0 * (kSide * kSide + kHeight * kHeight);
+  const double inertia_z = kMass / 12.0 * 2.0 * kSide * kSide;
+  const Mat3 inverse_inertia = Vec3(1.0 / inertia_xy, 1.0 / inertia_xy, 1.0 / inertia_z).asDiagonal();
+  c.bodies.linear.assign(n + 1, Vec3::Zero());
+  c.bodies.angular.assign(n + 1, Vec3::Zero());
+  c.bodies.inverse_mass.assign(n + 1, 1.0 / kMass);
+  c.bodies.inverse_inertia.assign(n + 1, inverse_inertia);
+  c.bodies.inverse_mass[0] = 0.0;
+  c.bodies.inverse_inertia[0] = Mat3::Zero();
+  for (int i = 1; i <= n; ++i) c.bodies.linear[i] = kStep * Vec3(sideways, 0, -9.81);
+  const auto centroid = [](int body) { return Vec3(0, 0, body == 0 ? -0.5 * kHeight : (body - 0.5) * kHeight); };
+  for (int joint = n - 1; joint >= 0; --joint) {  // between body joint (below) and joint + 1
+    for (const double x : {-0.5 * kSide, 0.5 * kSide}) {
+      for (const double y : {-0.5 * kSide, 0.5 * kSide}) {
+        ContactRow row;
+        row.a = joint;
+        row.b = joint + 1;
+        const Vec3 point(x, y, joint * kHeight);
+        row.arm_a = point - centroid(row.a);
+        row.arm_b = point - centroid(row.b);
+        row.frame = contact_frame(Vec3::UnitZ());
+        row.friction = friction;
+        c.rows.push_back(row);
+      }
+    }
+  }
+  return c;
+}
+
+// The impulse (world frame, N s) the ground's joint gives the column.
+Vec3 ground_impulse(const Column& c) {
+  Vec3 total = Vec3::Zero();
+  for (const ContactRow& row : c.rows) {
+    if (row.a == 0) total += row.frame.transpose() * row.impulse;
+  }
+  return total;
+}
+
+double fastest(const Column& c) {
+  double speed = 0.0;
+  for (size_t i = 1; i < c.bodies.linear.size(); ++i) {
+    speed = std::max({speed, c.bodies.linear[i].norm(), c.bodies.angular[i].norm() * kSide});
+  }
+  return speed;
+}
+
+}  // namespace
+
+TEST(ContactSolver, AColumnCarriesItsWeightAndTheSidewaysForceToTheGroundInAFewSweeps) {
+  // 20 blocks, 4 m high, 0.5 m wide: 0.05 g sideways is below the
+  // friction (0.6) and below the whole column's uplift threshold
+  // (g b / h = 0.125 g), so the base's centre of pressure stays inside it.
+  const int n = 20;
+  const double sideways = 0.05 * 9.81;
+  ContactSolverSettings settings;
+  // Held to 1e-9 m/s: the per-point residual adds up along the column
+  // (each joint may slip by it), so the statics below hold to about
+  // n^2 blocks' mass times it.
+  settings.velocity_tolerance = 1e-9;
+  Column c = column(n, sideways, 0.6);
+  const ContactSolverReport report = ContactSolver().solve(c.rows, c.bodies, settings);
+  const Vec3 impulse = ground_impulse(c);
+  std::printf("column of %d: %d sweeps, %d global steps, residual %.3g m/s, ground impulse (%.6g, %.3g, %.6g) N s\n",
+              n, report.sweeps, report.global_steps, report.residual, impulse.x(), impulse.y(), impulse.z());
+  EXPECT_TRUE(report.converged);
+  EXPECT_LE(report.residual, settings.velocity_tolerance);
+  // Statics, to the solver's tolerance.
+  const double slack = 10.0 * n * n * kMass * settings.velocity_tolerance;
+  EXPECT_NEAR(impulse.z(), n * kMass * 9.81 * kStep, slack);
+  EXPECT_NEAR(impulse.x(), -n * kMass * sideways * kStep, slack);
+  EXPECT_NEAR(impulse.y(), 0.0, slack);
+  EXPECT_LT(fastest(c), 10.0 * n * settings.velocity_tolerance);
+  EXPECT_GE(report.global_steps, 1);
+  EXPECT_LE(report.sweeps, 100);
+  // The sweeps alone carry a change of load one joint a sweep: more than
+  // ten times the sweeps (they stop at max_sweeps, 1,000, unsolved).
+  settings.global_steps = false;
+  Column alone = column(n, sideways, 0.6);
+  const ContactSolverReport sweeps_only = ContactSolver().solve(alone.rows, alone.bodies, settings);
+  std::printf("column of %d, sweeps only: %d sweeps, residual %.3g m/s\n", n, sweeps_only.sweeps, sweeps_only.residual);
+  EXPECT_GT(sweeps_only.sweeps, 10 * report.sweeps);
+}
+
+TEST(ContactSolver, ASolveCutShortReportsItsLargestResidualAndWhere) {
+  Column c = column(10, 0.0, 0.6);
+  ContactSolverSettings settings;
+  settings.velocity_tolerance = 1e-9;
+  settings.max_sweeps = 1;
+  settings.global_steps = false;
+  const ContactSolverReport report = ContactSolver().solve(c.rows, c.bodies, settings);
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(report.sweeps, 1);
+  EXPECT_GT(report.residual, settings.velocity_tolerance);
+  // Before any impulse every block falls at g h, together: the joints
+  // between blocks close at no speed, the ground's points at g h (and,
+  // once the first has pushed the bottom block up and turned it, the
+  // others faster): the largest residual is at least g h, at the ground.
+  EXPECT_GE(report.residual, 9.81 * kStep - 1e-12);
+  ASSERT_GE(report.worst_row, 0);
+  ASSERT_LT(report.worst_row, static_cast<int>(c.rows.size()));
+  EXPECT_EQ(c.rows[report.worst_row].a, 0);
+}
