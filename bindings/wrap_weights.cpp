@@ -133,7 +133,7 @@ int w_important_weights(lua_State* L) {
     const char* status = kImportantWeightsStatusNames.name(important.status);
     line.finish(status);
     return call_protected(L, 0, [&](lua_State* L) {
-      lua_createtable(L, s.size(), 3);
+      lua_createtable(L, s.size(), 7);
       set_list(L, important.per_volume);
       lua_createtable(L, static_cast<int>(important.unstable_blocks.size()), 0);
       for (size_t k = 0; k < important.unstable_blocks.size(); ++k) {
@@ -143,6 +143,7 @@ int w_important_weights(lua_State* L) {
       lua_setfield(L, -2, "unstable");
       set_string(L, "status", status);
       set_field(L, "solves", important.solves);
+      set_field(L, "iterations", important.iterations);
       set_field(L, "symmetries", important.symmetries);
       set_field(L, "seconds", important.seconds);
       return 1;

@@ -13,8 +13,10 @@
 -- wall and CPU times (the process's, so on 2 cores CPU may be twice wall).
 -- load_capacity and important_weights run twice: one block per orbit of
 -- the problem's symmetries (the default), and every block
--- (`symmetry = false`):
---   ashlar scripts/bench_weights.lua margins
+-- (`symmetry = false`). The counts (programs, solves, interior-point and
+-- simplex iterations) do not depend on the machine's load. A third
+-- argument, dome, imperfect or vault, runs that structure alone:
+--   ashlar scripts/bench_weights.lua margins [dome|imperfect|vault]
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
@@ -43,13 +45,18 @@ if arg[1] == "margins" then
   end
   local perturbed, perturbed_contact = imperfect(1e-3)
   local structures = {
-    { "dome 16 x 18", models.dome{}, {} },
-    { "dome 16 x 18, every vertex moved by up to 0.1 %", perturbed, perturbed_contact },
-    { "barrel vault, running bond, 32 x 31", models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5,
-                                                                  bond = "running" }, {} },
+    { "dome", "dome 16 x 18", models.dome{}, {} },
+    { "imperfect", "dome 16 x 18, every vertex moved by up to 0.1 %", perturbed, perturbed_contact },
+    { "vault", "barrel vault, running bond, 32 x 31",
+      models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5, bond = "running" }, {} },
   }
+  local only = arg[2]
+  if only and only ~= "dome" and only ~= "imperfect" and only ~= "vault" then
+    error(("structure: expected dome, imperfect or vault, got %s"):format(only))
+  end
   for _, case in ipairs(structures) do
-    local name, s, contact = case[1], case[2], case[3]
+    local key, name, s, contact = case[1], case[2], case[3], case[4]
+    if only and key ~= only then goto next end
     local function options(extra)
       local o = { progress = false }
       for k, v in pairs(contact) do o[k] = v end
@@ -71,8 +78,8 @@ if arg[1] == "margins" then
               end
             end
           end
-          return ("%d finite maxima in [%.6g, %.6g], %d unbounded (%s, %d programs, %d symmetries)"):format(finite,
-            least, most, unbounded, cap.status, cap.programs, cap.symmetries)
+          return ("%d finite maxima in [%.6g, %.6g], %d unbounded (%s, %d programs, %d iterations, %d symmetries)")
+            :format(finite, least, most, unbounded, cap.status, cap.programs, cap.iterations, cap.symmetries)
         end
     end
     local function important_weights(extra)
@@ -80,7 +87,8 @@ if arg[1] == "margins" then
           local v = ashlar.important_weights(s, options(extra))
           local most = 0
           for i = 1, #s do most = math.max(most, v[i]) end
-          return ("largest %.6g N/m^3 (%s, %d solves, %d symmetries)"):format(most, v.status, v.solves, v.symmetries)
+          return ("largest %.6g N/m^3 (%s, %d solves, %d iterations, %d symmetries)"):format(most, v.status, v.solves,
+            v.iterations, v.symmetries)
         end
     end
     local runs = {
@@ -103,6 +111,7 @@ if arg[1] == "margins" then
       print(("  %-18s %8.2f s wall %8.2f s CPU  %s"):format(run[1], ashlar.clock() - wall, cpu_seconds() - cpu,
         answer))
     end
+    ::next::
   end
   return
 end

@@ -235,7 +235,7 @@ ImportantWeights important_weights(const Structure& structure, const ImportantWe
   struct Share {
     std::vector<double> per_weight;  // N per block, summed over the share's blocks
     std::vector<int> unstable;
-    int solves = 0;
+    int solves = 0, iterations = 0;
     bool interrupted = false;
   };
   std::vector<Share> shares(workers);
@@ -256,6 +256,7 @@ ImportantWeights important_weights(const Structure& structure, const ImportantWe
         return;
       }
       ++share.solves;
+      share.iterations += needed.iterations;
       const int now = ++done;
       if (w == 0 && progress) progress(now, total);  // on the calling thread
       for (const int e : orbit_of[i]) {
@@ -277,6 +278,7 @@ ImportantWeights important_weights(const Structure& structure, const ImportantWe
     for (int j = 0; j < structure.size(); ++j) result.per_volume[j] += share.per_weight[j];
     result.unstable_blocks.insert(result.unstable_blocks.end(), share.unstable.begin(), share.unstable.end());
     result.solves += share.solves;
+    result.iterations += share.iterations;
     if (share.interrupted) result.status = ImportantWeightsStatus::interrupted;
   }
   result.symmetries = static_cast<int>(symmetry.block_maps.size());

@@ -85,6 +85,7 @@ struct ImportantWeights {
   // `solves` blocks done before.
   ImportantWeightsStatus status = ImportantWeightsStatus::done;
   int solves = 0;  // problems solved: one per orbit of the symmetries
+  int iterations = 0;  // interior-point iterations over all of them (machine-independent cost)
   // The problem's symmetries used (analysis/problem_symmetry.hpp; 1: none,
   // or not searched).
   int symmetries = 1;

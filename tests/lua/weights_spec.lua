@@ -151,6 +151,20 @@ describe("necessary_weights", function()
     assert.are.equal(0, w[1])
   end)
 
+  it("summed over one free block: one solve, its iterations those of necessary_weights", function()
+    -- important_weights counts the interior-point iterations of its
+    -- solves; with one free block its only solve is necessary_weights',
+    -- cold from the same start.
+    local s = ashlar.structure()
+    s:add(ashlar.box{ size = { 4, 2, 0.2 }, center = { 0, 0, -0.1 } }, { support = true, name = "ground" })
+    s:add(ashlar.box{ size = { 1, 1, 0.5 }, center = { 0, 0, 0.25 } }, { name = "block" })
+    local v = ashlar.important_weights(s, { progress = false, threads = 1 })
+    local w = ashlar.necessary_weights(s, "block")
+    assert.are.equal(1, v.solves)
+    assert.is_true(w.iterations > 0)
+    assert.are.equal(w.iterations, v.iterations)
+  end)
+
   it("summed over an arch, matter most at the haunches (figure 9)", function()
     local arch = models.arch{ radius = 5, thickness = 0.6, voussoirs = 31 }
     local v = ashlar.important_weights(arch, NO_SLIDING)
