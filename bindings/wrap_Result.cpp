@@ -282,12 +282,14 @@ int w_compare_methods(lua_State* L) {
     const int type = options.push("dynamics");
     if (type == LUA_TTABLE) {
       comparison.dynamics = OpinionWhen::always;
+      // The table stays on the stack, under the ground_acceleration and
+      // ground_rotation functions the run calls.
       comparison.simulation = simulation_options(
           OptionTable(L, lua_gettop(L), 2, "dynamics.", {ASHLAR_SIMULATION_OPTIONS}), s, progress);
     } else {
       comparison.dynamics = opinion_when(options, "dynamics", type, comparison.dynamics);
+      lua_pop(L, 1);
     }
-    lua_pop(L, 1);
     comparison.cra = opinion_when(options, "cra", options.push("cra"), comparison.cra);
     lua_pop(L, 1);
     if (!options.boolean("margin").value_or(true)) comparison.margin_tolerance = 0.0;

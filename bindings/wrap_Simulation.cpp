@@ -44,7 +44,10 @@ std::shared_ptr<SimulationRecord> check_record(lua_State* L, int idx) {
   return check_boxed<SimulationRecord>(L, idx, kSimulationMeta, "Simulation");
 }
 
-Vec3 call_ground_acceleration(lua_State* L, int function, int arg, double t) {
+// The function at stack index `function`, given for option `option`,
+// called at time t: its three results, which must be finite numbers
+// (`quantity` names them and their unit in the error).
+Vec3 call_time_function(lua_State* L, int function, int arg, double t, const char* option, const char* quantity) {
   lua_pushvalue(L, function);
   lua_pushnumber(L, t);
   protected_call(L, 1, 3);
@@ -54,8 +57,8 @@ Vec3 call_ground_acceleration(lua_State* L, int function, int arg, double t) {
     if (lua_type(L, idx) != LUA_TNUMBER || !std::isfinite(lua_tonumber(L, idx))) {
       const std::string got = lua_type(L, idx) == LUA_TNUMBER ? number_text(lua_tonumber(L, idx)) : type_name(L, idx);
       lua_pop(L, 3);
-      throw ArgError(arg, "ground_acceleration: the function must return three finite numbers ax, ay, az (m/s^2); at t = " +
-                              number_text(t) + " its result " + std::to_string(k + 1) + " is " + got);
+      throw ArgError(arg, std::string(option) + ": the function must return three finite numbers " + quantity +
+                              "; at t = " + number_text(t) + " its result " + std::to_string(k + 1) + " is " + got);
     }
     a[k] = lua_tonumber(L, idx);
   }
@@ -605,23 +608,31 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
   o.settle_speed = options.positive("settle_speed", o.settle_speed);
   o.max_sweeps = static_cast<int>(options.whole("max_sweeps", 1, 1 << 30, "a whole number >= 1").value_or(o.max_sweeps));
   o.tolerance = options.positive("tolerance", o.tolerance);
-  const int type = options.push("ground_acceleration");
-  if (type == LUA_TUSERDATA && test_boxed<GroundMotion>(L, -1, kGroundMotionMeta)) {
-    std::shared_ptr<const GroundMotion> motion = check_ground_motion(L, lua_gettop(L));
-    lua_pop(L, 1);
-    o.ground_acceleration = [motion](double t) { return (*motion)(t); };
-  } else if (type == LUA_TFUNCTION) {
-    // Stays on the stack for the run.
-    const int function = lua_gettop(L);
-    o.ground_acceleration = [L, function, arg](double t) { return call_ground_acceleration(L, function, arg, t); };
-  } else {
+  // ground_acceleration and ground_rotation: a GroundMotion, or a function
+  // that stays on the stack for the run.
+  const auto time_function = [&](const char* option, const char* quantity) -> std::function<Vec3(double)> {
+    const int type = options.push(option);
+    if (type == LUA_TUSERDATA && test_boxed<GroundMotion>(L, -1, kGroundMotionMeta)) {
+      std::shared_ptr<const GroundMotion> motion = check_ground_motion(L, lua_gettop(L));
+      lua_pop(L, 1);
+      return [motion](double t) { return (*motion)(t); };
+    }
+    if (type == LUA_TFUNCTION) {
+      const int function = lua_gettop(L);
+      return [L, function, arg, option, quantity](double t) {
+        return call_time_function(L, function, arg, t, option, quantity);
+      };
+    }
     if (type != LUA_TNIL) {
-      throw ArgError(arg, "ground_acceleration: expected a GroundMotion (ashlar.ground_motion) or a function(t) "
-                          "returning ax, ay, az (m/s^2), got " +
-                              type_name(L, -1));
+      throw ArgError(arg, std::string(option) + ": expected a GroundMotion (ashlar.ground_motion) or a function(t) " +
+                              "returning " + quantity + ", got " + type_name(L, -1));
     }
     lua_pop(L, 1);
-  }
+    return nullptr;
+  };
+  o.ground_acceleration = time_function("ground_acceleration", "ax, ay, az (m/s^2)");
+  o.ground_rotation = time_function("ground_rotation", "rx, ry, rz (rad, a rotation vector)");
+  if (const std::optional<Vec3> pivot = options.vec3("ground_pivot")) o.ground_pivot = *pivot;
   if (options.boolean("progress").value_or(false)) {
     const auto steps = static_cast<std::size_t>(std::ceil(o.duration / o.step - 1e-9));
     const double step = o.step;

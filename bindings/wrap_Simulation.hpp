@@ -22,8 +22,9 @@ namespace ashlar::lua {
 // `dynamics`) also takes: all but friction and the contact options, which
 // come from the comparison's.
 #define ASHLAR_SIMULATION_OPTIONS                                                                          \
-  "duration", "step", "theta", "restitution", "ground_acceleration", "gravity", "progress", "record_every", \
-      "search_distance", "moved_fraction", "settle_speed", "max_sweeps", "tolerance"
+  "duration", "step", "theta", "restitution", "ground_acceleration", "ground_rotation", "ground_pivot",    \
+      "gravity", "progress", "record_every", "search_distance", "moved_fraction", "settle_speed",         \
+      "max_sweeps", "tolerance"
 
 // The progress line of one run on stderr (redrawn in place on a terminal,
 // a line every 10 s otherwise): updated as the run steps, closed with how
@@ -45,9 +46,9 @@ private:
 };
 
 // Simulation options from an option table that allows ASHLAR_SIMULATION_OPTIONS
-// (friction and contact are left to the caller). A ground_acceleration
-// function is pushed on the stack (it must stay there while the simulation
-// runs); with progress = true, `progress` gets the line that the run's
+// (friction and contact are left to the caller). A ground_acceleration or
+// ground_rotation function is pushed on the stack (each must stay there
+// while the simulation runs); with progress = true, `progress` gets the line that the run's
 // progress callback draws, for the caller to finish.
 SimulationOptions simulation_options(const OptionTable& options, const Structure& structure,
                                      std::shared_ptr<SimulationProgress>& progress);

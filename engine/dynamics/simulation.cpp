@@ -1,10 +1,12 @@
 #include "dynamics/simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -37,6 +39,7 @@ void check_options(const SimulationOptions& o) {
   if (!(o.restitution >= 0.0 && o.restitution <= 1.0)) fail("restitution", o.restitution, "in [0, 1]");
   for (int axis = 0; axis < 3; ++axis) {
     if (!std::isfinite(o.gravity[axis])) fail("gravity", o.gravity[axis], "a finite vector (m/s^2)");
+    if (!std::isfinite(o.ground_pivot[axis])) fail("ground_pivot", o.ground_pivot[axis], "a finite point (m)");
   }
   if (o.record_every < 0) fail("record_every", o.record_every, "a number of steps >= 0 (0: automatic)");
   if (!(o.search_distance >= 0.0) || !std::isfinite(o.search_distance)) {
@@ -58,6 +61,50 @@ Vec3 checked_ground_acceleration(const SimulationOptions& o, double t) {
   }
   return a;
 }
+
+// The ground's turning as the blocks feel it at one time (simulation.hpp):
+// gravity in the ground's axes (m/s^2), and the ground's angular velocity
+// (rad/s) and acceleration (rad/s^2) in them.
+struct GroundFrame {
+  Vec3 gravity, omega, alpha;
+};
+
+// The ground's rotation (SimulationOptions::ground_rotation) about step k,
+// from t_k = k h to t_k+1: its rotations at t_k-1 .. t_k+2, of which each
+// end's frame takes central differences; one new rotation per step.
+class GroundRotation {
+public:
+  explicit GroundRotation(const SimulationOptions& o) : o_(o) {
+    for (int j = 0; j < 4; ++j) turns_[j] = rotation_at((j - 1) * o.step);
+  }
+  // Moves on to step k (> 0, in turn).
+  void advance(int k) {
+    std::rotate(turns_.begin(), turns_.begin() + 1, turns_.end());
+    turns_[3] = rotation_at((k + 2) * o_.step);
+  }
+  GroundFrame at_start() const { return frame(0); }
+  GroundFrame at_end() const { return frame(1); }
+
+private:
+  Quat rotation_at(double t) const {
+    const Vec3 theta = o_.ground_rotation(t);
+    if (!theta.allFinite()) {
+      throw InvalidArgument("simulate: ground_rotation at t = " + shortest_number(t) + " s is not finite: (" +
+                            shortest_number(theta.x()) + ", " + shortest_number(theta.y()) + ", " +
+                            shortest_number(theta.z()) + ")");
+    }
+    return quaternion_from_rotation_vector(theta);
+  }
+  GroundFrame frame(int j) const {
+    const Quat &before = turns_[j], &now = turns_[j + 1], &after = turns_[j + 2];
+    const Vec3 ahead = rotation_vector(now.conjugate() * after) / o_.step;
+    const Vec3 behind = rotation_vector(before.conjugate() * now) / o_.step;
+    return {now.conjugate() * o_.gravity, 0.5 * (ahead + behind), (ahead - behind) / o_.step};
+  }
+
+  const SimulationOptions& o_;
+  std::array<Quat, 4> turns_;
+};
 
 // What stays fixed about each block through the run.
 struct BodyData {
@@ -83,7 +130,7 @@ private:
   void set_up();
   void search(const std::vector<int>& moved);
   std::vector<int> neighbourhood(const std::vector<int>& moved) const;
-  void free_velocities(const Vec3& ground);
+  void free_velocities(const Vec3& ground);  // and the ground's turning, rotation_
   std::vector<ContactRow> contact_rows(std::vector<int>& which, const std::vector<Vec3>& linear,
                                        const std::vector<Vec3>& angular) const;
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
@@ -118,6 +165,7 @@ private:
   // The steps' solves and the overlap corrections' (each keeps its
   // factorisation from step to step).
   ContactSolver contact_solver_, overlap_solver_;
+  std::optional<GroundRotation> rotation_;  // when the ground turns
   SimulationResult result_;
 };
 
@@ -244,13 +292,21 @@ void Run::search(const std::vector<int>& moved) {
 }
 
 void Run::free_velocities(const Vec3& ground) {
+  // The turning ground's frames at the step's two ends and their weights.
+  const double theta = o_.theta;
+  const std::array<std::pair<double, GroundFrame>, 2> turning =
+      rotation_ ? std::array{std::pair{1.0 - theta, rotation_->at_start()}, std::pair{theta, rotation_->at_end()}}
+                : std::array<std::pair<double, GroundFrame>, 2>{};
+  const Vec3 gravity =
+      rotation_ ? Vec3(turning[0].first * turning[0].second.gravity + turning[1].first * turning[1].second.gravity)
+                : o_.gravity;
   for (int i = 0; i < n_; ++i) {
     if (fixed_[i]) continue;
     const BodyData& d = data_[i];
     const Mat3 r = poses_[i].rotation.toRotationMatrix();
     const Mat3 inverse_inertia = r * d.inverse_inertia * r.transpose();
     bodies_.inverse_inertia[i] = inverse_inertia;
-    Vec3 force = d.mass * (o_.gravity - ground);
+    Vec3 force = d.mass * (gravity - ground);
     Vec3 moment = Vec3::Zero();
     for (const auto& [arm, load] : d.loads) {
       force += load;
@@ -258,6 +314,16 @@ void Run::free_velocities(const Vec3& ground) {
     }
     const Vec3& w = bodies_.angular[i];
     moment -= w.cross(r * d.inertia * r.transpose() * w);  // gyroscopic
+    if (rotation_) {
+      const Vec3 arm = poses_[i].position - o_.ground_pivot;
+      const Vec3& v = bodies_.linear[i];
+      const Mat3 inertia = r * d.inertia * r.transpose();
+      for (const auto& [weight, f] : turning) {
+        force -= weight * d.mass * (f.alpha.cross(arm) + f.omega.cross(f.omega.cross(arm)) + 2.0 * f.omega.cross(v));
+        moment -= weight * (inertia * f.alpha + f.omega.cross(inertia * f.omega) + f.omega.cross(inertia * w) +
+                            w.cross(inertia * f.omega) - inertia * w.cross(f.omega));
+      }
+    }
     bodies_.linear[i] += h_ * force / d.mass;
     bodies_.angular[i] += h_ * inverse_inertia * moment;
   }
@@ -366,6 +432,7 @@ SimulationResult Run::go() {
   const int steps = static_cast<int>(std::ceil(o_.duration / h_ - 1e-9));
   record(0.0);
   Vec3 ground_before = checked_ground_acceleration(o_, 0.0);
+  if (o_.ground_rotation) rotation_.emplace(o_);
   std::vector<int> active;
   for (int k = 0; k < steps; ++k) {
     if (stop_requested()) {
@@ -374,6 +441,7 @@ SimulationResult Run::go() {
     }
     const double t = (k + 1) * h_;
     const Vec3 ground_after = checked_ground_acceleration(o_, t);
+    if (rotation_ && k > 0) rotation_->advance(k);
     const std::vector<Vec3> linear0 = bodies_.linear, angular0 = bodies_.angular;
     free_velocities((1.0 - o_.theta) * ground_before + o_.theta * ground_after);
     std::vector<ContactRow> rows = contact_rows(active, linear0, angular0);

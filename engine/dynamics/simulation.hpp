@@ -20,9 +20,29 @@
 // dropped), so the correction never adds kinetic energy.
 //
 // Ground motion: the supports move rigidly with a prescribed acceleration
-// a_g(t) (m/s^2, no rotation). The simulation runs in the ground's frame,
-// where every free block feels the extra body force -m a_g(t); positions
-// and displacements are relative to the ground.
+// a_g(t) (m/s^2) of the pivot p (below), and may turn about p by a rotation
+// R(t) = exp(theta(t)) (theta a rotation vector: axis times angle, rad;
+// finite rotations). The simulation runs in the ground's frame, the supports'
+// own: positions, velocities, displacements and a_g (as instruments fixed to
+// the ground record it) are in the ground's axes. Every free block, of mass
+// m and inertia I (ground axes, about its centroid c), with velocity v and
+// angular velocity w relative to the ground, feels the body force and
+// moment (about c) of the frame:
+//   F = m R^T g - m a_g - m alpha x r - m omega x (omega x r) - 2 m omega x v
+//   M = -I alpha - omega x (I omega) - omega x (I w) - w x (I omega) + I (w x omega)
+// where r = c - p, g is gravity (the world's), omega and alpha the ground's
+// angular velocity and acceleration in its axes, and F's terms after
+// gravity the inertia force, Euler's, the centrifugal and Coriolis'. M is
+// the rest of d/dt (I (omega + w)) = moments, written in the turning axes
+// (Euler's torque -I alpha, the centrifugal -omega x I omega, and the
+// three Coriolis terms); the block's own gyroscopic -w x (I w) comes with
+// it. omega and alpha are central differences of R over the step h:
+//   omega(t) = (d+ + d-) / 2, alpha(t) = (d+ - d-) / h,
+//   d+ = log(R(t)^T R(t + h)) / h, d- = log(R(t - h)^T R(t)) / h,
+// second-order in h and exact for a constant rate; theta(t) is called at
+// times -h .. duration + h, so a ground already turning at time 0 turns the
+// blocks with it (they start at rest relative to the ground). Each step
+// weighs these forces at its two ends as it does a_g.
 //
 // Contacts (contact_points.hpp): found from the geometry at the start
 // (ashlar's contact detection, plus corner contacts between convex blocks)
@@ -59,6 +79,12 @@ struct SimulationOptions {
   // Acceleration of the ground (the supports) at time t (m/s^2); empty: the
   // ground stays still. Called once per step, at its end time (and at 0).
   std::function<Vec3(double t)> ground_acceleration;
+  // Rotation of the ground about ground_pivot at time t: the rotation
+  // vector theta (rad, axis times angle) taking the ground's axes at rest to
+  // where they are at t; empty: the ground does not turn. Called once per
+  // step, at times -step .. duration + step (see the header).
+  std::function<Vec3(double t)> ground_rotation;
+  Vec3 ground_pivot = Vec3::Zero();  // m, the point the ground turns about (ground axes)
   // Steps between recorded frames (the first is at time 0, the last at the
   // end); 0: about 100 frames per simulated second (round(0.01 / step),
   // at least 1).
