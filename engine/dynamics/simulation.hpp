@@ -42,7 +42,11 @@
 // second-order in h and exact for a constant rate; theta(t) is called at
 // times -h .. duration + h, so a ground already turning at time 0 turns the
 // blocks with it (they start at rest relative to the ground). Each step
-// weighs these forces at its two ends as it does a_g.
+// weighs these forces at its two ends as it does a_g, with the blocks'
+// positions and velocities at its start (as the gyroscopic moment): first
+// order in h (a free block under a ground turning 0.6 rad in 1 s stays
+// within 3e-5 m and rad of still in the world at h = 1 ms, half that at
+// h / 2).
 //
 // Contacts (contact_points.hpp): found from the geometry at the start
 // (ashlar's contact detection, plus corner contacts between convex blocks)
