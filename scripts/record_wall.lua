@@ -139,5 +139,5 @@ print(("summary: first movement %s, collapsed %s, collapse time %s, %d blocks fe
 print(("drift of the top course (%d blocks, %.3f m above the base): peak %.4g, residual %.4g"):format(#top,
   drift.height, drift.peak, drift.residual))
 local chart = sim:chart{ path = folder .. "/record_wall_displacement.png",
-  title = ("Wall of %d blocks under a %.0f s synthetic record, PGA %.2f g"):format(#wall, duration, pga) }
+  title = ("Wall of %d blocks under a %g s synthetic record, PGA %.2f g"):format(#wall, duration, pga) }
 print("chart: " .. chart.path)

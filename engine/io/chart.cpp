@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <tuple>
@@ -155,6 +156,10 @@ struct PreparedChart {
   // heights of their font.
   PLFLT x_label_offset = 0, y_label_offset = 0;
   std::string title, x_label, y_label;
+  // The y tick labels are the values over 10^y_power (0: as they are):
+  // below 0.01 or from 1e5 up; the label says so. PLplot would write its
+  // own power of ten above the axis, where the title is.
+  int y_power = 0;
   double title_font = 0.0;  // px: 1.2 times the font, smaller for a long title to fit
   std::vector<PreparedSeries> series;
   // The legend (none when legend_names is empty): names, per-entry arrays
@@ -247,9 +252,13 @@ PreparedChart prepare(const ChartSpec& spec) {
   chart.title_font =
       std::min(1.2 * m.font, (spec.width - 2 * m.margin) / (kCharacterWidth * spec.title.size()));
   chart.x_label = plplot_text(spec.x_label);
-  chart.y_label = plplot_text(spec.y_label);
   chart.x_boolean = spec.x_boolean && !spec.log_x;
   chart.y_boolean = spec.y_boolean && !spec.log_y;
+  if (!spec.log_y && !chart.y_boolean) chart.y_power = axis_power(chart.y.lo, chart.y.hi);
+  chart.y_label = plplot_text(spec.y_label);
+  if (chart.y_power != 0) {
+    chart.y_label += (chart.y_label.empty() ? "×10#u" : ", ×10#u") + std::to_string(chart.y_power) + "#d";
+  }
 
   // Top to bottom: title, plot, x tick labels (PLplot's common power of ten
   // goes under them), x label.
@@ -261,7 +270,8 @@ PreparedChart prepare(const ChartSpec& spec) {
   // "false" is 5 characters long.
   const int label_characters = spec.log_y || spec.y_boolean
                                    ? 5
-                                   : linear_label_characters(chart.y.lo, chart.y.hi);
+                                   : linear_label_characters(chart.y.lo / std::pow(10.0, chart.y_power),
+                                                             chart.y.hi / std::pow(10.0, chart.y_power));
   const double y_labels = (kCharacterWidth * label_characters + 1.0) * m.tick_font;
   const double left = m.margin + y_labels + (spec.y_label.empty() ? 0.0 : 1.5 * m.font);
   chart.y_label_offset = (y_labels + 0.6 * m.font) / (kPlplotCharacterHeight * m.font);
@@ -315,6 +325,19 @@ std::string axis_options(const char* options, const char* log_options, bool log,
 // none on an axis of booleans.
 PLFLT tick_spacing(bool boolean) { return boolean ? 1.0 : 0.0; }
 PLINT tick_subdivisions(bool boolean) { return boolean ? 1 : 0; }
+
+// The label function of the frame's axes with 'o': booleans, or the y
+// values over 10^y_power with as many decimals as their step needs.
+void tick_label(PLINT axis, PLFLT value, char* text, PLINT length, PLPointer data) {
+  const PreparedChart& chart = *static_cast<const PreparedChart*>(data);
+  if (axis != PL_Y_AXIS || chart.y_boolean) {
+    plplot_boolean_label(axis, value, text, length, nullptr);
+    return;
+  }
+  const double scaled = value / std::pow(10.0, chart.y_power);
+  // Shortest of up to 6 significant digits: ticks are 1, 2 or 5 times a power of ten.
+  std::snprintf(text, static_cast<size_t>(length), "%.6g", std::abs(scaled) < 1e-9 ? 0.0 : scaled);
+}
 
 // plbox with the chart's axes.
 void chart_box(const PreparedChart& chart, const char* x_options, const char* x_log_options,
@@ -380,8 +403,11 @@ void paint_chart(void* context) {
   // The frame, ticks and tick labels (y labels upright), then the labels.
   plcol0(kText);
   plwidth(m.line);
-  plslabelfunc(plplot_boolean_label, nullptr);
-  chart_box(chart, "bcnst", "bcnstl", "bcnstv", "bcnstvl");
+  plslabelfunc(tick_label, const_cast<PreparedChart*>(&chart));
+  // Enough digits that PLplot writes the values as they are (tick_label
+  // writes them over a power of ten beyond axis_power's range).
+  plsyax(8, 0);
+  chart_box(chart, "bcnst", "bcnstl", chart.y_power != 0 ? "bcnstvo" : "bcnstv", "bcnstvl");
   plslabelfunc(nullptr, nullptr);
   plplot_font(m.font);
   if (!chart.x_label.empty()) plmtex("b", chart.x_label_offset, 0.5, 0.5, chart.x_label.c_str());

@@ -47,4 +47,12 @@ inline int linear_label_characters(double lo, double hi) {
   return digits + (decimals > 0 ? decimals + 1 : 0) + (lo < 0 ? 1 : 0);
 }
 
+// The power of ten a linear axis over [lo, hi] writes its values over:
+// the largest value's, where that is below 0.01 or from 1e5 up; else 0.
+inline int axis_power(double lo, double hi) {
+  const double largest = std::max(std::abs(lo), std::abs(hi));
+  if (!(largest > 0.0) || (largest >= 1e-2 && largest < 1e5)) return 0;
+  return static_cast<int>(std::floor(std::log10(largest)));
+}
+
 }  // namespace ashlar

@@ -246,6 +246,35 @@ TEST(Chart, LogAxesLabelTheirDecades) {
   EXPECT_FALSE(has_text(texts, "10^-7"));
 }
 
+// Small and large values are written over a power of ten that the y
+// label states, inside the picture (PLplot put its own above the axis,
+// where the title is, and the page cut it off).
+TEST(Chart, SmallAndLargeValuesAreWrittenOverAPowerOfTenTheLabelStates) {
+  TempDir dir;
+  ChartSpec spec;
+  spec.title = "title";
+  spec.y_label = "displacement (m)";
+  spec.series = {{"slid", {{0, 0}, {1, 2.1e-4}, {2, 6.6e-4}}}};
+  draw_chart(dir.file("small.svg"), spec);
+  std::vector<std::string> texts = svg_texts(read_file(dir.file("small.svg")));
+  for (const std::string label : {"displacement (m), ×10^-4", "0", "2", "4", "6"}) {
+    EXPECT_TRUE(has_text(texts, label)) << label;
+  }
+  EXPECT_FALSE(has_text(texts, "0.0002"));
+  spec.series = {{"force", {{0, -2e5}, {1, 3e5}}}};
+  draw_chart(dir.file("large.svg"), spec);
+  texts = svg_texts(read_file(dir.file("large.svg")));
+  for (const std::string label : {"displacement (m), ×10^5", "-2", "0", "2"}) {
+    EXPECT_TRUE(has_text(texts, label)) << label;
+  }
+  // Between 0.01 and 1e5 values are written as they are.
+  spec.series = {{"ratio", {{0, 0}, {1, 0.05}}}};
+  draw_chart(dir.file("plain.svg"), spec);
+  texts = svg_texts(read_file(dir.file("plain.svg")));
+  EXPECT_TRUE(has_text(texts, "displacement (m)"));
+  EXPECT_TRUE(has_text(texts, "0.01")) << ::testing::PrintToString(texts);
+}
+
 TEST(Chart, ManyThreadsDrawAtOnce) {
   TempDir dir;
   std::vector<std::thread> threads;
