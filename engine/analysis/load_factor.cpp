@@ -542,9 +542,9 @@ constexpr double kLargestDemand = 1e6;
 // programs' first steps (the upper end's, warm from the lower's basis)
 // closer to the demand, where the simplex takes fewer pivots and the
 // secant closes sooner: the imperfect 16 x 18 dome 9 programs -> 5 (CPU
-// 3.17 s -> 2.71 s), the 1,008-voussoir vault's upper end 3,372 pivots
-// -> 550 (CPU 63.5 s -> 36.1 s), on a shared machine. At 1e-5 the
-// analyses cost more than the programs save (the dome 6 programs, 3.13 s).
+// 3.0-3.1 s -> 2.8-2.9 s), the 1,008-voussoir vault's upper end 3,372
+// pivots -> 550 (CPU 62-64 s -> 36-41 s), on a shared machine. At 1e-5
+// the analyses cost more than the programs save (the dome 6 programs).
 constexpr double kAnalysedWidth = 1e-4;
 
 // The demand as the equilibrium analysis sees it: a bracket grown from 1 by
