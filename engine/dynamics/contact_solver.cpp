@@ -45,7 +45,6 @@ struct RowConstants {
   Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
 };
 
-
 Mat3 cross_matrix(const Vec3& r) {
   Mat3 m;
   m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
@@ -160,7 +159,6 @@ struct ContactSolver::Factor {
 
 ContactSolver::ContactSolver() : factor_(std::make_unique<Factor>()) {}
 ContactSolver::~ContactSolver() = default;
-
 
 Mat3 contact_frame(const Vec3& n) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
