@@ -1,7 +1,6 @@
 #include "dynamics/contact_solver.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <utility>
 
@@ -45,8 +44,6 @@ struct RowConstants {
   double tangent_step = 0.0;  // 1 / the largest eigenvalue of W_tt
   Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
 };
-
-using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 Mat3 cross_matrix(const Vec3& r) {
   Mat3 m;
@@ -162,20 +159,6 @@ struct ContactSolver::Factor {
 
 ContactSolver::ContactSolver() : factor_(std::make_unique<Factor>()) {}
 ContactSolver::~ContactSolver() = default;
-
-namespace {
-
-// The row's component c as a row of J: the relative velocity's change per
-// unit change of the bodies' velocities, a's part and b's part.
-std::pair<Vec6, Vec6> jacobian(const ContactRow& row, int c) {
-  const Vec3 f = row.frame.row(c).transpose();
-  Vec6 ga, gb;
-  ga << -f, -row.arm_a.cross(f);
-  gb << f, row.arm_b.cross(f);
-  return {ga, gb};
-}
-
-}  // namespace
 
 Mat3 contact_frame(const Vec3& n) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
@@ -297,10 +280,10 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       const double spread = p > 0.0 ? std::clamp(reference / p, 1.0, kMostSpread) : reference > 0.0 ? kMostSpread : 1.0;
       compliance[k] = kCompliance * spread * constants[k].diagonal;
     }
-    // The rows of J: per row and component, a's part and b's part.
-    std::vector<std::array<std::pair<Vec6, Vec6>, 3>> jacobians(rows.size());
+    // 1 / E per component, 0 for those not held.
+    std::vector<Vec3> weight(rows.size(), Vec3::Zero());
     for (size_t k = 0; k < rows.size(); ++k) {
-      for (int c = 0; c < components[k]; ++c) jacobians[k][c] = jacobian(rows[k], c);
+      for (int c = 0; c < components[k]; ++c) weight[k][c] = 1.0 / compliance[k][c];
     }
     // A new factorisation each step: E follows the impulses, and a
     // factorisation made for another E would give dP = E^-1 (r - J dv)
@@ -321,7 +304,11 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       }
       // Each row's blocks of J^T E^-1 J, summed over its constrained
       // components, added where they go (the block's column positions
-      // looked up once).
+      // looked up once). Row k's component c is, as a row of J,
+      // -(f, R_a f) for a and (f, R_b f) for b, with f the frame's row c
+      // and R the cross-product matrix of the arm: the blocks are those of
+      // S = sum_c f f^T / E_c, e.g. a's diagonal block
+      // [[S, S R_a^T], [R_a S, R_a S R_a^T]].
       using Mat6 = Eigen::Matrix<double, 6, 6>;
       const auto add = [&](int i, int j, const Mat6& block) {  // i <= j: block (i, j); i == j: its upper triangle
         const int base = f.position(i, 0, j, 0) - f.column_starts[6 * j];
@@ -332,15 +319,15 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       };
       for (size_t k = 0; k < rows.size(); ++k) {
         if (components[k] == 0) continue;
-        const int a = f.slot[rows[k].a], b = f.slot[rows[k].b];
-        Mat6 aa = Mat6::Zero(), bb = Mat6::Zero(), ab = Mat6::Zero();
-        for (int c = 0; c < components[k]; ++c) {
-          const auto& [ga, gb] = jacobians[k][c];
-          const double weight = 1.0 / compliance[k][c];
-          aa.noalias() += weight * ga * ga.transpose();
-          bb.noalias() += weight * gb * gb.transpose();
-          ab.noalias() += weight * ga * gb.transpose();
-        }
+        const ContactRow& row = rows[k];
+        const int a = f.slot[row.a], b = f.slot[row.b];
+        const Mat3 s = row.frame.transpose() * weight[k].asDiagonal() * row.frame;
+        const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
+        const Mat3 ra_s = ra * s, rb_s = rb * s;
+        Mat6 aa, bb, ab;
+        aa << s, ra_s.transpose(), ra_s, ra_s * ra.transpose();
+        bb << s, rb_s.transpose(), rb_s, rb_s * rb.transpose();
+        ab << -s, -rb_s.transpose(), -ra_s, -ra_s * rb.transpose();
         if (a >= 0) add(a, a, aa);
         if (b >= 0) add(b, b, bb);
         if (a >= 0 && b >= 0) {
@@ -365,14 +352,21 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
           if (components[k] > 0) target[k] = Vec3(rows[k].target_normal, 0.0, 0.0) - relative_velocity(rows[k], bodies);
         }
       }
+      // J^T E^-1 r: per row, the impulse g = sum_c f r_c / E_c on b and
+      // its opposite on a, at their arms.
       rhs.setZero();
       for (size_t k = 0; k < rows.size(); ++k) {
-        const int a = f.slot[rows[k].a], b = f.slot[rows[k].b];
-        for (int c = 0; c < components[k]; ++c) {
-          const auto& [ga, gb] = jacobians[k][c];
-          const double weighted = target[k][c] / compliance[k][c];
-          if (a >= 0) rhs.segment<6>(6 * a) += weighted * ga;
-          if (b >= 0) rhs.segment<6>(6 * b) += weighted * gb;
+        if (components[k] == 0) continue;
+        const ContactRow& row = rows[k];
+        const int a = f.slot[row.a], b = f.slot[row.b];
+        const Vec3 g = row.frame.transpose() * weight[k].cwiseProduct(target[k]);
+        if (a >= 0) {
+          rhs.segment<3>(6 * a) -= g;
+          rhs.segment<3>(6 * a + 3) -= row.arm_a.cross(g);
+        }
+        if (b >= 0) {
+          rhs.segment<3>(6 * b) += g;
+          rhs.segment<3>(6 * b + 3) += row.arm_b.cross(g);
         }
       }
       f.cholesky->solve(rhs, dv);
@@ -380,14 +374,13 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         if (components[k] == 0) continue;
         ContactRow& row = rows[k];
         const int a = f.slot[row.a], b = f.slot[row.b];
+        // J dv: the change of the row's relative velocity.
+        Vec3 velocity = Vec3::Zero();
+        if (b >= 0) velocity += dv.segment<3>(6 * b) + dv.segment<3>(6 * b + 3).cross(row.arm_b);
+        if (a >= 0) velocity -= dv.segment<3>(6 * a) + dv.segment<3>(6 * a + 3).cross(row.arm_a);
+        const Vec3 moved = row.frame * velocity;
         Vec3 change = Vec3::Zero();
-        for (int c = 0; c < components[k]; ++c) {
-          const auto& [ga, gb] = jacobians[k][c];
-          double moved = 0.0;
-          if (a >= 0) moved += ga.dot(dv.segment<6>(6 * a));
-          if (b >= 0) moved += gb.dot(dv.segment<6>(6 * b));
-          change[c] = (target[k][c] - moved) / compliance[k][c];
-        }
+        for (int c = 0; c < components[k]; ++c) change[c] = (target[k][c] - moved[c]) / compliance[k][c];
         apply(row, change, bodies);
         row.impulse += change;
       }
