@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/equilibrium_analysis.hpp"
+#include "core/blas.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
@@ -475,6 +476,11 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
         start = analysis.solution().x.head(4 * vertices);
       }
     }
+    // MUMPS's dense kernels are OpenBLAS's: the engine's process-wide
+    // setting (one thread, the CPU's kernels) before IPOPT's first
+    // factorisation, as before the engine's own; the penalty form, with no
+    // equilibrium solve first, would otherwise run on OpenBLAS's defaults.
+    set_up_blas_in_whole_process();
     Ipopt::SmartPtr<CraProgram> program = new CraProgram(problem, options, settings.cra, penalty, std::move(start));
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
     app->Options()->SetIntegerValue("print_level", settings.cra.verbose ? 5 : 0);

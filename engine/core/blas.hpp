@@ -39,8 +39,9 @@ namespace ashlar {
 // module for stock lua5.4 (or links the engine) it changes that program's
 // BLAS too, for as long as it runs. Nothing happens when the loaded BLAS is
 // not OpenBLAS. Called by SparseCholesky::factorize
-// (core/sparse_cholesky.hpp), before the first factorisation; safe to call
-// from several threads at once. Two settings:
+// (core/sparse_cholesky.hpp), before the first factorisation, and by
+// analyze_cra (analysis/cra.hpp) before IPOPT's, whose MUMPS runs on the
+// same BLAS; safe to call from several threads at once. Two settings:
 //
 // One thread. Measured on a 2-core machine (22 factorisations of a
 // 10,051-block wall's 60,300-row normal matrix): one thread, 3.13 s of
