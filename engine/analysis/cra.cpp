@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/equilibrium_analysis.hpp"
+#include "core/blas.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
@@ -155,12 +156,13 @@ public:
   }
 
   bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool, Number*) override {
-    // The equilibrium method's forces (balanced, within the friction rows)
-    // when it gave an answer, else (as compas_cra's cra) one mean weight
-    // each; blocks at rest. compas_cra starts its penalty form at zero
-    // forces, where both products f+ f- and f+ (d_n + eps) have zero
-    // gradients; from there IPOPT's restoration failed on a block past its
-    // support's edge.
+    // cra: the equilibrium method's forces (balanced, within the friction
+    // rows) when it gave an answer, else (as compas_cra's cra) one mean
+    // weight each; blocks at rest. cra_penalty: one mean weight each
+    // (analyze_cra says why it takes no warm start). compas_cra starts its
+    // penalty form at zero forces, where both products f+ f- and
+    // f+ (d_n + eps) have zero gradients; from there IPOPT's restoration
+    // failed on a block past its support's edge.
     std::fill(x, x + n, 0.0);
     const bool warm = start_.size() == 4 * static_cast<Eigen::Index>(vertices_);
     for (int k = 0; k < vertices_; ++k) {
@@ -171,7 +173,6 @@ public:
       }
       const double normal = start_(4 * k) - start_(4 * k + 1);
       v[layout_.normal] = std::max(normal, 0.0);
-      if (layout_.penalty) v[layout_.tension] = std::max(-normal, 0.0);
       v[layout_.fu] = start_(4 * k + 2);
       v[layout_.fv] = start_(4 * k + 3);
       // alpha = 0 with d = 0 zeroes the alignment rows' derivatives in
@@ -455,8 +456,17 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
   if (problem.row_count == 0) {
     result.status = SolverStatus::converged;  // nothing to balance
   } else {
+    // The penalty form starts cold. From the equilibrium method's forces
+    // (an unstable structure's: friction at its limit, tension spread over
+    // every vertex) IPOPT's restoration stalled, under some BLAS kernels
+    // and not others, at a point where every vertex carried both f+ and f-
+    // (f+ f- = 0.023 left on all four vertices of a block sliding off an
+    // incline): a local minimum of the infeasibility, reported as
+    // infeasible, that only turning some vertices to pure tension leaves.
+    // From one mean weight each it took 35 iterations there under
+    // OpenBLAS's Prescott, Haswell and SkylakeX kernels alike.
     Eigen::VectorXd start;
-    {
+    if (!penalty) {
       AnalysisSettings equilibrium = settings;
       equilibrium.method = AnalysisMethod::equilibrium;
       equilibrium.problem = options;
@@ -466,6 +476,11 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
         start = analysis.solution().x.head(4 * vertices);
       }
     }
+    // MUMPS's dense kernels are OpenBLAS's: the engine's process-wide
+    // setting (one thread, the CPU's kernels) before IPOPT's first
+    // factorisation, as before the engine's own; the penalty form, with no
+    // equilibrium solve first, would otherwise run on OpenBLAS's defaults.
+    set_up_blas_in_whole_process();
     Ipopt::SmartPtr<CraProgram> program = new CraProgram(problem, options, settings.cra, penalty, std::move(start));
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
     app->Options()->SetIntegerValue("print_level", settings.cra.verbose ? 5 : 0);

@@ -77,8 +77,9 @@ double SparseCholesky::factor_nonzeros() const {
 
 bool SparseCholesky::factorize() {
   // The factorisations are tuned for one BLAS thread (core/blas.hpp); this
-  // is where the engine sets it, for the whole process.
-  use_one_blas_thread_in_whole_process();
+  // is where the engine sets it, and the BLAS kernels, for the whole
+  // process.
+  set_up_blas_in_whole_process();
   ++factorizations_;
   Impl& m = *impl_;
   if (m.split) return m.split->factorize(m.values.data());

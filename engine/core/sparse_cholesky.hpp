@@ -47,8 +47,8 @@ public:
   int nonzeros() const;
   // Numeric factorisation of the current values; false when the matrix is
   // not (numerically) positive definite. The first call in the process
-  // sets OpenBLAS to one thread for the whole process
-  // (use_one_blas_thread_in_whole_process, core/blas.hpp).
+  // sets OpenBLAS to one thread, and to its kernels for the CPU, for the
+  // whole process (set_up_blas_in_whole_process, core/blas.hpp).
   bool factorize();
   // Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;

@@ -132,6 +132,14 @@ end)
 -- 16-fold symmetry, which gives the same factor for a push turned by
 -- 45 or 90 degrees (0.418703414810 along x, 0.418703414833 along (1, 1, 0)
 -- measured).
+-- Whether a push ends at the barrier's optimum or takes the crossover
+-- (tens of iterations or about 3,000) is not asserted: it turns on the
+-- barrier's multiplier check, which the BLAS kernels' rounding moves (along
+-- x: 35 iterations under OpenBLAS's Prescott kernels, 3,072 under SkylakeX;
+-- along (1, 0.3, 0): 3,055 under Prescott, 33 under SkylakeX), while the
+-- factor stays within 3e-10 and the limit interfaces the same under
+-- Prescott, Haswell and SkylakeX. What a user gets is asserted: the status,
+-- the factor, the limit interfaces, the verdict either side.
 describe("the load factor of the 16 x 18 dome (289 free blocks): the barrier's optimum", function()
   local VERTEX = 1e-9  -- relative: the barrier alone came within 9.9e-11 of the vertex
 
@@ -140,7 +148,6 @@ describe("the load factor of the 16 x 18 dome (289 free blocks): the barrier's o
     assert.are.equal("optimal", f.status)
     assert.is_true(f.stable)
     near(f.factor, 0.418703414810, VERTEX * 0.418703414810, "factor")
-    assert.is_true(f.iterations < 100)  -- the barrier's iterations alone: no crossover pivots
     assert.are.equal(491, #f.limit)
     assert.is_true(ashlar.analyze(support.push_laterally(models.dome{}, f.factor * (1 - 1e-7))).stable)
     assert.is_false(ashlar.analyze(support.push_laterally(models.dome{}, f.factor * (1 + 1e-5))).stable)
@@ -158,13 +165,12 @@ describe("the load factor of the 16 x 18 dome (289 free blocks): the barrier's o
     near(turned.factor, f.factor, VERTEX * f.factor, "factor along (-1, 0.5, 0)")
   end)
 
-  it("pushed along (1, 0.3, 0): the barrier's multipliers infeasible, so the crossover's vertex", function()
+  it("pushed along (1, 0.3, 0): the same factor and limit interfaces turned by 90 degrees", function()
     local f = ashlar.load_factor(models.dome{}, { direction = { 1, 0.3, 0 }, progress = false })
     assert.are.equal("optimal", f.status)
-    assert.is_true(f.iterations > 1000)  -- the crossover's pivots
     assert.are.equal(487, #f.limit)
-    -- The same push turned by 90 degrees about the dome's axis, which the
-    -- barrier ends without a crossover, and the analysis either side.
+    -- The same push turned by 90 degrees about the dome's axis, and the
+    -- analysis either side.
     local turned = ashlar.load_factor(models.dome{}, { direction = { -0.3, 1, 0 }, progress = false })
     near(turned.factor, f.factor, VERTEX * f.factor, "factor along (-0.3, 1, 0)")
     local function pushed(factor)

@@ -146,7 +146,7 @@ TEST(Cra, InclineSteeperThanFrictionAngleSlidesDownTheSlope) {
   EXPECT_FALSE(hard.stable);
   EXPECT_NE(hard.status, SolverStatus::converged);
   EXPECT_EQ(hard.status, SolverStatus::infeasible);
-  // The penalty form answers with tension, slowly (over 1000 iterations).
+  // The penalty form answers with tension.
   const EquilibriumResult r = analyze_equilibrium(s, cra_settings(AnalysisMethod::cra_penalty));
   ASSERT_TRUE(r.status == SolverStatus::converged || r.status == SolverStatus::inaccurate) << status_name(r.status);
   EXPECT_FALSE(r.stable);
