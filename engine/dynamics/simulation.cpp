@@ -313,11 +313,11 @@ void Run::free_velocities(const Vec3& ground) {
       moment += (r * arm).cross(load);
     }
     const Vec3& w = bodies_.angular[i];
-    moment -= w.cross(r * d.inertia * r.transpose() * w);  // gyroscopic
+    const Mat3 inertia = r * d.inertia * r.transpose();
+    moment -= w.cross(inertia * w);  // gyroscopic
     if (rotation_) {
       const Vec3 arm = poses_[i].position - o_.ground_pivot;
       const Vec3& v = bodies_.linear[i];
-      const Mat3 inertia = r * d.inertia * r.transpose();
       for (const auto& [weight, f] : turning) {
         force -= weight * d.mass * (f.alpha.cross(arm) + f.omega.cross(f.omega.cross(arm)) + 2.0 * f.omega.cross(v));
         moment -= weight * (inertia * f.alpha + f.omega.cross(inertia * f.omega) + f.omega.cross(inertia * w) +
