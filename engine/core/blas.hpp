@@ -40,8 +40,9 @@ namespace ashlar {
 // BLAS too, for as long as it runs. Nothing happens when the loaded BLAS is
 // not OpenBLAS. Called by SparseCholesky::factorize
 // (core/sparse_cholesky.hpp), before the first factorisation, and by
-// analyze_cra (analysis/cra.hpp) before IPOPT's, whose MUMPS runs on the
-// same BLAS; safe to call from several threads at once. Two settings:
+// analyze_cra (analysis/cra.hpp) and the FEA's contact program
+// (fea/contact_program.hpp) before IPOPT's, whose MUMPS runs on the same
+// BLAS; safe to call from several threads at once. Two settings:
 //
 // One thread. Measured on a 2-core machine (22 factorisations of a
 // 10,051-block wall's 60,300-row normal matrix): one thread, 3.13 s of

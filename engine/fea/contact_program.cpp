@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/blas.hpp"
 #include "core/interrupt.hpp"
 
 namespace ashlar {
@@ -151,6 +152,10 @@ ContactProgramResult solve_contact_program(const SparseMatrix& stiffness, const 
                                            const Eigen::VectorXd& start) {
   Ipopt::SmartPtr<ContactProgram> program =
       new ContactProgram(stiffness, loads, rows, bound, displacement_scale, force_scale, start);
+  // MUMPS runs on OpenBLAS: the engine's process-wide setting first (one
+  // thread, the CPU's kernels), as analyze_cra does, in case no sparse
+  // factorisation came before.
+  set_up_blas_in_whole_process();
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->Options()->SetIntegerValue("print_level", 0);
   app->Options()->SetStringValue("sb", "yes");  // no banner
