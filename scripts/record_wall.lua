@@ -87,7 +87,7 @@ local lines = {
   ("ASHLAR SYNTHETIC RECORD: KANAI-TAJIMI (OMEGA_G 15.6 RAD/S, ZETA_G 0.6), JENNINGS ENVELOPE, SEED %d, PGA %.3g G")
     :format(seed, pga),
   "ACCELERATION TIME SERIES IN UNITS OF G",
-  ("NPTS=%7d, DT=   .0100 SEC"):format(count),
+  ("NPTS=%7d, DT=%9.4f SEC"):format(count, dt),
 }
 for first = 1, count, 5 do
   local row = {}

@@ -327,7 +327,7 @@ PLFLT tick_spacing(bool boolean) { return boolean ? 1.0 : 0.0; }
 PLINT tick_subdivisions(bool boolean) { return boolean ? 1 : 0; }
 
 // The label function of the frame's axes with 'o': booleans, or the y
-// values over 10^y_power with as many decimals as their step needs.
+// values over 10^y_power, each in its shortest form.
 void tick_label(PLINT axis, PLFLT value, char* text, PLINT length, PLPointer data) {
   const PreparedChart& chart = *static_cast<const PreparedChart*>(data);
   if (axis != PL_Y_AXIS || chart.y_boolean) {
