@@ -608,6 +608,8 @@ SimulationOptions simulation_options(const OptionTable& options, const Structure
   o.settle_speed = options.positive("settle_speed", o.settle_speed);
   o.max_sweeps = static_cast<int>(options.whole("max_sweeps", 1, 1 << 30, "a whole number >= 1").value_or(o.max_sweeps));
   o.tolerance = options.positive("tolerance", o.tolerance);
+  o.threads = static_cast<int>(
+      options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(o.threads));
   // ground_acceleration and ground_rotation: a GroundMotion, or a function
   // that stays on the stack for the run.
   const auto time_function = [&](const char* option, const char* quantity) -> std::function<Vec3(double)> {

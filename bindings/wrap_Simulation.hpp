@@ -24,7 +24,7 @@ namespace ashlar::lua {
 #define ASHLAR_SIMULATION_OPTIONS                                                                          \
   "duration", "step", "theta", "restitution", "ground_acceleration", "ground_rotation", "ground_pivot",    \
       "gravity", "progress", "record_every", "search_distance", "moved_fraction", "settle_speed",         \
-      "max_sweeps", "tolerance"
+      "max_sweeps", "tolerance", "threads"
 
 // The progress line of one run on stderr (redrawn in place on a terminal,
 // a line every 10 s otherwise): updated as the run steps, closed with how

@@ -1,9 +1,11 @@
 #include "dynamics/contact_solver.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <utility>
 
+#include "core/parallel_loop.hpp"
 #include "core/sparse_cholesky.hpp"
 
 namespace ashlar {
@@ -36,6 +38,10 @@ constexpr double kMostSpread = 1e4;
 // Solves with one factorisation in a global step: the first and two
 // refinements on what is left of r.
 constexpr int kRefinements = 3;
+// Rows from which a solve is split over the threads: below it a wake-up
+// of the helper threads costs more than the pass it would share (a sweep
+// over 2,000 rows takes about 0.2 ms).
+constexpr int kParallelRows = 2000;
 
 // Per-row constants: the 3x3 Delassus block W = J M^-1 J^T (the velocity
 // change of the contact per unit impulse) and the local step sizes.
@@ -68,12 +74,25 @@ Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies) {
   return row.frame * (vb - va);
 }
 
-void apply(const ContactRow& row, const Vec3& local_impulse, BodyVelocities& bodies) {
+// Adds a row's impulse (local frame) to the velocities of its bodies for
+// which moves(body) is true. A fixed body is never written (it would only
+// gain zeros), so that threads sweeping rows of different bodies on one
+// support never write the same memory.
+template <typename Moves>
+void apply_to(const ContactRow& row, const Vec3& local_impulse, BodyVelocities& bodies, const Moves& moves) {
   const Vec3 p = row.frame.transpose() * local_impulse;
-  bodies.linear[row.b] += bodies.inverse_mass[row.b] * p;
-  bodies.angular[row.b] += bodies.inverse_inertia[row.b] * row.arm_b.cross(p);
-  bodies.linear[row.a] -= bodies.inverse_mass[row.a] * p;
-  bodies.angular[row.a] -= bodies.inverse_inertia[row.a] * row.arm_a.cross(p);
+  if (bodies.inverse_mass[row.b] > 0.0 && moves(row.b)) {
+    bodies.linear[row.b] += bodies.inverse_mass[row.b] * p;
+    bodies.angular[row.b] += bodies.inverse_inertia[row.b] * row.arm_b.cross(p);
+  }
+  if (bodies.inverse_mass[row.a] > 0.0 && moves(row.a)) {
+    bodies.linear[row.a] -= bodies.inverse_mass[row.a] * p;
+    bodies.angular[row.a] -= bodies.inverse_inertia[row.a] * row.arm_a.cross(p);
+  }
+}
+
+void apply(const ContactRow& row, const Vec3& local_impulse, BodyVelocities& bodies) {
+  apply_to(row, local_impulse, bodies, [](int) { return true; });
 }
 
 // The radius of the friction disc, mu P_n (0 when P_n is, whatever mu).
@@ -116,6 +135,105 @@ int constrained_components(const ContactRow& row, const Vec3& u, double toleranc
   return at_limit && u.tail<2>().norm() > tolerance ? 1 : 3;
 }
 
+// A solve split over threads: the free bodies in `parts` parts, each a
+// run of a breadth-first order of the bodies that rows link (from a far
+// end of each connected piece, so that the parts are slabs across a
+// wall's length and few rows link two of them), of about equal numbers
+// of rows. A group whose free bodies are all in one part is that part's;
+// the few that link two parts are shared. A part's thread writes the
+// velocities of its own bodies only.
+struct BodySplit {
+  int parts = 1;
+  std::vector<int> part_of;                 // body -> its part, -1 for a fixed body
+  std::vector<std::vector<int>> groups;     // per part: its groups, in the caller's order
+  std::vector<int> shared;                  // groups linking two parts, in the caller's order
+  std::vector<std::vector<int>> rows;       // per part: the rows at its bodies, ascending
+  // The part that writes row k's impulse in passes over the parts' rows.
+  int owner(const ContactRow& row) const { return part_of[row.b] >= 0 ? part_of[row.b] : part_of[row.a]; }
+};
+
+// groups: the groups' first rows, and the end of the rows last.
+BodySplit split_bodies(const std::vector<ContactRow>& rows, const std::vector<size_t>& group_start,
+                       const BodyVelocities& bodies, int parts) {
+  const int n = static_cast<int>(bodies.inverse_mass.size());
+  const size_t groups = rows.empty() ? 0 : group_start.size() - 1;
+  BodySplit split;
+  split.parts = parts;
+  split.part_of.assign(n, -1);
+  for (int i = 0; i < n; ++i) {
+    if (bodies.inverse_mass[i] > 0.0) split.part_of[i] = 0;
+  }
+  if (parts > 1) {
+    // The free bodies' links (compressed rows) and each body's rows.
+    std::vector<int> weight(n, 0), first(n + 1, 0);
+    const auto free = [&](int body) { return split.part_of[body] >= 0; };
+    for (size_t g = 0; g < groups; ++g) {
+      const ContactRow& row = rows[group_start[g]];
+      const int count = static_cast<int>(group_start[g + 1] - group_start[g]);
+      if (free(row.a)) weight[row.a] += count;
+      if (free(row.b)) weight[row.b] += count;
+      if (free(row.a) && free(row.b)) {
+        ++first[row.a + 1];
+        ++first[row.b + 1];
+      }
+    }
+    for (int i = 0; i < n; ++i) first[i + 1] += first[i];
+    std::vector<int> linked(first[n]), next(first.begin(), first.end() - 1);
+    for (size_t g = 0; g < groups; ++g) {
+      const ContactRow& row = rows[group_start[g]];
+      if (free(row.a) && free(row.b)) {
+        linked[next[row.a]++] = row.b;
+        linked[next[row.b]++] = row.a;
+      }
+    }
+    // Breadth-first from the body last reached from a piece's first body.
+    std::vector<int> mark(n, 0), queue, order;
+    int stamp = 0;
+    const auto reach = [&](int root) {
+      queue.assign(1, root);
+      mark[root] = ++stamp;
+      for (size_t q = 0; q < queue.size(); ++q) {
+        for (int e = first[queue[q]]; e < first[queue[q] + 1]; ++e) {
+          if (mark[linked[e]] != stamp) {
+            mark[linked[e]] = stamp;
+            queue.push_back(linked[e]);
+          }
+        }
+      }
+    };
+    std::vector<char> placed(n, 0);
+    long long total = 0;
+    for (int i = 0; i < n; ++i) {
+      if (placed[i] || weight[i] == 0) continue;
+      reach(i);
+      reach(queue.back());
+      for (int j : queue) {
+        placed[j] = 1;
+        order.push_back(j);
+        total += weight[j];
+      }
+    }
+    long long before = 0;
+    for (int j : order) {
+      split.part_of[j] = static_cast<int>(std::min<long long>(parts - 1, before * parts / total));
+      before += weight[j];
+    }
+  }
+  split.groups.assign(parts, {});
+  split.rows.assign(parts, {});
+  for (size_t g = 0; g < groups; ++g) {
+    const int a = split.part_of[rows[group_start[g]].a], b = split.part_of[rows[group_start[g]].b];
+    if (a < 0 || b < 0 || a == b) split.groups[std::max(a, b)].push_back(static_cast<int>(g));
+    else split.shared.push_back(static_cast<int>(g));
+  }
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const int a = split.part_of[rows[k].a], b = split.part_of[rows[k].b];
+    if (a >= 0) split.rows[a].push_back(static_cast<int>(k));
+    if (b >= 0 && b != a) split.rows[b].push_back(static_cast<int>(k));
+  }
+  return split;
+}
+
 }  // namespace
 
 // The global step's factorisation and the active set's pattern it was made
@@ -127,6 +245,7 @@ struct ContactSolver::Factor {
   std::vector<std::vector<int>> column_bodies;  // per free body j: the linked i <= j, ascending (j last)
   std::vector<int> column_starts;             // of the 6 m x 6 m upper triangle
   std::unique_ptr<SparseCholesky> cholesky;
+  SparseCholeskyOptions options;  // whole on one thread
   bool usable = false;
 
   // Position in the values of entry (6 i + r, 6 j + c), i <= j, r <= c if i == j.
@@ -153,11 +272,16 @@ struct ContactSolver::Factor {
         column_starts[6 * j + c + 1] = static_cast<int>(rows.size());
       }
     }
-    cholesky = std::make_unique<SparseCholesky>(6 * free_bodies, column_starts, std::move(rows));
+    cholesky = std::make_unique<SparseCholesky>(6 * free_bodies, column_starts, std::move(rows), options);
   }
 };
 
-ContactSolver::ContactSolver() : factor_(std::make_unique<Factor>()) {}
+ContactSolver::ContactSolver(int threads)
+    : factor_(std::make_unique<Factor>()),
+      loop_(std::make_unique<ParallelLoop>(threads > 0 ? std::min(threads, ParallelLoop::kMaxThreads) : 0,
+                                           kParallelRows)) {
+  if (loop_->parts() == 1) factor_->options.split_from_rows = INT_MAX;
+}
 ContactSolver::~ContactSolver() = default;
 
 Mat3 contact_frame(const Vec3& n) {
@@ -173,8 +297,33 @@ Mat3 contact_frame(const Vec3& n) {
 
 ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelocities& bodies,
                                          const ContactSolverSettings& settings) {
+  ParallelLoop& loop = *loop_;
+  const int row_count = static_cast<int>(rows.size());
+  // Groups: runs of consecutive rows between the same two bodies.
+  std::vector<size_t> group_start{0};
+  for (size_t k = 1; k < rows.size(); ++k) {
+    if (rows[k].a != rows[k - 1].a || rows[k].b != rows[k - 1].b) group_start.push_back(k);
+  }
+  group_start.push_back(rows.size());
+  const size_t groups = rows.empty() ? 0 : group_start.size() - 1;
+  const BodySplit split = split_bodies(rows, group_start, bodies, loop.parts_for(row_count));
+  // Work on each row alone, the rows in contiguous parts on the threads.
+  const auto each_row = [&](const auto& per_row) {
+    loop.run(row_count, [&](int begin, int end, int) {
+      for (int k = begin; k < end; ++k) per_row(k);
+    });
+  };
+  // Work on each part's bodies, each part on its thread: per_part(part).
+  const auto each_part = [&](const auto& per_part) { loop.run_parts(split.parts, per_part); };
+  // A row's impulse (local frame) added to the velocities of the part's
+  // bodies: a pass over every part's rows adds, to each body, its rows'
+  // impulses in the rows' order, as one thread would.
+  const auto apply_in_part = [&](const ContactRow& row, const Vec3& local_impulse, int part) {
+    apply_to(row, local_impulse, bodies, [&](int body) { return split.part_of[body] == part; });
+  };
+
   std::vector<RowConstants> constants(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
+  each_row([&](int k) {
     const Mat3 w = delassus(rows[k], bodies);
     const Eigen::Matrix2d wt = w.bottomRightCorner<2, 2>();
     const double largest = 0.5 * (wt.trace() + std::hypot(wt(0, 0) - wt(1, 1), 2.0 * wt(0, 1)));
@@ -185,15 +334,10 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     const double limit = friction_limit(rows[k].friction, p.x());
     const double tangential = p.tail<2>().norm();
     if (tangential > limit) p.tail<2>() *= limit / tangential;
-    apply(rows[k], p, bodies);
-  }
-  // Groups: runs of consecutive rows between the same two bodies.
-  std::vector<size_t> group_start{0};
-  for (size_t k = 1; k < rows.size(); ++k) {
-    if (rows[k].a != rows[k - 1].a || rows[k].b != rows[k - 1].b) group_start.push_back(k);
-  }
-  group_start.push_back(rows.size());
-  const size_t groups = rows.empty() ? 0 : group_start.size() - 1;
+  });
+  each_part([&](int part) {
+    for (int k : split.rows[part]) apply_in_part(rows[k], rows[k].impulse, part);
+  });
   ContactSolverReport report;
 
   // One pass over rows [begin, end): each row's local update; returns the
@@ -254,61 +398,59 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       f.usable = true;
     }
   };
+  // Per row: the components held, r, the compliance, its inverse; per
+  // part: sums; the impulses' changes of the projection.
+  std::vector<int> components(rows.size());
+  std::vector<Vec3> target(rows.size()), compliance(rows.size()), weight(rows.size()), change(rows.size());
+  std::vector<int> part_count(loop.parts());
   const auto global_step = [&]() {
     if (free_bodies < 0) set_up_pattern();
-    std::vector<int> components(rows.size());
-    std::vector<Vec3> target(rows.size());
+    loop.run(row_count, [&](int begin, int end, int part) {
+      int constrained = 0;
+      for (int k = begin; k < end; ++k) {
+        const Vec3 u = relative_velocity(rows[k], bodies);
+        components[k] = constrained_components(rows[k], u, settings.velocity_tolerance);
+        target[k] = Vec3(rows[k].target_normal, 0.0, 0.0) - u;
+        constrained += components[k];
+      }
+      part_count[part] = constrained;
+    });
     int constrained = 0;
-    for (size_t k = 0; k < rows.size(); ++k) {
-      const Vec3 u = relative_velocity(rows[k], bodies);
-      components[k] = constrained_components(rows[k], u, settings.velocity_tolerance);
-      target[k] = Vec3(rows[k].target_normal, 0.0, 0.0) - u;
-      constrained += components[k];
-    }
+    for (int part = 0; part < loop.parts_for(row_count); ++part) constrained += part_count[part];
     if (constrained == 0) return -1;
     std::vector<double> most(bodies.inverse_mass.size(), 0.0);
-    for (const ContactRow& row : rows) {
-      most[row.a] = std::max(most[row.a], row.impulse.x());
-      most[row.b] = std::max(most[row.b], row.impulse.x());
-    }
-    std::vector<Vec3> compliance(rows.size());
-    for (size_t k = 0; k < rows.size(); ++k) {
-      if (components[k] == 0) continue;
+    each_part([&](int part) {
+      for (int k : split.rows[part]) {
+        for (const int body : {rows[k].a, rows[k].b}) {
+          if (split.part_of[body] == part) most[body] = std::max(most[body], rows[k].impulse.x());
+        }
+      }
+    });
+    each_row([&](int k) {
+      // E, and 1 / E per component (0 for those not held).
+      weight[k].setZero();
+      if (components[k] == 0) return;
       const double p = rows[k].impulse.x();
       const double reference = std::max(f.slot[rows[k].a] >= 0 ? most[rows[k].a] : 0.0,
                                         f.slot[rows[k].b] >= 0 ? most[rows[k].b] : 0.0);
       const double spread = p > 0.0 ? std::clamp(reference / p, 1.0, kMostSpread) : reference > 0.0 ? kMostSpread : 1.0;
       compliance[k] = kCompliance * spread * constants[k].diagonal;
-    }
-    // 1 / E per component, 0 for those not held.
-    std::vector<Vec3> weight(rows.size(), Vec3::Zero());
-    for (size_t k = 0; k < rows.size(); ++k) {
       for (int c = 0; c < components[k]; ++c) weight[k][c] = 1.0 / compliance[k][c];
-    }
+    });
     // A new factorisation each step: E follows the impulses, and a
     // factorisation made for another E would give dP = E^-1 (r - J dv)
     // from a dv that does not belong to it (a stale one was tried: its
     // error, scaled by 1 / E, blew up shaken walls).
     {
+      // Each part fills the columns of its own bodies: their mass, then
+      // each of its rows' blocks of J^T E^-1 J in the rows' order (as one
+      // thread would), summed over the row's constrained components. Row
+      // k's component c is, as a row of J, -(f, R_a f) for a and
+      // (f, R_b f) for b, with f the frame's row c and R the cross-product
+      // matrix of the arm: the blocks are those of S = sum_c f f^T / E_c,
+      // e.g. a's diagonal block [[S, S R_a^T], [R_a S, R_a S R_a^T]]. The
+      // block of two bodies goes in the column of the later one.
       double* values = f.cholesky->values();
-      std::fill(values, values + f.cholesky->nonzeros(), 0.0);
-      for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
-        const int j = f.slot[i];
-        if (j < 0) continue;
-        Eigen::Matrix<double, 6, 6> mass = Eigen::Matrix<double, 6, 6>::Zero();
-        mass.topLeftCorner<3, 3>() = Mat3::Identity() / bodies.inverse_mass[i];
-        mass.bottomRightCorner<3, 3>() = bodies.inverse_inertia[i].inverse();
-        for (int c = 0; c < 6; ++c) {
-          for (int r = 0; r <= c; ++r) values[f.position(j, r, j, c)] += mass(r, c);
-        }
-      }
-      // Each row's blocks of J^T E^-1 J, summed over its constrained
-      // components, added where they go (the block's column positions
-      // looked up once). Row k's component c is, as a row of J,
-      // -(f, R_a f) for a and (f, R_b f) for b, with f the frame's row c
-      // and R the cross-product matrix of the arm: the blocks are those of
-      // S = sum_c f f^T / E_c, e.g. a's diagonal block
-      // [[S, S R_a^T], [R_a S, R_a S R_a^T]].
       using Mat6 = Eigen::Matrix<double, 6, 6>;
       const auto add = [&](int i, int j, const Mat6& block) {  // i <= j: block (i, j); i == j: its upper triangle
         const int base = f.position(i, 0, j, 0) - f.column_starts[6 * j];
@@ -317,24 +459,38 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
           for (int r = 0; r < (i == j ? c + 1 : 6); ++r) column[r] += block(r, c);
         }
       };
-      for (size_t k = 0; k < rows.size(); ++k) {
-        if (components[k] == 0) continue;
-        const ContactRow& row = rows[k];
-        const int a = f.slot[row.a], b = f.slot[row.b];
-        const Mat3 s = row.frame.transpose() * weight[k].asDiagonal() * row.frame;
-        const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
-        const Mat3 ra_s = ra * s, rb_s = rb * s;
-        Mat6 aa, bb, ab;
-        aa << s, ra_s.transpose(), ra_s, ra_s * ra.transpose();
-        bb << s, rb_s.transpose(), rb_s, rb_s * rb.transpose();
-        ab << -s, -rb_s.transpose(), -ra_s, -ra_s * rb.transpose();
-        if (a >= 0) add(a, a, aa);
-        if (b >= 0) add(b, b, bb);
-        if (a >= 0 && b >= 0) {
-          if (a < b) add(a, b, ab);
-          else add(b, a, ab.transpose());
+      each_part([&](int part) {
+        for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
+          if (split.part_of[i] != part) continue;
+          const int j = f.slot[i];
+          std::fill(values + f.column_starts[6 * j], values + f.column_starts[6 * j + 6], 0.0);
+          Mat6 mass = Mat6::Zero();
+          mass.topLeftCorner<3, 3>() = Mat3::Identity() / bodies.inverse_mass[i];
+          mass.bottomRightCorner<3, 3>() = bodies.inverse_inertia[i].inverse();
+          for (int c = 0; c < 6; ++c) {
+            for (int r = 0; r <= c; ++r) values[f.position(j, r, j, c)] += mass(r, c);
+          }
         }
-      }
+        for (int k : split.rows[part]) {
+          if (components[k] == 0) continue;
+          const ContactRow& row = rows[k];
+          const int a = f.slot[row.a], b = f.slot[row.b];
+          const bool own_a = split.part_of[row.a] == part, own_b = split.part_of[row.b] == part;
+          const Mat3 s = row.frame.transpose() * weight[k].asDiagonal() * row.frame;
+          const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
+          const Mat3 ra_s = ra * s, rb_s = rb * s;
+          Mat6 aa, bb, ab;
+          aa << s, ra_s.transpose(), ra_s, ra_s * ra.transpose();
+          bb << s, rb_s.transpose(), rb_s, rb_s * rb.transpose();
+          ab << -s, -rb_s.transpose(), -ra_s, -ra_s * rb.transpose();
+          if (own_a) add(a, a, aa);
+          if (own_b) add(b, b, bb);
+          if (a >= 0 && b >= 0) {
+            if (a < b && own_b) add(a, b, ab);
+            else if (b < a && own_a) add(b, a, ab.transpose());
+          }
+        }
+      });
       ++report.factorizations;
       if (!f.cholesky->factorize()) {
         f.usable = false;
@@ -344,69 +500,107 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     // dv = K^-1 J^T E^-1 r; dP = E^-1 (r - J dv), applied unprojected;
     // then again on what is left of r (iterative refinement: E's bias and
     // the round-off of a long chain of stiff contacts, which 1 / E
-    // magnifies, shrink by a factor each time).
+    // magnifies, shrink by a factor each time). Each part adds into its
+    // own bodies' entries of J^T E^-1 r, and changes their velocities, in
+    // the rows' order.
     Eigen::VectorXd rhs(6 * free_bodies), dv;
     for (int refinement = 0; refinement < kRefinements; ++refinement) {
       if (refinement > 0) {
-        for (size_t k = 0; k < rows.size(); ++k) {
+        each_row([&](int k) {
           if (components[k] > 0) target[k] = Vec3(rows[k].target_normal, 0.0, 0.0) - relative_velocity(rows[k], bodies);
-        }
+        });
       }
       // J^T E^-1 r: per row, the impulse g = sum_c f r_c / E_c on b and
       // its opposite on a, at their arms.
-      rhs.setZero();
-      for (size_t k = 0; k < rows.size(); ++k) {
-        if (components[k] == 0) continue;
-        const ContactRow& row = rows[k];
-        const int a = f.slot[row.a], b = f.slot[row.b];
-        const Vec3 g = row.frame.transpose() * weight[k].cwiseProduct(target[k]);
-        if (a >= 0) {
-          rhs.segment<3>(6 * a) -= g;
-          rhs.segment<3>(6 * a + 3) -= row.arm_a.cross(g);
+      each_part([&](int part) {
+        for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
+          if (split.part_of[i] == part) rhs.segment<6>(6 * f.slot[i]).setZero();
         }
-        if (b >= 0) {
-          rhs.segment<3>(6 * b) += g;
-          rhs.segment<3>(6 * b + 3) += row.arm_b.cross(g);
+        for (int k : split.rows[part]) {
+          if (components[k] == 0) continue;
+          const ContactRow& row = rows[k];
+          const int a = f.slot[row.a], b = f.slot[row.b];
+          const Vec3 g = row.frame.transpose() * weight[k].cwiseProduct(target[k]);
+          if (split.part_of[row.a] == part) {
+            rhs.segment<3>(6 * a) -= g;
+            rhs.segment<3>(6 * a + 3) -= row.arm_a.cross(g);
+          }
+          if (split.part_of[row.b] == part) {
+            rhs.segment<3>(6 * b) += g;
+            rhs.segment<3>(6 * b + 3) += row.arm_b.cross(g);
+          }
         }
-      }
+      });
       f.cholesky->solve(rhs, dv);
-      for (size_t k = 0; k < rows.size(); ++k) {
-        if (components[k] == 0) continue;
-        ContactRow& row = rows[k];
-        const int a = f.slot[row.a], b = f.slot[row.b];
-        // J dv: the change of the row's relative velocity.
-        Vec3 velocity = Vec3::Zero();
-        if (b >= 0) velocity += dv.segment<3>(6 * b) + dv.segment<3>(6 * b + 3).cross(row.arm_b);
-        if (a >= 0) velocity -= dv.segment<3>(6 * a) + dv.segment<3>(6 * a + 3).cross(row.arm_a);
-        const Vec3 moved = row.frame * velocity;
-        Vec3 change = Vec3::Zero();
-        for (int c = 0; c < components[k]; ++c) change[c] = (target[k][c] - moved[c]) / compliance[k][c];
-        apply(row, change, bodies);
-        row.impulse += change;
-      }
+      each_part([&](int part) {
+        for (int k : split.rows[part]) {
+          if (components[k] == 0) continue;
+          ContactRow& row = rows[k];
+          const int a = f.slot[row.a], b = f.slot[row.b];
+          // J dv: the change of the row's relative velocity.
+          Vec3 velocity = Vec3::Zero();
+          if (b >= 0) velocity += dv.segment<3>(6 * b) + dv.segment<3>(6 * b + 3).cross(row.arm_b);
+          if (a >= 0) velocity -= dv.segment<3>(6 * a) + dv.segment<3>(6 * a + 3).cross(row.arm_a);
+          const Vec3 moved = row.frame * velocity;
+          Vec3 impulse = Vec3::Zero();
+          for (int c = 0; c < components[k]; ++c) impulse[c] = (target[k][c] - moved[c]) / compliance[k][c];
+          apply_in_part(row, impulse, part);
+          if (split.owner(row) == part) row.impulse += impulse;
+        }
+      });
     }
     // The impulses projected on their cones.
-    int released = 0;
-    for (size_t k = 0; k < rows.size(); ++k) {
-      if (components[k] == 0) continue;
-      ContactRow& row = rows[k];
-      Vec3 p = row.impulse;
-      if (p.x() < 0.0) {
-        p.x() = 0.0;
-        ++released;
+    loop.run(row_count, [&](int begin, int end, int part) {
+      int released = 0;
+      for (int k = begin; k < end; ++k) {
+        change[k].setZero();
+        if (components[k] == 0) continue;
+        ContactRow& row = rows[k];
+        Vec3 p = row.impulse;
+        if (p.x() < 0.0) {
+          p.x() = 0.0;
+          ++released;
+        }
+        const double limit = friction_limit(row.friction, p.x());
+        const double tangential = p.tail<2>().norm();
+        // A sliding point keeps sliding: its friction follows its pressure.
+        if (tangential > limit || (components[k] == 1 && tangential > 0.0)) p.tail<2>() *= limit / tangential;
+        change[k] = p - row.impulse;
+        if (!change[k].isZero(0.0)) row.impulse = p;
       }
-      const double limit = friction_limit(row.friction, p.x());
-      const double tangential = p.tail<2>().norm();
-      // A sliding point keeps sliding: its friction follows its pressure.
-      if (tangential > limit || (components[k] == 1 && tangential > 0.0)) p.tail<2>() *= limit / tangential;
-      const Vec3 change = p - row.impulse;
-      if (change.isZero(0.0)) continue;
-      apply(row, change, bodies);
-      row.impulse = p;
-    }
+      part_count[part] = released;
+    });
+    int released = 0;
+    for (int part = 0; part < loop.parts_for(row_count); ++part) released += part_count[part];
+    each_part([&](int part) {
+      for (int k : split.rows[part]) {
+        if (!change[k].isZero(0.0)) apply_in_part(rows[k], change[k], part);
+      }
+    });
     ++report.global_steps;
     return released;
   };
+
+  // A sweep over some groups, in the caller's order or back: its largest
+  // residual and where, from `largest` and `worst` up.
+  const auto sweep = [&](const std::vector<int>& list, bool forward, double& largest, int& worst) {
+    const size_t count = list.size();
+    for (size_t visit = 0; visit < count; ++visit) {
+      const size_t g = list[forward ? visit : count - 1 - visit];
+      const size_t begin = group_start[g], end = group_start[g + 1];
+      int group_worst = -1;
+      double group_residual = pass(begin, end, group_worst);
+      if (group_residual > largest) {
+        largest = group_residual;
+        worst = group_worst;
+      }
+      for (int inner = 1; inner < kGroupPasses && group_residual > 0.5 * settings.velocity_tolerance; ++inner) {
+        group_residual = pass(begin, end, group_worst);
+      }
+    }
+  };
+  std::vector<double> part_largest(split.parts);
+  std::vector<int> part_worst(split.parts);
 
   bool global_steps = settings.global_steps;
   double before_global_step = -1.0;  // the residual of the sweep before the last global step
@@ -423,25 +617,31 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       before_global_step = released >= 0 ? report.residual : -1.0;
     }
     ++report.sweeps;
-    double largest_residual = 0.0;
-    int worst = -1;
     // Symmetric Gauss-Seidel over the groups: forward and backward in turn,
     // so that what one end of the order learns reaches the other in one
     // sweep pair. Each group (the points of one contact between two
     // blocks) is solved to the tolerance, or kGroupPasses passes, before
-    // the next: a stack's weight then goes down it in one sweep.
+    // the next: a stack's weight then goes down it in one sweep. Split,
+    // each part sweeps its own groups on its thread, and the shared ones
+    // are swept after them (forward) or before (backward): the same as one
+    // thread sweeping the parts' groups one part after another.
     const bool forward = report.sweeps % 2 == 1;
-    for (size_t visit = 0; visit < groups; ++visit) {
-      const size_t g = forward ? visit : groups - 1 - visit;
-      const size_t begin = group_start[g], end = group_start[g + 1];
-      int group_worst = -1;
-      double group_residual = pass(begin, end, group_worst);
-      if (group_residual > largest_residual) {
-        largest_residual = group_residual;
-        worst = group_worst;
-      }
-      for (int inner = 1; inner < kGroupPasses && group_residual > 0.5 * settings.velocity_tolerance; ++inner) {
-        group_residual = pass(begin, end, group_worst);
+    const auto sweep_parts = [&]() {
+      each_part([&](int part) {
+        part_largest[part] = 0.0;
+        part_worst[part] = -1;
+        sweep(split.groups[part], forward, part_largest[part], part_worst[part]);
+      });
+    };
+    double largest_residual = 0.0;
+    int worst = -1;
+    if (!forward) sweep(split.shared, forward, largest_residual, worst);
+    sweep_parts();
+    if (forward) sweep(split.shared, forward, largest_residual, worst);
+    for (int part = 0; part < split.parts; ++part) {
+      if (part_largest[part] > largest_residual) {
+        largest_residual = part_largest[part];
+        worst = part_worst[part];
       }
     }
     // Global steps that made things worse kGlobalStepsWorse times are not

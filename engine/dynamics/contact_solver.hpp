@@ -41,6 +41,22 @@
 // sweeps go on: they alone decide convergence, with the same residual
 // test, so the answer's accuracy is the sweeps'. A solve stops taking
 // global steps after three left the residual larger than before them.
+//
+// Threads: a solve of at least 2,000 rows is split over the solver's
+// threads. The free bodies are cut into parts (runs of a breadth-first
+// order of the bodies the rows link, from a far end: slabs across a wall)
+// of about equal numbers of rows. Each sweep runs the parts' own groups
+// at the same time, each part on its thread (two parts never write one
+// body: a fixed body is never written), and the few groups that link two
+// parts after them, forward, or before them, backward: the same sweep as
+// one thread taking the groups part after part, so a split solve gives
+// the same answer in every run with the same threads, and one within the
+// tolerance of the unsplit order's. The global step's passes are split by
+// rows (work of a row alone) or by parts (each part adds into its own
+// bodies' entries of the matrix, the right-hand side and the velocities,
+// in the rows' order): they give the same numbers as on one thread. One
+// thread: the sweeps in the caller's order and the factorisation whole
+// (sparse_cholesky.hpp's split over two cores is used only with more).
 #pragma once
 
 #include <memory>
@@ -49,6 +65,8 @@
 #include "core/types.hpp"
 
 namespace ashlar {
+
+class ParallelLoop;
 
 // The bodies' velocities and inverse masses; a fixed body has zero inverse
 // mass and inertia and keeps zero velocity.
@@ -99,7 +117,9 @@ struct ContactSolverReport {
 // same bodies.
 class ContactSolver {
 public:
-  ContactSolver();
+  // threads: the solves' threads (0: one per core; at most
+  // ParallelLoop::kMaxThreads are used); 1: all on the caller's thread.
+  explicit ContactSolver(int threads = 0);
   ~ContactSolver();
   ContactSolver(const ContactSolver&) = delete;
   ContactSolver& operator=(const ContactSolver&) = delete;
@@ -113,6 +133,7 @@ public:
 private:
   struct Factor;
   std::unique_ptr<Factor> factor_;
+  std::unique_ptr<ParallelLoop> loop_;  // helpers sleep between solves
 };
 
 // An orthonormal frame with n as its first row.

@@ -48,6 +48,7 @@ void check_options(const SimulationOptions& o) {
   if (!(o.moved_fraction > 0.0) || !std::isfinite(o.moved_fraction)) fail("moved_fraction", o.moved_fraction, "> 0");
   if (!(o.settle_speed > 0.0) || !std::isfinite(o.settle_speed)) fail("settle_speed", o.settle_speed, "a speed > 0 (m/s)");
   if (o.max_sweeps < 1) fail("max_sweeps", o.max_sweeps, "at least 1");
+  if (o.threads < 0) fail("threads", o.threads, "a whole number >= 0 (0: one per core)");
   if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) fail("tolerance", o.tolerance, "> 0");
 }
 
@@ -164,7 +165,7 @@ private:
   ContactSolverSettings solver_;
   // The steps' solves and the overlap corrections' (each keeps its
   // factorisation from step to step).
-  ContactSolver contact_solver_, overlap_solver_;
+  ContactSolver contact_solver_{o_.threads}, overlap_solver_{o_.threads};
   std::optional<GroundRotation> rotation_;  // when the ground turns
   SimulationResult result_;
 };

@@ -112,6 +112,13 @@ struct SimulationOptions {
   // rest then drifts by at most about tolerance x 9.81 h per second.
   int max_sweeps = 1000;
   double tolerance = 1e-4;
+  // Threads of the contact solve (contact_solver.hpp): 0, one per core (at
+  // most 8); 1, one thread (the sweeps in the order of the load path, the
+  // factorisation whole). Solves of fewer than 2,000 contact points run on
+  // one thread whatever this is. A run gives the same numbers in every run
+  // with the same threads; with other threads, numbers within the solver's
+  // tolerance of them.
+  int threads = 0;
   // Called after every step with the simulated time reached (s).
   std::function<void(double t)> progress;
 };

@@ -170,6 +170,38 @@ describe("ashlar.simulate", function()
     assert.equal("Structure (closed)", tostring(s))
   end)
 
+  it("splits a large solve over threads: the same numbers in every run, and within the tolerance of one thread's", function()
+    -- A wall of 206 blocks (2,300 contact points, over the 2,000 from
+    -- which a solve is split) shaken at 0.3 g, 2 Hz, friction 0.6: nothing
+    -- may move (0.3 g is below the friction limit, 0.6 g, and a brick's
+    -- uplift threshold, 0.24 / 0.07 g = 3.4 g), so each run's displacement
+    -- is its error. Each step's solve leaves the
+    -- velocities within tolerance x g x step = 1e-6 m/s of the laws, so
+    -- over 10 steps of 1 ms two answers drift apart by at most about
+    -- sum_k k x 2e-6 x 1e-3 = 1.1e-7 m.
+    local s = models.wall{ length = 20 * 0.24, height = 10 * 0.07, brick = { 0.24, 0.07 } }
+    local function run(threads)
+      return ashlar.simulate(s, { duration = 0.01, friction = 0.6, threads = threads, record_every = 1,
+                                  ground_acceleration = function(t) return 0.3 * 9.81 * math.sin(4 * math.pi * t), 0, 0 end })
+    end
+    local split, again, one = run(2), run(2), run(1)
+    assert.is_true(split.max_active_contacts > 2000)
+    assert.equal(0, split.unconverged_steps)
+    assert.equal(split.sweeps, again.sweeps)
+    for i = 1, #s do
+      assert.equal(split.displacements[i], again.displacements[i])  -- to the bit
+      local a, b = split:trajectory(i), again:trajectory(i)
+      for f = 1, #a.positions do
+        for k = 1, 3 do
+          assert.equal(a.positions[f][k], b.positions[f][k])
+          assert.equal(a.rotations[f][k], b.rotations[f][k])
+        end
+      end
+      assert.is_true(math.abs(split.displacements[i] - one.displacements[i]) <= 1.1e-7)
+    end
+    assert.is_true(split.max_displacement < 1e-7 and one.max_displacement < 1e-7)
+  end)
+
   it("stops on an interrupt with what it computed and no verdict", function()
     local outcome = ashlar.sandbox{ source = [[
       local ashlar = require "ashlar"
@@ -191,6 +223,7 @@ describe("ashlar.simulate", function()
     support.expect_error({ "friction: expected a number >= 0", "got -0.5" },
       function() ashlar.simulate(s, { friction = -0.5 }) end)
     support.expect_error({ "unknown", "durration" }, function() ashlar.simulate(s, { durration = 1 }) end)
+    support.expect_error({ "threads", "-1" }, function() ashlar.simulate(s, { threads = -1 }) end)
     support.expect_error({ "ground_acceleration: expected a GroundMotion (ashlar.ground_motion) or a function", "got number" },
       function() ashlar.simulate(s, { ground_acceleration = 3 }) end)
     support.expect_error({ "ground_acceleration: the function must return three finite numbers", "result 2 is nil" },
