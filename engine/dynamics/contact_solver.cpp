@@ -215,7 +215,7 @@ BodySplit split_bodies(const std::vector<ContactRow>& rows, const std::vector<si
     }
     long long before = 0;
     for (int j : order) {
-      split.part_of[j] = static_cast<int>(std::min<long long>(parts - 1, before * parts / total));
+      split.part_of[j] = static_cast<int>(std::min<long long>(parts - 1, before * parts / std::max(total, 1LL)));
       before += weight[j];
     }
   }
