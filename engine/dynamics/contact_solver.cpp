@@ -403,40 +403,46 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   std::vector<int> components(rows.size());
   std::vector<Vec3> target(rows.size()), compliance(rows.size()), weight(rows.size()), change(rows.size());
   std::vector<int> part_count(loop.parts());
+  // Passes over the parts' rows compute what a row needs where they meet
+  // it (a row of two parts twice, the same way) and only the row's owner
+  // (split.owner) stores it, so that no pass reads what another thread
+  // writes: one wake-up of the threads per pass.
+  std::vector<double> most(bodies.inverse_mass.size());
   const auto global_step = [&]() {
     if (free_bodies < 0) set_up_pattern();
-    loop.run(row_count, [&](int begin, int end, int part) {
+    // The components held and r; the largest normal impulse at each body.
+    std::fill(most.begin(), most.end(), 0.0);
+    each_part([&](int part) {
       int constrained = 0;
-      for (int k = begin; k < end; ++k) {
-        const Vec3 u = relative_velocity(rows[k], bodies);
-        components[k] = constrained_components(rows[k], u, settings.velocity_tolerance);
-        target[k] = Vec3(rows[k].target_normal, 0.0, 0.0) - u;
-        constrained += components[k];
+      for (int k : split.rows[part]) {
+        const ContactRow& row = rows[k];
+        if (split.owner(row) == part) {
+          const Vec3 u = relative_velocity(row, bodies);
+          components[k] = constrained_components(row, u, settings.velocity_tolerance);
+          target[k] = Vec3(row.target_normal, 0.0, 0.0) - u;
+          constrained += components[k];
+        }
+        for (const int body : {row.a, row.b}) {
+          if (split.part_of[body] == part) most[body] = std::max(most[body], row.impulse.x());
+        }
       }
       part_count[part] = constrained;
     });
     int constrained = 0;
-    for (int part = 0; part < loop.parts_for(row_count); ++part) constrained += part_count[part];
+    for (int part = 0; part < split.parts; ++part) constrained += part_count[part];
     if (constrained == 0) return -1;
-    std::vector<double> most(bodies.inverse_mass.size(), 0.0);
-    each_part([&](int part) {
-      for (int k : split.rows[part]) {
-        for (const int body : {rows[k].a, rows[k].b}) {
-          if (split.part_of[body] == part) most[body] = std::max(most[body], rows[k].impulse.x());
-        }
-      }
-    });
-    each_row([&](int k) {
-      // E, and 1 / E per component (0 for those not held).
-      weight[k].setZero();
+    // Row k's E, and 1 / E per component (0 for those not held), into c
+    // and w.
+    const auto row_compliance = [&](int k, Vec3& c, Vec3& w) {
+      w.setZero();
       if (components[k] == 0) return;
       const double p = rows[k].impulse.x();
       const double reference = std::max(f.slot[rows[k].a] >= 0 ? most[rows[k].a] : 0.0,
                                         f.slot[rows[k].b] >= 0 ? most[rows[k].b] : 0.0);
       const double spread = p > 0.0 ? std::clamp(reference / p, 1.0, kMostSpread) : reference > 0.0 ? kMostSpread : 1.0;
-      compliance[k] = kCompliance * spread * constants[k].diagonal;
-      for (int c = 0; c < components[k]; ++c) weight[k][c] = 1.0 / compliance[k][c];
-    });
+      c = kCompliance * spread * constants[k].diagonal;
+      for (int component = 0; component < components[k]; ++component) w[component] = 1.0 / c[component];
+    };
     // A new factorisation each step: E follows the impulses, and a
     // factorisation made for another E would give dP = E^-1 (r - J dv)
     // from a dv that does not belong to it (a stale one was tried: its
@@ -474,9 +480,15 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         for (int k : split.rows[part]) {
           if (components[k] == 0) continue;
           const ContactRow& row = rows[k];
+          Vec3 row_weight, row_compliance_of;
+          row_compliance(k, row_compliance_of, row_weight);
+          if (split.owner(row) == part) {
+            compliance[k] = row_compliance_of;
+            weight[k] = row_weight;
+          }
           const int a = f.slot[row.a], b = f.slot[row.b];
           const bool own_a = split.part_of[row.a] == part, own_b = split.part_of[row.b] == part;
-          const Mat3 s = row.frame.transpose() * weight[k].asDiagonal() * row.frame;
+          const Mat3 s = row.frame.transpose() * row_weight.asDiagonal() * row.frame;
           const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
           const Mat3 ra_s = ra * s, rb_s = rb * s;
           Mat6 aa, bb, ab;
@@ -505,13 +517,9 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     // the rows' order.
     Eigen::VectorXd rhs(6 * free_bodies), dv;
     for (int refinement = 0; refinement < kRefinements; ++refinement) {
-      if (refinement > 0) {
-        each_row([&](int k) {
-          if (components[k] > 0) target[k] = Vec3(rows[k].target_normal, 0.0, 0.0) - relative_velocity(rows[k], bodies);
-        });
-      }
-      // J^T E^-1 r: per row, the impulse g = sum_c f r_c / E_c on b and
-      // its opposite on a, at their arms.
+      // r (again, after the first solve), and J^T E^-1 r: per row, the
+      // impulse g = sum_c f r_c / E_c on b and its opposite on a, at
+      // their arms.
       each_part([&](int part) {
         for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
           if (split.part_of[i] == part) rhs.segment<6>(6 * f.slot[i]).setZero();
@@ -519,8 +527,15 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         for (int k : split.rows[part]) {
           if (components[k] == 0) continue;
           const ContactRow& row = rows[k];
+          Vec3 r;
+          if (refinement == 0) {
+            r = target[k];
+          } else {
+            r = Vec3(row.target_normal, 0.0, 0.0) - relative_velocity(row, bodies);
+            if (split.owner(row) == part) target[k] = r;
+          }
           const int a = f.slot[row.a], b = f.slot[row.b];
-          const Vec3 g = row.frame.transpose() * weight[k].cwiseProduct(target[k]);
+          const Vec3 g = row.frame.transpose() * weight[k].cwiseProduct(r);
           if (split.part_of[row.a] == part) {
             rhs.segment<3>(6 * a) -= g;
             rhs.segment<3>(6 * a + 3) -= row.arm_a.cross(g);
