@@ -43,9 +43,11 @@
 // global steps after three left the residual larger than before them.
 //
 // Threads: a solve of at least 2,000 rows is split over the solver's
-// threads. The free bodies are cut into parts (runs of a breadth-first
-// order of the bodies the rows link, from a far end: slabs across a wall)
-// of about equal numbers of rows. Each sweep runs the parts' own groups
+// threads. The free bodies are cut into parts of about equal numbers of
+// rows, never across the load path (the caller's order): slabs across a
+// wall's length (runs of a breadth-first order of the bodies the rows
+// link, from a far end), or across a tower's width (by the bodies'
+// centroids, rebuilt from the rows' arms). Each sweep runs the parts' own groups
 // at the same time, each part on its thread (two parts never write one
 // body: a fixed body is never written), and the few groups that link two
 // parts after them, forward, or before them, backward: the same sweep as
