@@ -249,7 +249,7 @@ ContactNewtonReport solve_contact_newton(std::vector<ContactRow>& rows, BodyVelo
       change[rows[k].a] += problem.inverse_mass[rows[k].a] * problem.ga[k].transpose() * dp;
       change[rows[k].b] += problem.inverse_mass[rows[k].b] * problem.gb[k].transpose() * dp;
     }
-  // Backtracking on |F|^2 (its rate along a Newton step is -2 |F|^2).
+    // Backtracking on |F|^2 (its rate along a Newton step is -2 |F|^2).
     double alpha = 1.0, best_phi = phi, best_alpha = 0.0, best_largest = largest;
     for (int halving = 0; halving <= kHalvings; ++halving, alpha *= 0.5) {
       for (size_t k = 0; k < m; ++k) trial_impulse[k] = impulse[k] + alpha * step.segment<3>(nv + 3 * static_cast<int>(k));
