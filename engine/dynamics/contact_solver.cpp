@@ -8,6 +8,7 @@
 
 #include "core/parallel_loop.hpp"
 #include "core/sparse_cholesky.hpp"
+#include "dynamics/contact_newton.hpp"
 
 namespace ashlar {
 namespace {
@@ -43,6 +44,15 @@ constexpr int kRefinements = 3;
 // of the helper threads costs more than the pass it would share (a sweep
 // over 2,000 rows takes about 0.2 ms).
 constexpr int kParallelRows = 2000;
+// Newton's method (contact_newton.hpp) iterates until every row's
+// Alart-Curnier function is below this fraction of the tolerance, or
+// kNewtonIterations iterations.
+constexpr double kNewtonTolerance = 0.5;
+constexpr int kNewtonIterations = 30;
+// Sweeps whose residual is still above this many tolerances are not
+// stalled but slow (a load still on its way through the structure): they
+// go on alone.
+constexpr double kNewtonFrom = 100.0;
 
 // Per-row constants: the 3x3 Delassus block W = J M^-1 J^T (the velocity
 // change of the contact per unit impulse) and the local step sizes.
@@ -745,6 +755,14 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     if (largest_residual <= settings.velocity_tolerance) {
       report.converged = true;
       break;
+    }
+    // Sweeps that stall (the load cycling between redundant or sliding
+    // points) are finished by Newton's method; the sweeps after it judge
+    // its answer by the same test.
+    if (settings.newton_after_sweeps > 0 && report.sweeps % settings.newton_after_sweeps == 0 &&
+        largest_residual <= kNewtonFrom * settings.velocity_tolerance) {
+      report.newton_iterations +=
+          solve_contact_newton(rows, bodies, kNewtonTolerance * settings.velocity_tolerance, kNewtonIterations).iterations;
     }
   }
   if (groups == 0) report.converged = true;

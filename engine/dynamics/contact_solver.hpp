@@ -59,6 +59,13 @@
 // in the rows' order): they give the same numbers as on one thread. One
 // thread: the sweeps in the caller's order and the factorisation whole
 // (sparse_cholesky.hpp's split over two cores is used only with more).
+//
+// Where the sweeps stall a few times above the tolerance (the load
+// cycling between the redundant corners of a face, or between points
+// sliding at their friction limit), a semismooth Newton method on the
+// step's whole problem (contact_newton.hpp) is taken every
+// newton_after_sweeps sweeps while the residual is within 100 tolerances;
+// the sweeps after it judge its answer by the same test.
 #pragma once
 
 #include <memory>
@@ -101,6 +108,10 @@ struct ContactSolverSettings {
   double velocity_tolerance = 1e-9;
   // Take global steps between the sweeps (see above); false: sweeps only.
   bool global_steps = true;
+  // A solve that has not converged after this many sweeps (and after each
+  // as many more) takes semismooth Newton iterations on its rows
+  // (contact_newton.hpp) before sweeping on; 0: never.
+  int newton_after_sweeps = 100;
 };
 
 struct ContactSolverReport {
@@ -112,6 +123,7 @@ struct ContactSolverReport {
   int worst_row = -1;
   int global_steps = 0;     // global steps taken
   int factorizations = 0;   // numeric factorisations (one per global step)
+  int newton_iterations = 0;  // semismooth Newton iterations (one sparse LU each)
 };
 
 // Solves rows of one step after another, keeping the global step's
