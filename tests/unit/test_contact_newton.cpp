@@ -14,56 +14,16 @@
 
 #include "dynamics/contact_newton.hpp"
 #include "dynamics/contact_solver.hpp"
+#include "box_column.hpp"
 
 using namespace ashlar;
+using namespace ashlar::test;
 
 namespace {
 
-constexpr double kStep = 1e-3;
-constexpr double kSide = 0.5, kHeight = 0.2, kDensity = 2400.0;
-constexpr double kMass = kDensity * kSide * kSide * kHeight;
-
-struct Stack {
-  std::vector<ContactRow> rows;
-  BodyVelocities bodies;
-};
-
-// Body 0 the ground (fixed), bodies 1..n boxes kSide x kSide x kHeight
-// stacked on it, their velocities the step's free ones under gravity and
-// `sideways` (m/s^2, along x); each joint's four corners a row.
-Stack stack(int n, double sideways, double friction) {
-  Stack c;
-  const double inertia_xy = kMass / 12.0 * (kSide * kSide + kHeight * kHeight);
-  const double inertia_z = kMass / 12.0 * 2.0 * kSide * kSide;
-  c.bodies.linear.assign(n + 1, kStep * Vec3(sideways, 0, -kGravity));
-  c.bodies.angular.assign(n + 1, Vec3::Zero());
-  c.bodies.inverse_mass.assign(n + 1, 1.0 / kMass);
-  c.bodies.inverse_inertia.assign(n + 1, Vec3(1.0 / inertia_xy, 1.0 / inertia_xy, 1.0 / inertia_z).asDiagonal());
-  c.bodies.linear[0].setZero();
-  c.bodies.inverse_mass[0] = 0.0;
-  c.bodies.inverse_inertia[0] = Mat3::Zero();
-  const auto centroid = [](int body) { return Vec3(0, 0, body == 0 ? -0.5 * kHeight : (body - 0.5) * kHeight); };
-  for (int joint = n - 1; joint >= 0; --joint) {
-    for (const double x : {-0.5 * kSide, 0.5 * kSide}) {
-      for (const double y : {-0.5 * kSide, 0.5 * kSide}) {
-        ContactRow row;
-        row.a = joint;
-        row.b = joint + 1;
-        const Vec3 point(x, y, joint * kHeight);
-        row.arm_a = point - centroid(row.a);
-        row.arm_b = point - centroid(row.b);
-        row.frame = contact_frame(Vec3::UnitZ());
-        row.friction = friction;
-        c.rows.push_back(row);
-      }
-    }
-  }
-  return c;
-}
-
 // How far (m/s) row k breaks the contact laws (contact_solver.hpp) at the
 // bodies' velocities; and whether its impulse is outside the cone.
-double law_residual(const Stack& c, const ContactRow& row, double impulse_tolerance) {
+double law_residual(const Column& c, const ContactRow& row, double impulse_tolerance) {
   const auto point_velocity = [&](int body, const Vec3& arm) {
     return Vec3(c.bodies.linear[body] + c.bodies.angular[body].cross(arm));
   };
@@ -81,7 +41,7 @@ double law_residual(const Stack& c, const ContactRow& row, double impulse_tolera
 }
 
 // Impulses (N s) within impulse_tolerance of their cones count as in them.
-double worst_law_residual(const Stack& c, double impulse_tolerance) {
+double worst_law_residual(const Column& c, double impulse_tolerance) {
   double worst = 0.0;
   for (const ContactRow& row : c.rows) worst = std::max(worst, law_residual(c, row, impulse_tolerance));
   return worst;
@@ -93,7 +53,7 @@ TEST(ContactNewton, ABoxOnAnInclineSlidesAtGTimesSinMinusMuCosAndSticksBelowTheF
   const double tolerance = 1e-12;  // m/s
   for (const double friction : {0.3, 0.8}) {
     const double sideways = 0.5 * kGravity;  // an incline of slope 0.5 (26.6 degrees)
-    Stack c = stack(1, sideways, friction);
+    Column c = column(1, sideways, friction);
     const ContactNewtonReport report = solve_contact_newton(c.rows, c.bodies, tolerance, 30);
     const bool slides = sideways > friction * kGravity;
     const Vec3 expected(slides ? kStep * (sideways - friction * kGravity) : 0.0, 0.0, 0.0);
@@ -126,7 +86,7 @@ TEST(ContactNewton, CarriesAColumnsWeightAndSidewaysForceToTheGroundThroughItsRe
   const int n = 20;
   const double sideways = 0.05 * kGravity;
   const double tolerance = 1e-11;  // m/s
-  Stack c = stack(n, sideways, 0.6);
+  Column c = column(n, sideways, 0.6);
   const ContactNewtonReport report = solve_contact_newton(c.rows, c.bodies, tolerance, 300);
   Vec3 impulse = Vec3::Zero();
   for (const ContactRow& row : c.rows) {
