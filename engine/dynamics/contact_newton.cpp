@@ -43,12 +43,6 @@ constexpr size_t kMostRows = 1000;
 constexpr int kHalvings = 10;
 constexpr double kArmijo = 1e-4;
 
-Mat3 cross_matrix(const Vec3& r) {
-  Mat3 m;
-  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return m;
-}
-
 // A row's Jacobian on one of its bodies: the change of the row's relative
 // velocity (its frame) per change of the body's (velocity, angular
 // velocity), for body b (sign +1) or a (-1).

@@ -62,12 +62,6 @@ struct RowConstants {
   Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
 };
 
-Mat3 cross_matrix(const Vec3& r) {
-  Mat3 m;
-  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return m;
-}
-
 Mat3 delassus(const ContactRow& row, const BodyVelocities& bodies) {
   Mat3 w = Mat3::Zero();
   const auto add = [&](int body, const Vec3& arm) {
@@ -368,6 +362,12 @@ ContactSolver::ContactSolver(int threads)
   if (loop_->parts() == 1) factor_->options.split_from_rows = INT_MAX;
 }
 ContactSolver::~ContactSolver() = default;
+
+Mat3 cross_matrix(const Vec3& r) {
+  Mat3 m;
+  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return m;
+}
 
 Mat3 contact_frame(const Vec3& n) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();

@@ -153,4 +153,7 @@ private:
 // An orthonormal frame with n as its first row.
 Mat3 contact_frame(const Vec3& n);
 
+// The matrix of r's cross product: cross_matrix(r) v = r x v.
+Mat3 cross_matrix(const Vec3& r);
+
 }  // namespace ashlar
