@@ -15,6 +15,7 @@
 #include <readline/history.h>
 #include <readline/readline.h>
 
+#include "core/blas.hpp"
 #include "core/version.hpp"
 #include "host_state.hpp"
 #include "sandbox_process.hpp"
@@ -381,6 +382,10 @@ lua_State* sandboxed_state(CommandLine& command_line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before any thread of the program's own exists: the set-up sets and
+  // unsets OPENBLAS_CORETYPE, which a getenv on another thread (a study
+  // worker's os.getenv, say) must not race with.
+  ashlar::set_up_blas_in_whole_process();
   const ashlar::host::TerminationWatch termination_watch;  // before MPI, CHOLMOD or a study starts a thread
   const std::string cluster_warning = ashlar::cluster::join_if_launched(&argc, &argv);
   if (!cluster_warning.empty()) std::fprintf(stderr, "%s%s\n", kErrorPrefix, cluster_warning.c_str());

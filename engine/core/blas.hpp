@@ -38,11 +38,16 @@ namespace ashlar {
 // that is the engine's own choice; in a host program that loads the C
 // module for stock lua5.4 (or links the engine) it changes that program's
 // BLAS too, for as long as it runs. Nothing happens when the loaded BLAS is
-// not OpenBLAS. Called by SparseCholesky::factorize
-// (core/sparse_cholesky.hpp), before the first factorisation, and by
-// analyze_cra (analysis/cra.hpp) and the FEA's contact program
-// (fea/contact_program.hpp) before IPOPT's, whose MUMPS runs on the same
-// BLAS; safe to call from several threads at once. Two settings:
+// not OpenBLAS. Called by the `ashlar` host first thing, before it starts a
+// thread, and otherwise (the C module, the tests) by
+// SparseCholesky::factorize (core/sparse_cholesky.hpp), before the first
+// factorisation, and by analyze_cra (analysis/cra.hpp) and the FEA's
+// contact program (fea/contact_program.hpp) before IPOPT's, whose MUMPS
+// runs on the same BLAS. Safe to call from several threads at once; but the
+// first call sets and unsets OPENBLAS_CORETYPE (when it changes the
+// kernels), which races with a getenv on another thread: a program that
+// embeds the engine and reads its environment on other threads calls this
+// before it starts them. Two settings:
 //
 // One thread. Measured on a 2-core machine (22 factorisations of a
 // 10,051-block wall's 60,300-row normal matrix): one thread, 3.13 s of
