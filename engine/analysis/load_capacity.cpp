@@ -250,60 +250,65 @@ struct Basis {
   }
 };
 
-// The as-built program, solved by the dual simplex on a thread of its own
-// while the workers begin: on 3D structures most blocks never need its
-// basis (the equilibrium solver certifies them weightless), and its 4,432
-// pivots on the 16 x 18 dome took 1.0 s, a tenth of the whole run, before
-// any block could start. A worker that needs the basis waits for it (and
-// gets the solve's error, if it threw).
+// The as-built program, solved once by the dual simplex (about half the
+// primal's pivots on domes), from scratch, in place: on planar structures
+// on a thread of its own while the workers begin, as every block's least
+// multiple starts from its basis; on 3D structures, where the equilibrium
+// solver certifies most blocks weightless and no block then needs the
+// basis, only when a block does (by the first worker that asks; the others
+// wait) or when the as-built analysis does not certify that the structure
+// stands. Its 4,432 pivots on the 16 x 18 dome took 1.0 s, a tenth of the
+// whole run, and on the same dome with every vertex moved by up to 0.1 %
+// (no symmetry) about 6,000 pivots that no block needed, on a third thread
+// beside two workers on two cores.
 class AsBuiltProgram {
 public:
-  AsBuiltProgram() : solved_future_(solved_.get_future().share()) {}
+  // `capacity`: the program, solved in place; the workers' copies of it
+  // must be made before the first solve().
+  explicit AsBuiltProgram(ClpSimplex& capacity) : program_(capacity) {}
   AsBuiltProgram(const AsBuiltProgram&) = delete;
   AsBuiltProgram& operator=(const AsBuiltProgram&) = delete;
 
-  // Solves `capacity` in place, from scratch by the dual simplex (about
-  // half the primal's pivots on domes); the workers' copies of it must be
-  // made first.
-  void solve(ClpSimplex& capacity) {
-    program_ = &capacity;
-    try {
-      capacity.dual();
-      status_ = capacity.status();
-      pivots_ = capacity.numberIterations();
-      if (status_ == 0) basis_ = std::make_unique<Basis>(capacity);
-    } catch (...) {
-      solved_.set_exception(std::current_exception());
-      throw;
-    }
-    solved_.set_value();
+  // Solves the program unless done: one thread solves it, the others
+  // wait; an error goes to the thread that solved, and the next caller
+  // tries again.
+  void solve() {
+    std::call_once(solved_once_, [this] {
+      program_.dual();
+      status_ = program_.status();
+      pivots_ = program_.numberIterations();
+      if (status_ == 0) basis_ = std::make_unique<Basis>(program_);
+      solved_ = true;
+    });
   }
   // The optimal basis, or null when the program has none (infeasible: the
-  // structure does not stand as built; or failed). Waits for it.
-  const Basis* basis() const {
-    solved_future_.get();
+  // structure does not stand as built; or failed). Solves it first.
+  const Basis* basis() {
+    solve();
     return basis_.get();
   }
   // `copy` becomes the solved program, as the simplex left it (its
   // factorisation and scaling: from an unsolved copy with the same basis
   // restored, a 16-course vault's least multiples took 22 % more pivots).
-  // Waits for it; one copy at a time, the model only read.
-  void copy_solved(ClpSimplex& copy) const {
-    solved_future_.get();
+  // Solves it first; one copy at a time, the model only read.
+  void copy_solved(ClpSimplex& copy) {
+    solve();
     const std::lock_guard<std::mutex> lock(copying_);
-    copy = *program_;
+    copy = program_;
   }
+  // Whether it was solved (after the workers are done).
+  bool solved() const { return solved_; }
   // Clp's status and pivots, once solved.
   int status() const { return status_; }
   int pivots() const { return pivots_; }
 
 private:
-  std::promise<void> solved_;
-  std::shared_future<void> solved_future_;
+  ClpSimplex& program_;
+  std::once_flag solved_once_;
+  std::atomic<bool> solved_{false};
   int status_ = -1, pivots_ = 0;
   std::unique_ptr<Basis> basis_;
-  const ClpSimplex* program_ = nullptr;
-  mutable std::mutex copying_;
+  std::mutex copying_;
 };
 
 // The recession directions of the feasible set: forces d with A d = -g_j
@@ -340,7 +345,7 @@ class BlockPrograms {
 public:
   // planar: whether the largest multiple tries the simplex first.
   // interior: the equilibrium solver's questions (InteriorCapacity), or null.
-  BlockPrograms(const ClpSimplex& capacity, const ClpSimplex& rays, const AsBuiltProgram& as_built, bool planar,
+  BlockPrograms(const ClpSimplex& capacity, const ClpSimplex& rays, AsBuiltProgram& as_built, bool planar,
                 std::unique_ptr<InteriorCapacity> interior)
       : initial_capacity_(capacity), initial_rays_(rays), capacity_(capacity), rays_(rays),
         interior_(std::move(interior)), as_built_(as_built), planar_(planar) {}
@@ -512,7 +517,7 @@ private:
   ClpSimplex capacity_, rays_;
   std::unique_ptr<InteriorCapacity> interior_;
   BarrierSolver barrier_;  // its normal equations analysed once for all blocks
-  const AsBuiltProgram& as_built_;
+  AsBuiltProgram& as_built_;
   bool solved_copy_ = false;  // capacity_ copied from the solved as-built program
   bool planar_;
   int ray_column_ = -1;
@@ -580,16 +585,25 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   InteriorPointSolution as_built_forces;
   std::unique_ptr<EquilibriumAnalysis> as_built_analysis;
   bool interior = InteriorCapacity::certifies(problem, settings.problem);
+  int as_built_iterations = 0;
   if (interior) {
     as_built_analysis = std::make_unique<EquilibriumAnalysis>(problem, settings, SolverCores::all);
-    interior = !has_no_answer(as_built_analysis->solve_qp(settings.solver).status);
+    const InteriorPointInfo info = as_built_analysis->solve_qp(settings.solver);
+    interior = !has_no_answer(info.status);
+    as_built_iterations = info.iterations;
     as_built_forces = as_built_analysis->take_solution();
   }
+  // Whether the as-built forces prove that the structure stands (the
+  // analysis's own verdict: compression-only, to stable_tolerance); then
+  // the simplex's as-built program is solved only for a block that needs
+  // its basis.
+  const bool certified_as_built = interior && !problem.has_floating_bodies() &&
+                                  compression_only_imbalance(problem, as_built_forces.x) <= settings.stable_tolerance;
   const bool maximise = interior && InteriorCapacity::maximises(problem, settings.problem);
   // No block is begun once a stop is asked for (Ctrl-C, the caller's
   // sandbox deadline, a worker's error). Progress is told on the calling
   // thread.
-  AsBuiltProgram as_built;  // solved once the copies are made
+  AsBuiltProgram as_built(capacity);  // solved once the copies are made
   const SolverCores solver_cores = workers > 1 ? SolverCores::one : SolverCores::all;
   for (int w = 0; w < workers; ++w) {
     std::unique_ptr<InteriorCapacity> interior_capacity;
@@ -619,18 +633,28 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
     }
   };
   if (progress) progress(0, total);
-  // Worker 0 on this thread, the as-built program on a part of its own.
-  ParallelLoop(workers + 1, 1).run_parts(workers + 1, [&](int part) {
-    if (part == workers) as_built.solve(capacity);
+  // Worker 0 on this thread; the as-built program on a part of its own
+  // unless the as-built forces are certified.
+  const int parts = certified_as_built ? workers : workers + 1;
+  ParallelLoop(parts, 1).run_parts(parts, [&](int part) {
+    if (part == workers) as_built.solve();
     else work(programs[part], part == 0);
   });
   if (progress) progress(done, total);
 
+  // The as-built program counts once: the simplex's when it was solved,
+  // else the equilibrium solver's certified analysis.
   result.programs = 1;
   result.symmetries = static_cast<int>(symmetry.block_maps.size());
-  result.simplex_iterations = as_built.pivots();
-  result.stable = as_built.status() == 0 && !problem.has_floating_bodies();
-  if (as_built.status() > 2) {  // no bounds without the as-built program
+  if (certified_as_built && !as_built.solved()) {
+    result.simplex_iterations = as_built_iterations;
+    result.stable = true;
+  } else {
+    as_built.solve();  // when no block needed it, nor was it begun
+    result.simplex_iterations = as_built.pivots();
+    result.stable = as_built.status() == 0 && !problem.has_floating_bodies();
+  }
+  if (as_built.solved() && as_built.status() > 2) {  // no bounds without the as-built program
     result.status = clp_failure(as_built.status());
     result.seconds = seconds_since(start);
     return result;

@@ -25,9 +25,10 @@
 //   carried compression-only (a program that changes only in one fixed
 //   column from block to block, so the dual simplex warm-starts it).
 // Blocks are shared among worker threads, each with its own copy of the
-// programs and solvers; the as-built program, whose optimal basis starts
+// programs and solvers. The as-built program, whose optimal basis starts
 // the simplex, is solved on a thread of its own meanwhile, and only the
-// blocks that need it wait for it.
+// blocks that need it wait for it; on 3D structures whose as-built
+// analysis certifies that they stand, only when a block needs it.
 #pragma once
 
 #include <vector>
@@ -55,7 +56,9 @@ struct LoadCapacity {
   // without weight, and blocks whose program is infeasible at every
   // multiple (the rest cannot stand whatever this block weighs).
   std::vector<double> min, max;
-  // The structure stands as it is (every multiple 1).
+  // The structure stands as it is (every multiple 1): the as-built
+  // analysis's certified verdict (3D, Coulomb friction), else the
+  // as-built program's feasibility.
   bool stable = false;
   // optimal, or the failure of the first block (in block order) whose
   // programs failed (stopped on the iteration limit, numerical_difficulties,
