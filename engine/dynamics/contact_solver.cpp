@@ -54,25 +54,6 @@ constexpr int kNewtonIterations = 30;
 // go on alone.
 constexpr double kNewtonFrom = 100.0;
 
-// Per-row constants: the 3x3 Delassus block W = J M^-1 J^T (the velocity
-// change of the contact per unit impulse) and the local step sizes.
-struct RowConstants {
-  double normal_step = 0.0;   // 1 / W_nn
-  double tangent_step = 0.0;  // 1 / the largest eigenvalue of W_tt
-  Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
-};
-
-Mat3 delassus(const ContactRow& row, const BodyVelocities& bodies) {
-  Mat3 w = Mat3::Zero();
-  const auto add = [&](int body, const Vec3& arm) {
-    const Mat3 rx = cross_matrix(arm);
-    w += bodies.inverse_mass[body] * Mat3::Identity() - rx * bodies.inverse_inertia[body] * rx;
-  };
-  add(row.a, row.arm_a);
-  add(row.b, row.arm_b);
-  return row.frame * w * row.frame.transpose();
-}
-
 Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies) {
   const Vec3 vb = bodies.linear[row.b] + bodies.angular[row.b].cross(row.arm_b);
   const Vec3 va = bodies.linear[row.a] + bodies.angular[row.a].cross(row.arm_a);
@@ -355,6 +336,20 @@ struct ContactSolver::Factor {
   }
 };
 
+RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies) {
+  Mat3 w = Mat3::Zero();
+  const auto add = [&](int body, const Vec3& arm) {
+    const Mat3 rx = cross_matrix(arm);
+    w += bodies.inverse_mass[body] * Mat3::Identity() - rx * bodies.inverse_inertia[body] * rx;
+  };
+  add(row.a, row.arm_a);
+  add(row.b, row.arm_b);
+  w = row.frame * w * row.frame.transpose();
+  const Eigen::Matrix2d wt = w.bottomRightCorner<2, 2>();
+  const double largest = 0.5 * (wt.trace() + std::hypot(wt(0, 0) - wt(1, 1), 2.0 * wt(0, 1)));
+  return {1.0 / w(0, 0), 1.0 / largest, w.diagonal()};
+}
+
 ContactSolver::ContactSolver(int threads)
     : factor_(std::make_unique<Factor>()),
       loop_(std::make_unique<ParallelLoop>(threads > 0 ? std::min(threads, ParallelLoop::kMaxThreads) : 0,
@@ -409,10 +404,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
 
   std::vector<RowConstants> constants(rows.size());
   each_row([&](int k) {
-    const Mat3 w = delassus(rows[k], bodies);
-    const Eigen::Matrix2d wt = w.bottomRightCorner<2, 2>();
-    const double largest = 0.5 * (wt.trace() + std::hypot(wt(0, 0) - wt(1, 1), 2.0 * wt(0, 1)));
-    constants[k] = {1.0 / w(0, 0), 1.0 / largest, w.diagonal()};
+    constants[k] = row_constants(rows[k], bodies);
     // The warm start, clipped to the cone (the friction may have changed).
     Vec3& p = rows[k].impulse;
     p.x() = std::max(0.0, p.x());

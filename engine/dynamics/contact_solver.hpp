@@ -150,6 +150,17 @@ private:
   std::unique_ptr<ParallelLoop> loop_;  // helpers sleep between solves
 };
 
+// A row's constants, fixed within a step: its 3x3 Delassus block
+// W = J M^-1 J^T in the contact's frame (the change of the row's relative
+// velocity per unit impulse) and the step sizes the sweeps and Newton's
+// method (contact_newton.hpp) take on it.
+struct RowConstants {
+  double normal_step = 0.0;      // rho_n = 1 / W_nn (N s per m/s)
+  double tangent_step = 0.0;     // rho_t = 1 / the largest eigenvalue of W_tt (N s per m/s)
+  Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
+};
+RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies);
+
 // An orthonormal frame with n as its first row.
 Mat3 contact_frame(const Vec3& n);
 
