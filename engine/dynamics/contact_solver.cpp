@@ -526,8 +526,9 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     // error, scaled by 1 / E, blew up shaken walls).
     {
       // Each part fills the columns of its own bodies: their mass, then
-      // each of its rows' blocks of J^T E^-1 J in the rows' order (as one
-      // thread would), summed over the row's constrained components. Row
+      // each of its groups' blocks of J^T E^-1 J in the groups' order (as
+      // one thread would), summed over the group's rows and each row's
+      // constrained components. Row
       // k's component c is, as a row of J, -(f, R_a f) for a and
       // (f, R_b f) for b, with f the frame's row c and R the cross-product
       // matrix of the arm: the blocks are those of S = sum_c f f^T / E_c,
@@ -550,33 +551,67 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
           Mat6 mass = Mat6::Zero();
           mass.topLeftCorner<3, 3>() = Mat3::Identity() / bodies.inverse_mass[i];
           mass.bottomRightCorner<3, 3>() = bodies.inverse_inertia[i].inverse();
-          for (int c = 0; c < 6; ++c) {
-            for (int r = 0; r <= c; ++r) values[f.position(j, r, j, c)] += mass(r, c);
-          }
+          add(j, j, mass);
         }
-        for (int k : split.rows[part]) {
-          if (components[k] == 0) continue;
+        // The rows of one group (consecutive in the part's list: they link
+        // the same two bodies) are summed before their blocks are added.
+        const std::vector<int>& list = split.rows[part];
+        Mat3 sum_s = Mat3::Zero(), sum_ra_s = Mat3::Zero(), sum_rb_s = Mat3::Zero(), sum_ra_s_ra = Mat3::Zero(),
+             sum_rb_s_rb = Mat3::Zero(), sum_ra_s_rb = Mat3::Zero();
+        bool pending = false;
+        for (size_t e = 0; e < list.size(); ++e) {
+          const int k = list[e];
           const ContactRow& row = rows[k];
-          Vec3 row_weight, row_compliance_of;
-          row_compliance(k, row_compliance_of, row_weight);
-          if (split.owner(row) == part) {
-            compliance[k] = row_compliance_of;
-            weight[k] = row_weight;
-          }
-          const int a = f.slot[row.a], b = f.slot[row.b];
           const bool own_a = split.part_of[row.a] == part, own_b = split.part_of[row.b] == part;
-          const Mat3 s = row.frame.transpose() * row_weight.asDiagonal() * row.frame;
-          const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
-          const Mat3 ra_s = ra * s, rb_s = rb * s;
-          Mat6 aa, bb, ab;
-          aa << s, ra_s.transpose(), ra_s, ra_s * ra.transpose();
-          bb << s, rb_s.transpose(), rb_s, rb_s * rb.transpose();
-          ab << -s, -rb_s.transpose(), -ra_s, -ra_s * rb.transpose();
-          if (own_a) add(a, a, aa);
-          if (own_b) add(b, b, bb);
-          if (a >= 0 && b >= 0) {
-            if (a < b && own_b) add(a, b, ab);
-            else if (b < a && own_a) add(b, a, ab.transpose());
+          const int a = f.slot[row.a], b = f.slot[row.b];
+          // The block of the two bodies, in this part's column.
+          const bool own_ab = a >= 0 && b >= 0 && ((a < b && own_b) || (b < a && own_a));
+          if (components[k] != 0) {
+            Vec3 row_weight, row_compliance_of;
+            row_compliance(k, row_compliance_of, row_weight);
+            if (split.owner(row) == part) {
+              compliance[k] = row_compliance_of;
+              weight[k] = row_weight;
+            }
+            Mat3 s = Mat3::Zero();
+            for (int c = 0; c < components[k]; ++c) {
+              s.noalias() += row_weight[c] * row.frame.row(c).transpose() * row.frame.row(c);
+            }
+            const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
+            const Mat3 ra_s = ra * s, rb_s = rb * s;
+            if (!pending) {
+              sum_s.setZero();
+              sum_ra_s.setZero();
+              sum_rb_s.setZero();
+              sum_ra_s_ra.setZero();
+              sum_rb_s_rb.setZero();
+              sum_ra_s_rb.setZero();
+              pending = true;
+            }
+            sum_s += s;
+            sum_ra_s += ra_s;
+            sum_rb_s += rb_s;
+            if (own_a) sum_ra_s_ra.noalias() += ra_s * ra.transpose();
+            if (own_b) sum_rb_s_rb.noalias() += rb_s * rb.transpose();
+            if (own_ab) sum_ra_s_rb.noalias() += ra_s * rb.transpose();
+          }
+          const bool group_ends =
+              e + 1 == list.size() || rows[list[e + 1]].a != row.a || rows[list[e + 1]].b != row.b;
+          if (!group_ends || !pending) continue;
+          pending = false;
+          Mat6 block;
+          if (own_a) {
+            block << sum_s, sum_ra_s.transpose(), sum_ra_s, sum_ra_s_ra;
+            add(a, a, block);
+          }
+          if (own_b) {
+            block << sum_s, sum_rb_s.transpose(), sum_rb_s, sum_rb_s_rb;
+            add(b, b, block);
+          }
+          if (own_ab) {
+            block << -sum_s, -sum_rb_s.transpose(), -sum_ra_s, -sum_ra_s_rb;
+            if (a < b) add(a, b, block);
+            else add(b, a, block.transpose());
           }
         }
       });
