@@ -350,8 +350,17 @@ RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies) 
   return {1.0 / w(0, 0), 1.0 / largest, w.diagonal()};
 }
 
+// The per-row buffers of a solve (see solve()).
+struct ContactSolver::Workspace {
+  std::vector<RowConstants> constants;
+  std::vector<int> components;  // the global step's components held
+  std::vector<Vec3> target, compliance, weight, change;
+  std::vector<double> most;     // per body
+};
+
 ContactSolver::ContactSolver(int threads)
     : factor_(std::make_unique<Factor>()),
+      work_(std::make_unique<Workspace>()),
       loop_(std::make_unique<ParallelLoop>(threads > 0 ? std::min(threads, ParallelLoop::kMaxThreads) : 0,
                                            kParallelRows)) {
   if (loop_->parts() == 1) factor_->options.split_from_rows = INT_MAX;
@@ -402,7 +411,12 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     apply_to(row, local_impulse, bodies, [&](int body) { return split.part_of[body] == part; });
   };
 
-  std::vector<RowConstants> constants(rows.size());
+  // Per-row buffers kept from solve to solve (resized, not cleared: each
+  // pass writes a row's entries before any reads them), so that a step
+  // allocates (and the system maps and clears) none of them anew.
+  Workspace& work = *work_;
+  std::vector<RowConstants>& constants = work.constants;
+  constants.resize(rows.size());
   each_row([&](int k) {
     constants[k] = row_constants(rows[k], bodies);
     // The warm start, clipped to the cone (the friction may have changed).
@@ -477,14 +491,23 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   };
   // Per row: the components held, r, the compliance, its inverse; per
   // part: sums; the impulses' changes of the projection.
-  std::vector<int> components(rows.size());
-  std::vector<Vec3> target(rows.size()), compliance(rows.size()), weight(rows.size()), change(rows.size());
+  std::vector<int>& components = work.components;
+  std::vector<Vec3>& target = work.target;
+  std::vector<Vec3>& compliance = work.compliance;
+  std::vector<Vec3>& weight = work.weight;
+  std::vector<Vec3>& change = work.change;
+  components.resize(rows.size());
+  target.resize(rows.size());
+  compliance.resize(rows.size());
+  weight.resize(rows.size());
+  change.resize(rows.size());
   std::vector<int> part_count(loop.parts());
   // Passes over the parts' rows compute what a row needs where they meet
   // it (a row of two parts twice, the same way) and only the row's owner
   // (split.owner) stores it, so that no pass reads what another thread
   // writes: one wake-up of the threads per pass.
-  std::vector<double> most(bodies.inverse_mass.size());
+  std::vector<double>& most = work.most;
+  most.resize(bodies.inverse_mass.size());
   const auto global_step = [&]() {
     if (free_bodies < 0) set_up_pattern();
     // The components held and r; the largest normal impulse at each body.

@@ -146,7 +146,9 @@ public:
 
 private:
   struct Factor;
+  struct Workspace;
   std::unique_ptr<Factor> factor_;
+  std::unique_ptr<Workspace> work_;
   std::unique_ptr<ParallelLoop> loop_;  // helpers sleep between solves
 };
 

@@ -137,8 +137,8 @@ private:
   void search(const std::vector<int>& moved);
   std::vector<int> neighbourhood(const std::vector<int>& moved) const;
   void free_velocities(const Vec3& ground);  // and the ground's turning, rotation_
-  std::vector<ContactRow> contact_rows(std::vector<int>& which, const std::vector<Vec3>& linear,
-                                       const std::vector<Vec3>& angular);
+  void contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
+                    const std::vector<Vec3>& angular);
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
   void correct_overlaps(const std::vector<int>& active);
   void record(double t);
@@ -177,6 +177,7 @@ private:
   ParallelLoop geometry_loop_{o_.threads > 0 ? std::min(o_.threads, ParallelLoop::kMaxThreads) : 0, kParallelPoints};
   std::vector<ContactRow> candidates_;
   std::vector<ContactGeometry> geometry_;  // of the active points, after the step
+  std::vector<ContactRow> rows_;           // the step's rows (kept for their memory)
   std::optional<GroundRotation> rotation_;  // when the ground turns
   SimulationResult result_;
 };
@@ -341,11 +342,11 @@ void Run::free_velocities(const Vec3& ground) {
   }
 }
 
-// Rows of the contact points whose gap, half a step ahead at the velocities
+// Into rows: the rows of the contact points whose gap, half a step ahead at the velocities
 // of the step's start, is within the contact tolerance, from the highest
 // down; `which` gets their indices into contacts_.
-std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::vector<Vec3>& linear,
-                                          const std::vector<Vec3>& angular) {
+void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
+                       const std::vector<Vec3>& angular) {
   candidates_.resize(contacts_.size());
   geometry_loop_.run(static_cast<int>(contacts_.size()), [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
@@ -389,18 +390,16 @@ std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::ve
     }
   }
   std::stable_sort(groups.begin(), groups.end(), [](const Group& x, const Group& y) { return x.height > y.height; });
-  std::vector<ContactRow> sorted;
   std::vector<int> sorted_which;
-  sorted.reserve(which.size());
   sorted_which.reserve(which.size());
+  rows.clear();
   for (const Group& group : groups) {
     for (size_t r = group.begin; r < group.end; ++r) {
-      sorted.push_back(candidates_[which[r]]);
+      rows.push_back(candidates_[which[r]]);
       sorted_which.push_back(which[r]);
     }
   }
   which.swap(sorted_which);
-  return sorted;
 }
 
 void Run::integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0) {
@@ -469,7 +468,8 @@ SimulationResult Run::go() {
     if (rotation_ && k > 0) rotation_->advance(k);
     const std::vector<Vec3> linear0 = bodies_.linear, angular0 = bodies_.angular;
     free_velocities((1.0 - o_.theta) * ground_before + o_.theta * ground_after);
-    std::vector<ContactRow> rows = contact_rows(active, linear0, angular0);
+    std::vector<ContactRow>& rows = rows_;
+    contact_rows(active, rows, linear0, angular0);
     const ContactSolverReport report = contact_solver_.solve(rows, bodies_, solver_);
     result_.sweeps += report.sweeps;
     result_.global_steps += report.global_steps;
