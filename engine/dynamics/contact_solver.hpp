@@ -22,9 +22,9 @@
 //
 // Sweeps alone move a change of load through a structure one contact per
 // sweep (a shaken wall took 230-290 sweeps a step). After the first sweep
-// (when it has not solved the step) and every few sweeps after, a global
-// step (PGS with subspace
-// minimisation, as in Silcowitz, Niebe and Erleben 2010) solves the laws
+// (when it has not solved the step) and every few sweeps after (unless
+// the sweeps, at the rate their residual falls, are about to finish the
+// step), a global step (PGS with subspace minimisation, as in Silcowitz, Niebe and Erleben 2010) solves the laws
 // as equalities on the current active set at once: every pressed (or
 // approaching) point keeps its normal velocity on target, every sticking
 // one (a point at its friction limit that does not slip sticks) its slip
