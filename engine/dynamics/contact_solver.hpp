@@ -24,9 +24,10 @@
 // sweep (a shaken wall took 230-290 sweeps a step). After the first sweep
 // (when it has not solved the step) and every few sweeps after (unless
 // the sweeps, at the rate their residual falls, are about to finish the
-// step), a global step (PGS with subspace minimisation, as in Silcowitz, Niebe and Erleben 2010) solves the laws
-// as equalities on the current active set at once: every pressed (or
-// approaching) point keeps its normal velocity on target, every sticking
+// step), a global step (PGS with subspace minimisation, as in
+// Silcowitz, Niebe and Erleben 2010) solves the laws as equalities on
+// the current active set at once: every pressed (or approaching) point
+// keeps its normal velocity on target, every sticking
 // one (a point at its friction limit that does not slip sticks) its slip
 // at zero, sliding ones keep their friction. That linear system,
 // W_S dP = r with W_S = J_S M^-1 J_S^T and r = target - U_S (singular: the
