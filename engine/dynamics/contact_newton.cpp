@@ -88,11 +88,10 @@ struct Problem {
       const ContactRow& row = rows[k];
       ga[k] = jacobian(row, row.arm_a, -1.0);
       gb[k] = jacobian(row, row.arm_b, 1.0);
-      const Mat3 w = ga[k] * inverse_mass[row.a] * ga[k].transpose() + gb[k] * inverse_mass[row.b] * gb[k].transpose();
-      const Eigen::Matrix2d wt = w.bottomRightCorner<2, 2>();
-      rho_n[k] = 1.0 / w(0, 0);
-      rho_t[k] = 1.0 / (0.5 * (wt.trace() + std::hypot(wt(0, 0) - wt(1, 1), 2.0 * wt(0, 1))));
-      proximal[k] = kProximal * w.diagonal();
+      const RowConstants constants = row_constants(row, bodies);
+      rho_n[k] = constants.normal_step;
+      rho_t[k] = constants.tangent_step;
+      proximal[k] = kProximal * constants.diagonal;
     }
   }
 };

@@ -1,6 +1,7 @@
 #include "dynamics/contact_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -23,6 +24,15 @@ constexpr int kGlobalStepRepeats = 2;
 // A solve stops taking global steps once this many left a larger residual
 // than the sweep before them.
 constexpr int kGlobalStepsWorse = 3;
+// A global step is not taken where the sweeps since the last would, at
+// the rate the residual fell over the last two, reach the tolerance in at
+// most this many more (a global step costs about as much as five sweeps
+// of a wall). On the 1,006-block wall shaken: 7.1 sweeps and 3.68 global
+// steps a step without it, 8.7 and 2.44 with 8; 16 took 8.7 and 2.20, but
+// left the wall at rest with 0.55 global steps a step instead of 0.08 (a
+// step finished by sweeps just below the tolerance leaves the next a
+// worse start than one a global step finished).
+constexpr double kSweepsAhead = 8.0;
 // The global step's compliance: each constrained component c of row k
 // gets E = kCompliance W_cc s_k (m/s per N s), so that a solve leaves
 // about kCompliance of the residual it corrects (its error is
@@ -53,25 +63,6 @@ constexpr int kNewtonIterations = 30;
 // stalled but slow (a load still on its way through the structure): they
 // go on alone.
 constexpr double kNewtonFrom = 100.0;
-
-// Per-row constants: the 3x3 Delassus block W = J M^-1 J^T (the velocity
-// change of the contact per unit impulse) and the local step sizes.
-struct RowConstants {
-  double normal_step = 0.0;   // 1 / W_nn
-  double tangent_step = 0.0;  // 1 / the largest eigenvalue of W_tt
-  Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
-};
-
-Mat3 delassus(const ContactRow& row, const BodyVelocities& bodies) {
-  Mat3 w = Mat3::Zero();
-  const auto add = [&](int body, const Vec3& arm) {
-    const Mat3 rx = cross_matrix(arm);
-    w += bodies.inverse_mass[body] * Mat3::Identity() - rx * bodies.inverse_inertia[body] * rx;
-  };
-  add(row.a, row.arm_a);
-  add(row.b, row.arm_b);
-  return row.frame * w * row.frame.transpose();
-}
 
 Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies) {
   const Vec3 vb = bodies.linear[row.b] + bodies.angular[row.b].cross(row.arm_b);
@@ -355,8 +346,31 @@ struct ContactSolver::Factor {
   }
 };
 
+RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies) {
+  Mat3 w = Mat3::Zero();
+  const auto add = [&](int body, const Vec3& arm) {
+    const Mat3 rx = cross_matrix(arm);
+    w += bodies.inverse_mass[body] * Mat3::Identity() - rx * bodies.inverse_inertia[body] * rx;
+  };
+  add(row.a, row.arm_a);
+  add(row.b, row.arm_b);
+  w = row.frame * w * row.frame.transpose();
+  const Eigen::Matrix2d wt = w.bottomRightCorner<2, 2>();
+  const double largest = 0.5 * (wt.trace() + std::hypot(wt(0, 0) - wt(1, 1), 2.0 * wt(0, 1)));
+  return {1.0 / w(0, 0), 1.0 / largest, w.diagonal()};
+}
+
+// The per-row buffers of a solve (see solve()).
+struct ContactSolver::Workspace {
+  std::vector<RowConstants> constants;
+  std::vector<int> components;  // the global step's components held
+  std::vector<Vec3> target, compliance, weight, change;
+  std::vector<double> most;     // per body
+};
+
 ContactSolver::ContactSolver(int threads)
     : factor_(std::make_unique<Factor>()),
+      work_(std::make_unique<Workspace>()),
       loop_(std::make_unique<ParallelLoop>(threads > 0 ? std::min(threads, ParallelLoop::kMaxThreads) : 0,
                                            kParallelRows)) {
   if (loop_->parts() == 1) factor_->options.split_from_rows = INT_MAX;
@@ -407,12 +421,14 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     apply_to(row, local_impulse, bodies, [&](int body) { return split.part_of[body] == part; });
   };
 
-  std::vector<RowConstants> constants(rows.size());
+  // Per-row buffers kept from solve to solve (resized, not cleared: each
+  // pass writes a row's entries before any reads them), so that a step
+  // allocates (and the system maps and clears) none of them anew.
+  Workspace& work = *work_;
+  std::vector<RowConstants>& constants = work.constants;
+  constants.resize(rows.size());
   each_row([&](int k) {
-    const Mat3 w = delassus(rows[k], bodies);
-    const Eigen::Matrix2d wt = w.bottomRightCorner<2, 2>();
-    const double largest = 0.5 * (wt.trace() + std::hypot(wt(0, 0) - wt(1, 1), 2.0 * wt(0, 1)));
-    constants[k] = {1.0 / w(0, 0), 1.0 / largest, w.diagonal()};
+    constants[k] = row_constants(rows[k], bodies);
     // The warm start, clipped to the cone (the friction may have changed).
     Vec3& p = rows[k].impulse;
     p.x() = std::max(0.0, p.x());
@@ -485,14 +501,23 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   };
   // Per row: the components held, r, the compliance, its inverse; per
   // part: sums; the impulses' changes of the projection.
-  std::vector<int> components(rows.size());
-  std::vector<Vec3> target(rows.size()), compliance(rows.size()), weight(rows.size()), change(rows.size());
+  std::vector<int>& components = work.components;
+  std::vector<Vec3>& target = work.target;
+  std::vector<Vec3>& compliance = work.compliance;
+  std::vector<Vec3>& weight = work.weight;
+  std::vector<Vec3>& change = work.change;
+  components.resize(rows.size());
+  target.resize(rows.size());
+  compliance.resize(rows.size());
+  weight.resize(rows.size());
+  change.resize(rows.size());
   std::vector<int> part_count(loop.parts());
   // Passes over the parts' rows compute what a row needs where they meet
   // it (a row of two parts twice, the same way) and only the row's owner
   // (split.owner) stores it, so that no pass reads what another thread
   // writes: one wake-up of the threads per pass.
-  std::vector<double> most(bodies.inverse_mass.size());
+  std::vector<double>& most = work.most;
+  most.resize(bodies.inverse_mass.size());
   const auto global_step = [&]() {
     if (free_bodies < 0) set_up_pattern();
     // The components held and r; the largest normal impulse at each body.
@@ -532,10 +557,29 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     // factorisation made for another E would give dP = E^-1 (r - J dv)
     // from a dv that does not belong to it (a stale one was tried: its
     // error, scaled by 1 / E, blew up shaken walls).
+    // The bodies' right-hand side J^T E^-1 r (see below), first filled
+    // with the matrix.
+    Eigen::VectorXd rhs(6 * free_bodies), dv;
+    // J^T E^-1 r's terms of row k for the part's own bodies: the impulse
+    // g = sum_c f r_c / E_c (w = 1 / E) on b and its opposite on a, at
+    // their arms.
+    const auto add_rhs = [&](int k, const Vec3& r, const Vec3& w, int part) {
+      const ContactRow& row = rows[k];
+      const Vec3 g = row.frame.transpose() * w.cwiseProduct(r);
+      if (split.part_of[row.a] == part) {
+        rhs.segment<3>(6 * f.slot[row.a]) -= g;
+        rhs.segment<3>(6 * f.slot[row.a] + 3) -= row.arm_a.cross(g);
+      }
+      if (split.part_of[row.b] == part) {
+        rhs.segment<3>(6 * f.slot[row.b]) += g;
+        rhs.segment<3>(6 * f.slot[row.b] + 3) += row.arm_b.cross(g);
+      }
+    };
     {
       // Each part fills the columns of its own bodies: their mass, then
-      // each of its rows' blocks of J^T E^-1 J in the rows' order (as one
-      // thread would), summed over the row's constrained components. Row
+      // each of its groups' blocks of J^T E^-1 J in the groups' order (as
+      // one thread would), summed over the group's rows and each row's
+      // constrained components. Row
       // k's component c is, as a row of J, -(f, R_a f) for a and
       // (f, R_b f) for b, with f the frame's row c and R the cross-product
       // matrix of the arm: the blocks are those of S = sum_c f f^T / E_c,
@@ -555,36 +599,72 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
           if (split.part_of[i] != part) continue;
           const int j = f.slot[i];
           std::fill(values + f.column_starts[6 * j], values + f.column_starts[6 * j + 6], 0.0);
+          rhs.segment<6>(6 * j).setZero();
           Mat6 mass = Mat6::Zero();
           mass.topLeftCorner<3, 3>() = Mat3::Identity() / bodies.inverse_mass[i];
           mass.bottomRightCorner<3, 3>() = bodies.inverse_inertia[i].inverse();
-          for (int c = 0; c < 6; ++c) {
-            for (int r = 0; r <= c; ++r) values[f.position(j, r, j, c)] += mass(r, c);
-          }
+          add(j, j, mass);
         }
-        for (int k : split.rows[part]) {
-          if (components[k] == 0) continue;
+        // The rows of one group (consecutive in the part's list: they link
+        // the same two bodies) are summed before their blocks are added.
+        const std::vector<int>& list = split.rows[part];
+        Mat3 sum_s = Mat3::Zero(), sum_ra_s = Mat3::Zero(), sum_rb_s = Mat3::Zero(), sum_ra_s_ra = Mat3::Zero(),
+             sum_rb_s_rb = Mat3::Zero(), sum_ra_s_rb = Mat3::Zero();
+        bool pending = false;
+        for (size_t e = 0; e < list.size(); ++e) {
+          const int k = list[e];
           const ContactRow& row = rows[k];
-          Vec3 row_weight, row_compliance_of;
-          row_compliance(k, row_compliance_of, row_weight);
-          if (split.owner(row) == part) {
-            compliance[k] = row_compliance_of;
-            weight[k] = row_weight;
-          }
-          const int a = f.slot[row.a], b = f.slot[row.b];
           const bool own_a = split.part_of[row.a] == part, own_b = split.part_of[row.b] == part;
-          const Mat3 s = row.frame.transpose() * row_weight.asDiagonal() * row.frame;
-          const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
-          const Mat3 ra_s = ra * s, rb_s = rb * s;
-          Mat6 aa, bb, ab;
-          aa << s, ra_s.transpose(), ra_s, ra_s * ra.transpose();
-          bb << s, rb_s.transpose(), rb_s, rb_s * rb.transpose();
-          ab << -s, -rb_s.transpose(), -ra_s, -ra_s * rb.transpose();
-          if (own_a) add(a, a, aa);
-          if (own_b) add(b, b, bb);
-          if (a >= 0 && b >= 0) {
-            if (a < b && own_b) add(a, b, ab);
-            else if (b < a && own_a) add(b, a, ab.transpose());
+          const int a = f.slot[row.a], b = f.slot[row.b];
+          // The block of the two bodies, in this part's column.
+          const bool own_ab = a >= 0 && b >= 0 && ((a < b && own_b) || (b < a && own_a));
+          if (components[k] != 0) {
+            Vec3 row_weight, row_compliance_of;
+            row_compliance(k, row_compliance_of, row_weight);
+            if (split.owner(row) == part) {
+              compliance[k] = row_compliance_of;
+              weight[k] = row_weight;
+            }
+            add_rhs(k, target[k], row_weight, part);
+            Mat3 s = Mat3::Zero();
+            for (int c = 0; c < components[k]; ++c) {
+              s.noalias() += row_weight[c] * row.frame.row(c).transpose() * row.frame.row(c);
+            }
+            const Mat3 ra = cross_matrix(row.arm_a), rb = cross_matrix(row.arm_b);
+            const Mat3 ra_s = ra * s, rb_s = rb * s;
+            if (!pending) {
+              sum_s.setZero();
+              sum_ra_s.setZero();
+              sum_rb_s.setZero();
+              sum_ra_s_ra.setZero();
+              sum_rb_s_rb.setZero();
+              sum_ra_s_rb.setZero();
+              pending = true;
+            }
+            sum_s += s;
+            sum_ra_s += ra_s;
+            sum_rb_s += rb_s;
+            if (own_a) sum_ra_s_ra.noalias() += ra_s * ra.transpose();
+            if (own_b) sum_rb_s_rb.noalias() += rb_s * rb.transpose();
+            if (own_ab) sum_ra_s_rb.noalias() += ra_s * rb.transpose();
+          }
+          const bool group_ends =
+              e + 1 == list.size() || rows[list[e + 1]].a != row.a || rows[list[e + 1]].b != row.b;
+          if (!group_ends || !pending) continue;
+          pending = false;
+          Mat6 block;
+          if (own_a) {
+            block << sum_s, sum_ra_s.transpose(), sum_ra_s, sum_ra_s_ra;
+            add(a, a, block);
+          }
+          if (own_b) {
+            block << sum_s, sum_rb_s.transpose(), sum_rb_s, sum_rb_s_rb;
+            add(b, b, block);
+          }
+          if (own_ab) {
+            block << -sum_s, -sum_rb_s.transpose(), -sum_ra_s, -sum_ra_s_rb;
+            if (a < b) add(a, b, block);
+            else add(b, a, block.transpose());
           }
         }
       });
@@ -600,37 +680,22 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     // magnifies, shrink by a factor each time). Each part adds into its
     // own bodies' entries of J^T E^-1 r, and changes their velocities, in
     // the rows' order.
-    Eigen::VectorXd rhs(6 * free_bodies), dv;
     for (int refinement = 0; refinement < kRefinements; ++refinement) {
-      // r (again, after the first solve), and J^T E^-1 r: per row, the
-      // impulse g = sum_c f r_c / E_c on b and its opposite on a, at
-      // their arms.
-      each_part([&](int part) {
-        for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
-          if (split.part_of[i] == part) rhs.segment<6>(6 * f.slot[i]).setZero();
-        }
-        for (int k : split.rows[part]) {
-          if (components[k] == 0) continue;
-          const ContactRow& row = rows[k];
-          Vec3 r;
-          if (refinement == 0) {
-            r = target[k];
-          } else {
-            r = Vec3(row.target_normal, 0.0, 0.0) - relative_velocity(row, bodies);
-            if (split.owner(row) == part) target[k] = r;
+      // r again after the first solve, and J^T E^-1 r (the first with the
+      // matrix).
+      if (refinement > 0) {
+        each_part([&](int part) {
+          for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
+            if (split.part_of[i] == part) rhs.segment<6>(6 * f.slot[i]).setZero();
           }
-          const int a = f.slot[row.a], b = f.slot[row.b];
-          const Vec3 g = row.frame.transpose() * weight[k].cwiseProduct(r);
-          if (split.part_of[row.a] == part) {
-            rhs.segment<3>(6 * a) -= g;
-            rhs.segment<3>(6 * a + 3) -= row.arm_a.cross(g);
+          for (int k : split.rows[part]) {
+            if (components[k] == 0) continue;
+            const Vec3 r = Vec3(rows[k].target_normal, 0.0, 0.0) - relative_velocity(rows[k], bodies);
+            if (split.owner(rows[k]) == part) target[k] = r;
+            add_rhs(k, r, weight[k], part);
           }
-          if (split.part_of[row.b] == part) {
-            rhs.segment<3>(6 * b) += g;
-            rhs.segment<3>(6 * b + 3) += row.arm_b.cross(g);
-          }
-        }
-      });
+        });
+      }
       f.cholesky->solve(rhs, dv);
       each_part([&](int part) {
         for (int k : split.rows[part]) {
@@ -705,10 +770,19 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   bool global_steps = settings.global_steps;
   double before_global_step = -1.0;  // the residual of the sweep before the last global step
   int worse = 0;                     // global steps that left a larger residual
+  std::array<double, 3> residuals{};  // of the last three sweeps, the last last
   while (report.sweeps < settings.max_sweeps && groups > 0) {
     // After the first sweep (a structure at rest needs no more) and every
     // kSweepsPerGlobalStep after it.
-    if (global_steps && report.sweeps % kSweepsPerGlobalStep == 1) {
+    // Not when the sweeps converge fast enough to finish within
+    // kSweepsAhead more (the residual falling at the first of the last two
+    // sweeps, and its fall per sweep over both extrapolated).
+    const auto sweeps_finish = [&]() {
+      if (report.sweeps < 3 || !(residuals[1] < residuals[0])) return false;
+      const double rate = std::sqrt(residuals[2] / residuals[0]);
+      return rate < 1.0 && std::log(settings.velocity_tolerance / residuals[2]) / std::log(rate) <= kSweepsAhead;
+    };
+    if (global_steps && report.sweeps % kSweepsPerGlobalStep == 1 && !sweeps_finish()) {
       // Points the step left pulling are released, and the step taken
       // again without them, a few times at most.
       int released = global_step();
@@ -751,6 +825,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       global_steps = false;
     }
     report.residual = largest_residual;
+    residuals = {residuals[1], residuals[2], largest_residual};
     report.worst_row = worst;
     if (largest_residual <= settings.velocity_tolerance) {
       report.converged = true;

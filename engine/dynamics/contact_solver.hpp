@@ -22,11 +22,12 @@
 //
 // Sweeps alone move a change of load through a structure one contact per
 // sweep (a shaken wall took 230-290 sweeps a step). After the first sweep
-// (when it has not solved the step) and every few sweeps after, a global
-// step (PGS with subspace
-// minimisation, as in Silcowitz, Niebe and Erleben 2010) solves the laws
-// as equalities on the current active set at once: every pressed (or
-// approaching) point keeps its normal velocity on target, every sticking
+// (when it has not solved the step) and every few sweeps after (unless
+// the sweeps, at the rate their residual falls, are about to finish the
+// step), a global step (PGS with subspace minimisation, as in
+// Silcowitz, Niebe and Erleben 2010) solves the laws as equalities on
+// the current active set at once: every pressed (or approaching) point
+// keeps its normal velocity on target, every sticking
 // one (a point at its friction limit that does not slip sticks) its slip
 // at zero, sliding ones keep their friction. That linear system,
 // W_S dP = r with W_S = J_S M^-1 J_S^T and r = target - U_S (singular: the
@@ -146,9 +147,22 @@ public:
 
 private:
   struct Factor;
+  struct Workspace;
   std::unique_ptr<Factor> factor_;
+  std::unique_ptr<Workspace> work_;
   std::unique_ptr<ParallelLoop> loop_;  // helpers sleep between solves
 };
+
+// A row's constants, fixed within a step: its 3x3 Delassus block
+// W = J M^-1 J^T in the contact's frame (the change of the row's relative
+// velocity per unit impulse) and the step sizes the sweeps and Newton's
+// method (contact_newton.hpp) take on it.
+struct RowConstants {
+  double normal_step = 0.0;      // rho_n = 1 / W_nn (N s per m/s)
+  double tangent_step = 0.0;     // rho_t = 1 / the largest eigenvalue of W_tt (N s per m/s)
+  Vec3 diagonal = Vec3::Zero();  // W_nn, W_t1t1, W_t2t2 (m/s per N s)
+};
+RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies);
 
 // An orthonormal frame with n as its first row.
 Mat3 contact_frame(const Vec3& n);

@@ -13,6 +13,7 @@
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
+#include "core/parallel_loop.hpp"
 #include "core/point_grid.hpp"
 #include "core/text.hpp"
 #include "dynamics/contact_points.hpp"
@@ -24,6 +25,10 @@ namespace {
 // Fraction of an overlap (beyond the contact tolerance) that one step's
 // position correction removes.
 constexpr double kOverlapCorrection = 0.5;
+// Contact points from which their geometry each step is shared over the
+// threads: below it a wake-up of the helpers costs more than the pass
+// (about 0.1 ms per 2,000 points).
+constexpr int kParallelPoints = 4000;
 
 [[noreturn]] void fail(const std::string& what, double value, const std::string& allowed) {
   throw InvalidArgument("simulate: " + what + " must be " + allowed + ", got " + shortest_number(value));
@@ -132,8 +137,8 @@ private:
   void search(const std::vector<int>& moved);
   std::vector<int> neighbourhood(const std::vector<int>& moved) const;
   void free_velocities(const Vec3& ground);  // and the ground's turning, rotation_
-  std::vector<ContactRow> contact_rows(std::vector<int>& which, const std::vector<Vec3>& linear,
-                                       const std::vector<Vec3>& angular) const;
+  void contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
+                    const std::vector<Vec3>& angular);
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
   void correct_overlaps(const std::vector<int>& active);
   void record(double t);
@@ -166,6 +171,13 @@ private:
   // The steps' solves and the overlap corrections' (each keeps its
   // factorisation from step to step).
   ContactSolver contact_solver_{o_.threads}, overlap_solver_{o_.threads};
+  // The contact points' geometry each step, each point alone, shared over
+  // the same threads from kParallelPoints points; the points' rows where
+  // they stand (a = -1 where a point is not active).
+  ParallelLoop geometry_loop_{o_.threads > 0 ? std::min(o_.threads, ParallelLoop::kMaxThreads) : 0, kParallelPoints};
+  std::vector<ContactRow> candidates_;
+  std::vector<ContactGeometry> geometry_;  // of the active points, after the step
+  std::vector<ContactRow> rows_;           // the step's rows (kept for their memory)
   std::optional<GroundRotation> rotation_;  // when the ground turns
   SimulationResult result_;
 };
@@ -330,25 +342,32 @@ void Run::free_velocities(const Vec3& ground) {
   }
 }
 
-// Rows of the contact points whose gap, half a step ahead at the velocities
+// Into rows: the rows of the contact points whose gap, half a step ahead at the velocities
 // of the step's start, is within the contact tolerance, from the highest
 // down; `which` gets their indices into contacts_.
-std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::vector<Vec3>& linear,
-                                          const std::vector<Vec3>& angular) const {
-  std::vector<ContactRow> rows;
+void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
+                       const std::vector<Vec3>& angular) {
+  candidates_.resize(contacts_.size());
+  geometry_loop_.run(static_cast<int>(contacts_.size()), [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      const ContactPoint& c = contacts_[k];
+      const ContactGeometry g = contact_geometry(c, poses_);
+      const double approach =
+          g.normal.dot(point_velocity(c.b, g.point, linear, angular) - point_velocity(c.a, g.point, linear, angular));
+      ContactRow& row = candidates_[k];
+      if (g.gap + 0.5 * h_ * approach > tolerance_) {
+        row.a = -1;
+        continue;
+      }
+      row = row_at(c, g);
+      row.friction = o_.friction;
+      row.target_normal = o_.restitution * std::max(0.0, -approach);
+      row.impulse = row.frame * c.impulse;
+    }
+  });
   which.clear();
   for (size_t k = 0; k < contacts_.size(); ++k) {
-    const ContactPoint& c = contacts_[k];
-    const ContactGeometry g = contact_geometry(c, poses_);
-    const double approach =
-        g.normal.dot(point_velocity(c.b, g.point, linear, angular) - point_velocity(c.a, g.point, linear, angular));
-    if (g.gap + 0.5 * h_ * approach > tolerance_) continue;
-    ContactRow row = row_at(c, g);
-    row.friction = o_.friction;
-    row.target_normal = o_.restitution * std::max(0.0, -approach);
-    row.impulse = row.frame * c.impulse;
-    rows.push_back(row);
-    which.push_back(static_cast<int>(k));
+    if (candidates_[k].a >= 0) which.push_back(static_cast<int>(k));
   }
   // Each pair's points together (the solver's groups: contacts_ is sorted
   // by pair), the pairs from the top down (against gravity, by their
@@ -359,9 +378,11 @@ std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::ve
     double height;
   };
   std::vector<Group> groups;
-  for (size_t r = 0; r < rows.size(); ++r) {
-    const double height = -o_.gravity.dot(rows[r].arm_a + poses_[rows[r].a].position);
-    if (groups.empty() || rows[r].a != rows[groups.back().begin].a || rows[r].b != rows[groups.back().begin].b) {
+  for (size_t r = 0; r < which.size(); ++r) {
+    const ContactRow& row = candidates_[which[r]];
+    const double height = -o_.gravity.dot(row.arm_a + poses_[row.a].position);
+    if (groups.empty() || row.a != candidates_[which[groups.back().begin]].a ||
+        row.b != candidates_[which[groups.back().begin]].b) {
       groups.push_back({r, r + 1, height});
     } else {
       groups.back().end = r + 1;
@@ -369,18 +390,16 @@ std::vector<ContactRow> Run::contact_rows(std::vector<int>& which, const std::ve
     }
   }
   std::stable_sort(groups.begin(), groups.end(), [](const Group& x, const Group& y) { return x.height > y.height; });
-  std::vector<ContactRow> sorted;
   std::vector<int> sorted_which;
-  sorted.reserve(rows.size());
-  sorted_which.reserve(rows.size());
+  sorted_which.reserve(which.size());
+  rows.clear();
   for (const Group& group : groups) {
     for (size_t r = group.begin; r < group.end; ++r) {
-      sorted.push_back(rows[r]);
+      rows.push_back(candidates_[which[r]]);
       sorted_which.push_back(which[r]);
     }
   }
   which.swap(sorted_which);
-  return sorted;
 }
 
 void Run::integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0) {
@@ -398,10 +417,14 @@ void Run::integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& a
 // kOverlapCorrection of each overlap in one step, applied to positions
 // only.
 void Run::correct_overlaps(const std::vector<int>& active) {
+  geometry_.resize(active.size());
+  geometry_loop_.run(static_cast<int>(active.size()), [&](int begin, int end, int) {
+    for (int r = begin; r < end; ++r) geometry_[r] = contact_geometry(contacts_[active[r]], poses_);
+  });
   std::vector<ContactRow> rows;
-  for (int k : active) {
-    const ContactPoint& c = contacts_[k];
-    const ContactGeometry g = contact_geometry(c, poses_);
+  for (size_t r = 0; r < active.size(); ++r) {
+    const ContactPoint& c = contacts_[active[r]];
+    const ContactGeometry& g = geometry_[r];
     if (g.gap >= -tolerance_) continue;
     ContactRow row = row_at(c, g);
     row.target_normal = kOverlapCorrection * (-g.gap - tolerance_) / h_;
@@ -445,7 +468,8 @@ SimulationResult Run::go() {
     if (rotation_ && k > 0) rotation_->advance(k);
     const std::vector<Vec3> linear0 = bodies_.linear, angular0 = bodies_.angular;
     free_velocities((1.0 - o_.theta) * ground_before + o_.theta * ground_after);
-    std::vector<ContactRow> rows = contact_rows(active, linear0, angular0);
+    std::vector<ContactRow>& rows = rows_;
+    contact_rows(active, rows, linear0, angular0);
     const ContactSolverReport report = contact_solver_.solve(rows, bodies_, solver_);
     result_.sweeps += report.sweeps;
     result_.global_steps += report.global_steps;
