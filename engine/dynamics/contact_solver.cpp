@@ -778,8 +778,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   double before_global_step = -1.0;  // the residual of the sweep before the last global step
   int worse = 0;                     // global steps that left a larger residual
   std::array<double, 3> residuals{};  // of the last three sweeps, the last last
-  bool may_skip = true;  // global steps may be skipped (sweeps_finish below)
-  int first_skip = -1;   // the sweep at which the first was
+  int first_skip = -1;  // the sweep at which a global step was first skipped (sweeps_finish below)
   while (report.sweeps < settings.max_sweeps && groups > 0) {
     // After the first sweep (a structure at rest needs no more) and every
     // kSweepsPerGlobalStep after it.
@@ -791,21 +790,20 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       const double rate = std::sqrt(residuals[2] / residuals[0]);
       return rate < 1.0 && std::log(settings.velocity_tolerance / residuals[2]) / std::log(rate) <= kSweepsAhead;
     };
-    bool skip = false;
     if (global_steps && report.sweeps % kSweepsPerGlobalStep == 1) {
       // Sweeps that did not finish within kSweepsAhead of the first skip
       // were a wrong guess: this solve takes every global step from then on.
-      if (first_skip >= 0 && report.sweeps - first_skip >= kSweepsAhead) may_skip = false;
-      skip = may_skip && sweeps_finish();
-      if (skip && first_skip < 0) first_skip = report.sweeps;
-    }
-    if (global_steps && report.sweeps % kSweepsPerGlobalStep == 1 && !skip) {
-      // Points the step left pulling are released, and the step taken
-      // again without them, a few times at most.
-      int released = global_step();
-      for (int again = 1; again < kGlobalStepRepeats && released > 0; ++again) released = global_step();
-      global_steps = released != -2;
-      before_global_step = released >= 0 ? report.residual : -1.0;
+      const bool guess = first_skip < 0 || report.sweeps - first_skip < kSweepsAhead;
+      if (guess && sweeps_finish()) {
+        if (first_skip < 0) first_skip = report.sweeps;
+      } else {
+        // Points the step left pulling are released, and the step taken
+        // again without them, a few times at most.
+        int released = global_step();
+        for (int again = 1; again < kGlobalStepRepeats && released > 0; ++again) released = global_step();
+        global_steps = released != -2;
+        before_global_step = released >= 0 ? report.residual : -1.0;
+      }
     }
     ++report.sweeps;
     // Symmetric Gauss-Seidel over the groups: forward and backward in turn,
