@@ -106,6 +106,15 @@ extern "C" __sighandler_t __sysv_signal(int signal_number, __sighandler_t handle
 
 namespace ashlar {
 
+namespace {
+
+// Rows from which a system's supernodes are merged as CHOLMOD's defaults
+// merge them (see CholmodSystem::Impl): the sides of a 10,000-block
+// model's split factorisation (about 30,000 rows) and larger.
+constexpr int kDefaultMergeFromRows = 20000;
+
+}  // namespace
+
 struct CholmodSystem::Impl {
   Impl(int n, const int* column_starts, const int* row_indices, Triangle stored) {
     cholmod_start(&common_);
@@ -120,13 +129,20 @@ struct CholmodSystem::Impl {
     // default is 3 % faster there (5 % on the 10,027-block vault, 17 MB
     // less), but it moves the 512-voussoir arch's minimum thickness in
     // tests/regression/arch_minimum_thickness.lua by 0.3 % (that
-    // bisection's last verdicts turn on rounding), so the merge stays the
-    // one its reference was computed with.
-    common_.nrelax[0] = 16;
-    common_.nrelax[1] = 48;
-    common_.nrelax[2] = 96;
+    // bisection's last verdicts turn on rounding), so below
+    // kDefaultMergeFromRows the merge stays the one its reference was
+    // computed with. Above, the explicit zeros of the freer merge are memory
+    // and flops for nothing: the 100,052-block vault's peak 121 MB less
+    // with the default.
+    if (n < kDefaultMergeFromRows) {
+      common_.nrelax[0] = 16;
+      common_.nrelax[1] = 48;
+      common_.nrelax[2] = 96;
+    }
     const size_t nonzeros = static_cast<size_t>(column_starts[n]);
-    matrix_ = cholmod_allocate_sparse(n, n, nonzeros, /*sorted=*/1, /*packed=*/1, stype(stored), CHOLMOD_REAL,
+    // The pattern alone: factorize() takes the values from the caller's
+    // array (a large model's normal matrix is 100 MB of values: one copy).
+    matrix_ = cholmod_allocate_sparse(n, n, nonzeros, /*sorted=*/1, /*packed=*/1, stype(stored), CHOLMOD_PATTERN,
                                       &common_);
     if (!matrix_) {
       cholmod_finish(&common_);
@@ -134,7 +150,6 @@ struct CholmodSystem::Impl {
     }
     std::copy(column_starts, column_starts + n + 1, static_cast<int*>(matrix_->p));
     std::copy(row_indices, row_indices + nonzeros, static_cast<int*>(matrix_->i));
-    std::fill_n(values(), nonzeros, 0.0);
   }
   ~Impl() {
     for (cholmod_dense** dense : {&solution_, &workspace_y_, &workspace_e_}) {
@@ -165,7 +180,6 @@ struct CholmodSystem::Impl {
   }
 
   int rows() const { return static_cast<int>(matrix_->nrow); }
-  double* values() { return static_cast<double*>(matrix_->x); }
   const cholmod_factor& factor() const { return *factor_; }
   double factor_nonzeros() const { return common_.lnz; }
 
@@ -182,7 +196,7 @@ struct CholmodSystem::Impl {
   // and freed at every call. Here the workspace is set up once: important
   // weights on that dome 7.2 s -> 6.0 s on 2 cores; the 10,051-block wall's
   // factorisations unchanged (1.33 s against 1.37 s).
-  bool factorize() {
+  bool factorize(const double* values, const int* sources) {
     const cholmod_factor& f = *factor_;
     const int* super = static_cast<const int*>(f.super);
     const int* pi = static_cast<const int*>(f.pi);
@@ -192,7 +206,6 @@ struct CholmodSystem::Impl {
     const int supernodes = static_cast<int>(f.nsuper);
     const int* column_starts = static_cast<const int*>(matrix_->p);
     const int* row_indices = static_cast<const int*>(matrix_->i);
-    const double* ax = values();
     // Left-looking: supernode s takes its columns of the matrix, then the
     // updates of the supernodes below it whose rows reach its columns (the
     // list head_[s], each descendant's next row at row_position_), then
@@ -207,7 +220,7 @@ struct CholmodSystem::Impl {
       std::fill(block, lx + px[s + 1], 0.0);
       for (int j = first; j < last; ++j) {
         double* column = block + static_cast<ptrdiff_t>(j - first) * height;
-        for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) column[local_row_[row_indices[e]]] = ax[e];
+        for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) column[local_row_[row_indices[e]]] = values[sources[e]];
       }
       for (int d = head_[s]; d != -1;) {
         const int next_d = next_[d];
@@ -351,11 +364,11 @@ const int* CholmodSystem::permutation() const { return static_cast<const int*>(i
 
 int CholmodSystem::rows() const { return impl_->rows(); }
 
-double* CholmodSystem::values() { return impl_->values(); }
-
 double CholmodSystem::factor_nonzeros() const { return impl_->factor_nonzeros(); }
 
-bool CholmodSystem::factorize() { return impl_->factorize(); }
+bool CholmodSystem::factorize(const double* values, const int* sources) {
+  return impl_->factorize(values, sources);
+}
 
 const double* CholmodSystem::solve(Solve system, const double* rhs) {
   const int kind = system == Solve::whole ? CHOLMOD_A : system == Solve::forward ? CHOLMOD_L : CHOLMOD_Lt;

@@ -1,6 +1,6 @@
 // CHOLMOD behind a plain interface, for the sparse factorisations of
 // core/sparse_cholesky.hpp and core/split_cholesky.hpp: one sparse
-// symmetric matrix with its analysis and supernodal factor, owned and freed
+// symmetric pattern with its analysis and supernodal factor, owned and freed
 // with the object (CholmodSystem), and the orderings asked of CHOLMOD
 // (bisect, order_with_last_rows). cholmod.h is included by
 // cholmod_system.cpp alone (engine/CMakeLists.txt gives that file its
@@ -28,7 +28,8 @@ public:
     backward,  // L^T x = b
   };
 
-  // The pattern (copied), values 0.
+  // The pattern (copied); no values: factorize() takes them from the
+  // caller.
   CholmodSystem(int n, const int* column_starts, const int* row_indices, Triangle stored);
   ~CholmodSystem();
   CholmodSystem(const CholmodSystem&) = delete;
@@ -45,15 +46,14 @@ public:
   const int* permutation() const;
 
   int rows() const;
-  // The values to fill before factorize(), in pattern order.
-  double* values();
   double factor_nonzeros() const;
 
   // Numeric factorisation of the lower triangle in factor order (a system
-  // analysed with analyze_as_ordered) into CHOLMOD's supernodal factor,
-  // which solve() then uses; false when the matrix is not positive
-  // definite.
-  bool factorize();
+  // analysed with analyze_as_ordered), whose k-th value in pattern order is
+  // values[sources[k]], into CHOLMOD's supernodal factor, which solve()
+  // then uses; false when the matrix is not positive definite. The values
+  // are read where the caller keeps them, never copied.
+  bool factorize(const double* values, const int* sources);
   // Solves `system` for the right-hand side rhs[0 .. rows()); the solution
   // stays valid until the next solve, which reuses its storage.
   const double* solve(Solve system, const double* rhs);

@@ -18,7 +18,7 @@ struct SparseCholesky::Impl {
   // When split: the two sides and their separator.
   std::unique_ptr<SplitCholesky> split;
   // When not split: the lower triangle in CHOLMOD's own fill-reducing
-  // order (the form CholmodSystem::factorize takes), its values copied from
+  // order (the form CholmodSystem::factorize takes), its values read from
   // the caller's through whole_sources.
   std::unique_ptr<CholmodSystem> whole;
   std::vector<int> whole_sources;  // the caller's value behind each of whole's values
@@ -83,9 +83,7 @@ bool SparseCholesky::factorize() {
   ++factorizations_;
   Impl& m = *impl_;
   if (m.split) return m.split->factorize(m.values.data());
-  double* values = m.whole->values();
-  for (size_t k = 0; k < m.whole_sources.size(); ++k) values[k] = m.values[m.whole_sources[k]];
-  return m.whole->factorize();
+  return m.whole->factorize(m.values.data(), m.whole_sources.data());
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {

@@ -31,11 +31,10 @@ struct SplitCholesky::Side {
 
   int separator_rows() const { return static_cast<int>(separator_slot.size()); }
 
-  // Copies this side's values, factors, and forms its Schur share T.
+  // Factors this side (its values read from the whole matrix's through
+  // sources) and forms its Schur share T.
   bool factorize(const double* whole_values) {
-    double* values = system->values();
-    for (size_t k = 0; k < sources.size(); ++k) values[k] = whole_values[sources[k]];
-    if (!system->factorize()) return false;
+    if (!system->factorize(whole_values, sources.data())) return false;
     system->trailing_block_reversed(own, reversed_trailing);  // L_SS
     product = reversed_trailing;
     const int s = separator_rows();
