@@ -64,7 +64,8 @@
 // Where the sweeps stall a few times above the tolerance (the load
 // cycling between the redundant corners of a face, or between points
 // sliding at their friction limit), a semismooth Newton method on the
-// step's whole problem (contact_newton.hpp) is taken every
+// step's whole problem (past 1,000 rows, on the rows that stall and the
+// others at their blocks: contact_newton.hpp) is taken every
 // newton_after_sweeps sweeps while the residual is within 100 tolerances;
 // the sweeps after it judge its answer by the same test.
 #pragma once
