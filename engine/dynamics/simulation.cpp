@@ -399,14 +399,10 @@ void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, c
       row = row_at(c, g);
       row.friction = o_.friction;
       row.target_normal = o_.restitution * std::max(0.0, -approach);
-      Vec3 impulse = c.impulse;
-      if (driven) {
-        // The impulse that changes the two blocks' relative velocity by the
-        // solve's tolerance (their rotation left out).
-        const double noise = solver_.velocity_tolerance / (bodies_.inverse_mass[c.a] + bodies_.inverse_mass[c.b]);
-        impulse = warm_start(c, std::max(on_a.norm(), on_b.norm()), noise);
-      }
-      row.impulse = row.frame * impulse;
+      // The impulse that changes the two blocks' relative velocity by the
+      // solve's tolerance (their rotation left out).
+      const double noise = solver_.velocity_tolerance / (bodies_.inverse_mass[c.a] + bodies_.inverse_mass[c.b]);
+      row.impulse = row.frame * (driven ? warm_start(c, std::max(on_a.norm(), on_b.norm()), noise) : c.impulse);
     }
   });
   which.clear();
