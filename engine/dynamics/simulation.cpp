@@ -57,40 +57,6 @@ void check_options(const SimulationOptions& o) {
   if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) fail("tolerance", o.tolerance, "> 0");
 }
 
-// A point's warm start (N s, world frame) in a run with a ground motion
-// (without one the loads do not change): where its blocks are still
-// (`speed`, the faster of the point's velocities on its two blocks, at
-// most kStillSpeed) and it pressed in both of the last two steps, and its
-// impulse changed between them smoothly, its impulse carried on at
-// kCarriedOn of the rate it changed, which leaves the sweeps little of a
-// smoothly changing load to find (a 106-block wall shaken at 0.3 g, 2 Hz
-// for 1.5 s: 4.4 sweeps a step -> 2.7); else its last impulse.
-// kCarriedOn < 1 because the impulses of a face's points are not
-// determined (four corners share what three could carry) and the solve
-// leaves them where it finds them: carried on in full, a drift among them
-// keeps its pace from step to step and grows (the same wall, 3.8 sweeps a
-// step over its first 0.15 s, 12 from 0.6 s on); at 0.8 it dies out.
-// Smoothly: by at most kSmoothChange of itself, and by more than the
-// solve leaves undetermined, `noise` (N s; a change within it is the
-// solve's own scatter: carried on, a wall at rest took 1.6 sweeps and 0.98
-// global steps a step instead of 1.1 and 0.08). Between moving blocks,
-// through impacts and rocking, impulses carried on overshoot (twelve
-// arches' collapses left 1,454 steps unconverged instead of 1,138; 1,256
-// with the bound on the blocks' speed in full, 1,597 at 0.8; round-off
-// alone moves that count by about a hundred).
-constexpr double kCarriedOn = 0.8;
-constexpr double kStillSpeed = 1e-3;  // m/s
-constexpr double kSmoothChange = 0.1;
-
-Vec3 warm_start(const ContactPoint& c, double speed, double noise) {
-  const Vec3 change = c.impulse - c.previous_impulse;
-  const double size = change.norm();
-  if (speed > kStillSpeed || c.previous_impulse.isZero() || size > kSmoothChange * c.impulse.norm() || size <= noise) {
-    return c.impulse;
-  }
-  return c.impulse + kCarriedOn * change;
-}
-
 Vec3 checked_ground_acceleration(const SimulationOptions& o, double t) {
   if (!o.ground_acceleration) return Vec3::Zero();
   const Vec3 a = o.ground_acceleration(t);
@@ -324,7 +290,6 @@ void Run::search(const std::vector<int>& moved) {
       if (d <= nearest) {
         nearest = d;
         c.impulse = previous->impulse;
-        c.previous_impulse = previous->previous_impulse;
       }
     }
   }
@@ -383,14 +348,12 @@ void Run::free_velocities(const Vec3& ground) {
 void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
                        const std::vector<Vec3>& angular) {
   candidates_.resize(contacts_.size());
-  // Without a ground motion the loads do not change from step to step.
-  const bool driven = o_.ground_acceleration || o_.ground_rotation;
   geometry_loop_.run(static_cast<int>(contacts_.size()), [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       const ContactPoint& c = contacts_[k];
       const ContactGeometry g = contact_geometry(c, poses_);
-      const Vec3 on_a = point_velocity(c.a, g.point, linear, angular), on_b = point_velocity(c.b, g.point, linear, angular);
-      const double approach = g.normal.dot(on_b - on_a);
+      const double approach =
+          g.normal.dot(point_velocity(c.b, g.point, linear, angular) - point_velocity(c.a, g.point, linear, angular));
       ContactRow& row = candidates_[k];
       if (g.gap + 0.5 * h_ * approach > tolerance_) {
         row.a = -1;
@@ -399,10 +362,7 @@ void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, c
       row = row_at(c, g);
       row.friction = o_.friction;
       row.target_normal = o_.restitution * std::max(0.0, -approach);
-      // The impulse that changes the two blocks' relative velocity by the
-      // solve's tolerance (their rotation left out).
-      const double noise = solver_.velocity_tolerance / (bodies_.inverse_mass[c.a] + bodies_.inverse_mass[c.b]);
-      row.impulse = row.frame * (driven ? warm_start(c, std::max(on_a.norm(), on_b.norm()), noise) : c.impulse);
+      row.impulse = row.frame * c.impulse;
     }
   });
   which.clear();
@@ -521,10 +481,7 @@ SimulationResult Run::go() {
       result_.max_residual_blocks = {rows[report.worst_row].a, rows[report.worst_row].b};
     }
     result_.max_active_contacts = std::max(result_.max_active_contacts, static_cast<int>(rows.size()));
-    for (ContactPoint& c : contacts_) {
-      c.previous_impulse = c.impulse;
-      c.impulse.setZero();
-    }
+    for (ContactPoint& c : contacts_) c.impulse.setZero();
     for (size_t r = 0; r < rows.size(); ++r) contacts_[active[r]].impulse = rows[r].frame.transpose() * rows[r].impulse;
     integrate(linear0, angular0);
     correct_overlaps(active);
