@@ -148,9 +148,6 @@ RowLinearisation linearise(const Vec3& p, const Vec3& u, double friction, double
   return l;
 }
 
-}  // namespace
-
-namespace {
 ContactNewtonReport solve_whole(std::vector<ContactRow>& rows, BodyVelocities& bodies, double tolerance,
                                 int max_iterations) {
   ContactNewtonReport report;
@@ -311,9 +308,7 @@ ContactNewtonReport solve_contact_newton(std::vector<ContactRow>& rows, BodyVelo
   for (size_t k = 0; k < m; ++k) {
     const ContactRow& row = rows[k];
     const RowConstants constants = row_constants(row, bodies);
-    const Vec3 vb = bodies.linear[row.b] + bodies.angular[row.b].cross(row.arm_b);
-    const Vec3 va = bodies.linear[row.a] + bodies.angular[row.a].cross(row.arm_a);
-    Vec3 u = row.frame * (vb - va);
+    Vec3 u = relative_velocity(row, bodies);
     u.x() -= row.target_normal;
     const double f =
         linearise(row.impulse, u, row.friction, constants.normal_step, constants.tangent_step, false).f.norm();

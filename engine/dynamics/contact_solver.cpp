@@ -71,12 +71,6 @@ constexpr int kNewtonIterations = 30;
 // go on alone.
 constexpr double kNewtonFrom = 100.0;
 
-Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies) {
-  const Vec3 vb = bodies.linear[row.b] + bodies.angular[row.b].cross(row.arm_b);
-  const Vec3 va = bodies.linear[row.a] + bodies.angular[row.a].cross(row.arm_a);
-  return row.frame * (vb - va);
-}
-
 // Adds a row's impulse (local frame) to the velocities of its bodies for
 // which moves(body) is true. A fixed body is never written (it would only
 // gain zeros), so that threads sweeping rows of different bodies on one
@@ -352,6 +346,12 @@ struct ContactSolver::Factor {
     cholesky = std::make_unique<SparseCholesky>(6 * free_bodies, column_starts, std::move(rows), options);
   }
 };
+
+Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies) {
+  const Vec3 vb = bodies.linear[row.b] + bodies.angular[row.b].cross(row.arm_b);
+  const Vec3 va = bodies.linear[row.a] + bodies.angular[row.a].cross(row.arm_a);
+  return row.frame * (vb - va);
+}
 
 RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies) {
   Mat3 w = Mat3::Zero();

@@ -165,6 +165,10 @@ struct RowConstants {
 };
 RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies);
 
+// The relative velocity (m/s) of b's material point at the contact against
+// a's, in the contact's frame (n, t1, t2).
+Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies);
+
 // An orthonormal frame with n as its first row.
 Mat3 contact_frame(const Vec3& n);
 
