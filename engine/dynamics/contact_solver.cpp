@@ -373,6 +373,8 @@ struct ContactSolver::Workspace {
   std::vector<int> components;  // the global step's components held
   std::vector<Vec3> target, compliance, weight, change;
   std::vector<double> most;     // per body
+  std::vector<Mat3> inertia;    // per body: its inertia (kg m^2), world frame
+  Eigen::VectorXd weighted;     // per free body's 6 unknowns: the solves' dv, weighted
 };
 
 ContactSolver::ContactSolver(int threads)
@@ -525,6 +527,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   // writes: one wake-up of the threads per pass.
   std::vector<double>& most = work.most;
   most.resize(bodies.inverse_mass.size());
+  work.inertia.resize(bodies.inverse_mass.size());
   const auto global_step = [&]() {
     if (free_bodies < 0) set_up_pattern();
     // The components held and r; the largest normal impulse at each body.
@@ -609,7 +612,8 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
           rhs.segment<6>(6 * j).setZero();
           Mat6 mass = Mat6::Zero();
           mass.topLeftCorner<3, 3>() = Mat3::Identity() / bodies.inverse_mass[i];
-          mass.bottomRightCorner<3, 3>() = bodies.inverse_inertia[i].inverse();
+          work.inertia[i] = bodies.inverse_inertia[i].inverse();
+          mass.bottomRightCorner<3, 3>() = work.inertia[i];
           add(j, j, mass);
         }
         // The rows of one group (consecutive in the part's list: they link
@@ -681,46 +685,43 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         return -2;
       }
     }
-    // dv = K^-1 J^T E^-1 r; dP = E^-1 (r - J dv), applied unprojected;
-    // then again on what is left of r (iterative refinement: E's bias and
-    // the round-off of a long chain of stiff contacts, which 1 / E
-    // magnifies, shrink by a factor each time). Each part adds into its
-    // own bodies' entries of J^T E^-1 r, and changes their velocities, in
-    // the rows' order.
+    // dv = K^-1 J^T E^-1 r; dP = E^-1 (r - J dv); then again on what is
+    // left of r (iterative refinement: E's bias shrinks by a factor each
+    // time). No pass over the rows is needed between the solves: applied,
+    // dP changes the bodies' velocities by M^-1 J^T dP = dv (from K dv =
+    // J^T E^-1 r), so what is left is r - J dv, and the next right-hand
+    // side J^T E^-1 (r - J dv) = M dv. Over n solves the impulses change by
+    // E^-1 times the sum of what each leaves, E^-1 (n r - J sum_i (n - i)
+    // dv_i) (i from 0), applied in one pass.
+    Eigen::VectorXd& weighted = work.weighted;
+    weighted.setZero(6 * free_bodies);
     for (int refinement = 0; refinement < kRefinements; ++refinement) {
-      // r again after the first solve, and J^T E^-1 r (the first with the
-      // matrix).
-      if (refinement > 0) {
-        each_part([&](int part) {
-          for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
-            if (split.part_of[i] == part) rhs.segment<6>(6 * f.slot[i]).setZero();
-          }
-          for (int k : split.rows[part]) {
-            if (components[k] == 0) continue;
-            const Vec3 r = Vec3(rows[k].target_normal, 0.0, 0.0) - relative_velocity(rows[k], bodies);
-            if (split.owner(rows[k]) == part) target[k] = r;
-            add_rhs(k, r, weight[k], part);
-          }
-        });
-      }
       f.cholesky->solve(rhs, dv);
-      each_part([&](int part) {
-        for (int k : split.rows[part]) {
-          if (components[k] == 0) continue;
-          ContactRow& row = rows[k];
-          const int a = f.slot[row.a], b = f.slot[row.b];
-          // J dv: the change of the row's relative velocity.
-          Vec3 velocity = Vec3::Zero();
-          if (b >= 0) velocity += dv.segment<3>(6 * b) + dv.segment<3>(6 * b + 3).cross(row.arm_b);
-          if (a >= 0) velocity -= dv.segment<3>(6 * a) + dv.segment<3>(6 * a + 3).cross(row.arm_a);
-          const Vec3 moved = row.frame * velocity;
-          Vec3 impulse = Vec3::Zero();
-          for (int c = 0; c < components[k]; ++c) impulse[c] = (target[k][c] - moved[c]) / compliance[k][c];
-          apply_in_part(row, impulse, part);
-          if (split.owner(row) == part) row.impulse += impulse;
-        }
-      });
+      weighted += static_cast<double>(kRefinements - refinement) * dv;
+      if (refinement + 1 == kRefinements) break;
+      for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) {
+        const int j = f.slot[i];
+        if (j < 0) continue;
+        rhs.segment<3>(6 * j) = dv.segment<3>(6 * j) / bodies.inverse_mass[i];
+        rhs.segment<3>(6 * j + 3) = work.inertia[i] * dv.segment<3>(6 * j + 3);
+      }
     }
+    each_part([&](int part) {
+      for (int k : split.rows[part]) {
+        if (components[k] == 0) continue;
+        ContactRow& row = rows[k];
+        const int a = f.slot[row.a], b = f.slot[row.b];
+        // J sum_i (n - i) dv_i: the row's relative velocity changes so summed.
+        Vec3 velocity = Vec3::Zero();
+        if (b >= 0) velocity += weighted.segment<3>(6 * b) + weighted.segment<3>(6 * b + 3).cross(row.arm_b);
+        if (a >= 0) velocity -= weighted.segment<3>(6 * a) + weighted.segment<3>(6 * a + 3).cross(row.arm_a);
+        const Vec3 moved = row.frame * velocity;
+        Vec3 impulse = Vec3::Zero();
+        for (int c = 0; c < components[k]; ++c) impulse[c] = (kRefinements * target[k][c] - moved[c]) / compliance[k][c];
+        apply_in_part(row, impulse, part);
+        if (split.owner(row) == part) row.impulse += impulse;
+      }
+    });
     // The impulses projected on their cones.
     loop.run(row_count, [&](int begin, int end, int part) {
       int released = 0;

@@ -36,7 +36,9 @@
 // velocities, (M + J_S^T E^-1 J_S) dv = J_S^T E^-1 r, 6 unknowns per free
 // body, by a sparse Cholesky factorisation (core/sparse_cholesky.hpp; a
 // ContactSolver keeps its symbolic analysis from step to step while the
-// same bodies touch), refined by two more solves on what is left of r.
+// same bodies touch), refined by two more solves on what is left of r
+// (each on M dv of the one before: what is left is known without a pass
+// over the rows).
 // The impulses are projected on the cones; points the step left pulling
 // are released and the step taken once more without them. Then the
 // sweeps go on: they alone decide convergence, with the same residual
