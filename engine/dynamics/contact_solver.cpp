@@ -16,6 +16,16 @@ namespace {
 
 // Most passes over one group's rows per sweep.
 constexpr int kGroupPasses = 10;
+// A row whose residual is at most this fraction of the tolerance is left
+// as it is by the sweeps, and a group whose rows all were at its last
+// pass, and whose blocks nothing has moved since, is passed over (its
+// residual is the same). After a shaken wall's global step most groups
+// are settled: the sweeps took 0.39 s of its 0.1 s against 0.82 s. Small
+// changes of settled rows also no longer keep the load cycling among the
+// redundant corners of a face: the Armadillo vault's first step from
+// zero impulses converges (it stopped at max_sweeps at 1.4e-5 m/s).
+// 0.25 left a wall at rest taking 0.66 global steps a step (0.08).
+constexpr double kSettled = 0.1;
 // Sweeps between two global steps of one solve.
 constexpr int kSweepsPerGlobalStep = 4;
 // Global steps in a row at most, each without the points the one before
@@ -375,6 +385,8 @@ struct ContactSolver::Workspace {
   std::vector<double> most;     // per body
   std::vector<Mat3> inertia;    // per body: its inertia (kg m^2), world frame
   Eigen::VectorXd weighted;     // per free body's 6 unknowns: the solves' dv, weighted
+  std::vector<char> settled, shared_group;   // per group
+  std::vector<int> groups_at_start, groups_at;  // per body: its groups
 };
 
 ContactSolver::ContactSolver(int threads)
@@ -415,6 +427,31 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   group_start.push_back(rows.size());
   const size_t groups = rows.empty() ? 0 : group_start.size() - 1;
   const BodySplit split = split_bodies(rows, group_start, bodies, loop.parts_for(row_count));
+  // The groups at each free body (shared ones left out: they are measured
+  // in every sweep), and which groups the sweeps may pass over (see
+  // kSettled): none yet.
+  Workspace& work = *work_;
+  std::vector<char>& settled = work.settled;
+  std::vector<char>& shared_group = work.shared_group;
+  std::vector<int>& groups_at_start = work.groups_at_start;
+  std::vector<int>& groups_at = work.groups_at;
+  settled.assign(groups, 0);
+  shared_group.assign(groups, 0);
+  for (const int g : split.shared) shared_group[g] = 1;
+  groups_at_start.assign(bodies.inverse_mass.size() + 1, 0);
+  for (size_t g = 0; g < groups; ++g) {
+    if (shared_group[g]) continue;
+    for (const int body : {rows[group_start[g]].a, rows[group_start[g]].b}) ++groups_at_start[body + 1];
+  }
+  for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) groups_at_start[i + 1] += groups_at_start[i];
+  groups_at.resize(groups_at_start.back());
+  {
+    std::vector<int> next(groups_at_start.begin(), groups_at_start.end() - 1);
+    for (size_t g = 0; g < groups; ++g) {
+      if (shared_group[g]) continue;
+      for (const int body : {rows[group_start[g]].a, rows[group_start[g]].b}) groups_at[next[body]++] = static_cast<int>(g);
+    }
+  }
   // Work on each row alone, the rows in contiguous parts on the threads.
   const auto each_row = [&](const auto& per_row) {
     loop.run(row_count, [&](int begin, int end, int) {
@@ -433,7 +470,6 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   // Per-row buffers kept from solve to solve (resized, not cleared: each
   // pass writes a row's entries before any reads them), so that a step
   // allocates (and the system maps and clears) none of them anew.
-  Workspace& work = *work_;
   std::vector<RowConstants>& constants = work.constants;
   constants.resize(rows.size());
   each_row([&](int k) {
@@ -452,7 +488,8 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
 
   // One pass over rows [begin, end): each row's local update; returns the
   // largest residual met, and where (worst).
-  const auto pass = [&](size_t begin, size_t end, int& worst) {
+  const double settled_residual = kSettled * settings.velocity_tolerance;
+  const auto pass = [&](size_t begin, size_t end, int& worst, bool& changed) {
     double largest = 0.0;
     for (size_t k = begin; k < end; ++k) {
       ContactRow& row = rows[k];
@@ -463,6 +500,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         largest = r;
         worst = static_cast<int>(k);
       }
+      if (r <= settled_residual) continue;
       Vec3 p = row.impulse;
       p.x() = std::max(0.0, p.x() - (u.x() - row.target_normal) * c.normal_step);
       Eigen::Vector2d t = p.tail<2>() - c.tangent_step * u.tail<2>();
@@ -474,6 +512,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       if (change.isZero(0.0)) continue;
       apply(row, change, bodies);
       row.impulse = p;
+      changed = true;
     }
     return largest;
   };
@@ -760,15 +799,29 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     const size_t count = list.size();
     for (size_t visit = 0; visit < count; ++visit) {
       const size_t g = list[forward ? visit : count - 1 - visit];
+      if (settled[g]) continue;
       const size_t begin = group_start[g], end = group_start[g + 1];
       int group_worst = -1;
-      double group_residual = pass(begin, end, group_worst);
+      bool changed = false, last_changed = false;
+      double group_residual = pass(begin, end, group_worst, last_changed);
       if (group_residual > largest) {
         largest = group_residual;
         worst = group_worst;
       }
       for (int inner = 1; inner < kGroupPasses && group_residual > 0.5 * settings.velocity_tolerance; ++inner) {
-        group_residual = pass(begin, end, group_worst);
+        changed = changed || last_changed;
+        last_changed = false;
+        group_residual = pass(begin, end, group_worst, last_changed);
+      }
+      changed = changed || last_changed;
+      settled[g] = !last_changed && group_residual <= settled_residual && !shared_group[g];
+      if (!changed) continue;
+      // Its blocks moved: the groups at them are measured again.
+      for (const int body : {rows[begin].a, rows[begin].b}) {
+        if (bodies.inverse_mass[body] == 0.0) continue;
+        for (int e = groups_at_start[body]; e < groups_at_start[body + 1]; ++e) {
+          settled[groups_at[e]] = 0;
+        }
       }
     }
   };
@@ -803,6 +856,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         int released = global_step();
         for (int again = 1; again < kGlobalStepRepeats && released > 0; ++again) released = global_step();
         global_steps = released != -2;
+        std::fill(settled.begin(), settled.end(), 0);
         before_global_step = released >= 0 ? report.residual : -1.0;
       }
     }
@@ -854,6 +908,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         largest_residual <= kNewtonFrom * settings.velocity_tolerance) {
       report.newton_iterations +=
           solve_contact_newton(rows, bodies, kNewtonTolerance * settings.velocity_tolerance, kNewtonIterations).iterations;
+      std::fill(settled.begin(), settled.end(), 0);
     }
   }
   if (groups == 0) report.converged = true;

@@ -18,7 +18,10 @@
 // structure down, along its load path). A pass solves each row's normal
 // impulse exactly (the others held) and moves its tangential impulse by a
 // scalar step against the slip, projected on the disc |P_t| <= mu P_n: a
-// fixed point of the sweep satisfies the laws above exactly.
+// fixed point of the sweep satisfies the laws above exactly. A row that
+// breaks them by at most a tenth of the tolerance is left as it is, and a
+// group whose rows all were, and whose bodies nothing has moved since, is
+// not visited again until something does.
 //
 // Sweeps alone move a change of load through a structure one contact per
 // sweep (a shaken wall took 230-290 sweeps a step). After the first sweep
