@@ -41,7 +41,8 @@ constexpr int kGlobalStepsWorse = 3;
 // A global step is not taken where the sweeps since the last would, at
 // the rate the residual fell over the last two, reach the tolerance in at
 // most this many more. On the 1,006-block wall shaken (figures from
-// before sweeps passed over settled groups, four sweeps between global steps): 7.1 sweeps and 3.68 global
+// before sweeps passed over settled groups, with four sweeps between
+// global steps): 7.1 sweeps and 3.68 global
 // steps a step without it, 8.7 and 2.44 with 8; 16 took 8.7 and 2.20, but
 // left the wall at rest with 0.55 global steps a step instead of 0.08 (a
 // step finished by sweeps just below the tolerance leaves the next a
