@@ -42,11 +42,11 @@ constexpr int kGlobalStepsWorse = 3;
 // the rate the residual fell over the last two, reach the tolerance in at
 // most this many more. On the 1,006-block wall shaken (figures from
 // before sweeps passed over settled groups, with four sweeps between
-// global steps): 7.1 sweeps and 3.68 global
-// steps a step without it, 8.7 and 2.44 with 8; 16 took 8.7 and 2.20, but
-// left the wall at rest with 0.55 global steps a step instead of 0.08 (a
-// step finished by sweeps just below the tolerance leaves the next a
-// worse start than one a global step finished). Once that many sweeps have
+// global steps): 7.1 sweeps and 3.68 global steps a step without it, 8.7
+// and 2.44 with 8; 16 took 8.7 and 2.20, but left the wall at rest with
+// 0.55 global steps a step instead of 0.08 (a step finished by sweeps just
+// below the tolerance leaves the next a worse start than one a global step
+// finished). Once that many sweeps have
 // passed since the first global step skipped and the solve has not
 // finished, the guess was wrong (a collapse's hard steps, where the
 // residual falls fast for a few sweeps, then stalls), and the solve takes
@@ -433,8 +433,8 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   const size_t groups = rows.empty() ? 0 : group_start.size() - 1;
   const BodySplit split = split_bodies(rows, group_start, bodies, loop.parts_for(row_count));
   // The groups at each free body (shared ones left out: they are measured
-  // in every sweep), and which groups the sweeps may pass over (see
-  // kSettled): none yet.
+  // in every sweep; a fixed body never moves, so it has none), and which
+  // groups the sweeps may pass over (see kSettled): none yet.
   Workspace& work = *work_;
   std::vector<char>& settled = work.settled;
   std::vector<char>& shared_group = work.shared_group;
@@ -444,9 +444,12 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   shared_group.assign(groups, 0);
   for (const int g : split.shared) shared_group[g] = 1;
   groups_at_start.assign(bodies.inverse_mass.size() + 1, 0);
+  const auto free = [&](int body) { return bodies.inverse_mass[body] > 0.0; };
   for (size_t g = 0; g < groups; ++g) {
     if (shared_group[g]) continue;
-    for (const int body : {rows[group_start[g]].a, rows[group_start[g]].b}) ++groups_at_start[body + 1];
+    for (const int body : {rows[group_start[g]].a, rows[group_start[g]].b}) {
+      if (free(body)) ++groups_at_start[body + 1];
+    }
   }
   for (size_t i = 0; i < bodies.inverse_mass.size(); ++i) groups_at_start[i + 1] += groups_at_start[i];
   groups_at.resize(groups_at_start.back());
@@ -454,7 +457,9 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     std::vector<int> next(groups_at_start.begin(), groups_at_start.end() - 1);
     for (size_t g = 0; g < groups; ++g) {
       if (shared_group[g]) continue;
-      for (const int body : {rows[group_start[g]].a, rows[group_start[g]].b}) groups_at[next[body]++] = static_cast<int>(g);
+      for (const int body : {rows[group_start[g]].a, rows[group_start[g]].b}) {
+        if (free(body)) groups_at[next[body]++] = static_cast<int>(g);
+      }
     }
   }
   // Work on each row alone, the rows in contiguous parts on the threads.
@@ -823,10 +828,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
       if (!changed) continue;
       // Its blocks moved: the groups at them are measured again.
       for (const int body : {rows[begin].a, rows[begin].b}) {
-        if (bodies.inverse_mass[body] == 0.0) continue;
-        for (int e = groups_at_start[body]; e < groups_at_start[body + 1]; ++e) {
-          settled[groups_at[e]] = 0;
-        }
+        for (int e = groups_at_start[body]; e < groups_at_start[body + 1]; ++e) settled[groups_at[e]] = 0;
       }
     }
   };
