@@ -32,7 +32,7 @@ double mean_uz_at(const FeaMesh& mesh, const FeaResult& r, double z) {
 }
 
 // A column of `blocks` boxes 0.5 x 0.5 x 1 m standing on a support slab.
-Structure column(int blocks) {
+Structure stacked_boxes(int blocks) {
   Structure s;
   s.add(box({2, 2, 1}, {0, 0, -0.5}), true);
   for (int k = 0; k < blocks; ++k) s.add(box({0.5, 0.5, 1}, {0, 0, k + 0.5}));
@@ -100,7 +100,7 @@ TEST(HexElement, BodyLoadSumsToTheWeight) {
 TEST(Fea, AxialBarUnderItsWeightMatchesClosedFormAtEveryNode) {
   // Poisson 0 makes the bar one-dimensional: u_z = -rho g (L z - z^2 / 2) / E,
   // which linear elements with consistent loads reproduce at the nodes.
-  const Structure s = column(3);
+  const Structure s = stacked_boxes(3);
   for (int refine : {1, 2, 4}) {
     const FeaMesh mesh(s, refine);
     FeaSettings settings;
@@ -115,7 +115,7 @@ TEST(Fea, AxialBarUnderItsWeightMatchesClosedFormAtEveryNode) {
 }
 
 TEST(Fea, ContactForcesBalanceTheWeight) {
-  const Structure s = column(2);
+  const Structure s = stacked_boxes(2);
   const FeaResult r = run_fea(s, 2);
   const std::shared_ptr<const std::vector<Interface>> faces_list = s.interfaces();
   const std::vector<Interface>& faces = *faces_list;
@@ -197,7 +197,7 @@ TEST(Fea, CantileverTipDeflectionConvergesToBeamTheory) {
 }
 
 TEST(Fea, RelaxationChangesNothingWhenEveryContactIsInCompression) {
-  const Structure s = column(3);
+  const Structure s = stacked_boxes(3);
   const FeaResult relaxed = run_fea(s, 2, 0.2, true), plain = run_fea(s, 2, 0.2, false);
   EXPECT_EQ(relaxed.status, FeaStatus::CompressionOnly);
   EXPECT_EQ(plain.status, FeaStatus::CompressionOnly);
@@ -224,12 +224,12 @@ TEST(Fea, RejectsBlocksThatAreNotHexahedraCablesAndBadSettings) {
   wedge.add(box({2, 2, 1}, {0, 0, -0.5}), true);
   wedge.add(std::make_shared<const Block>(make_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}})));
   EXPECT_TRUE(contains(error_of([&] { FeaMesh(wedge, 1); }), "block 2 is not a hexahedron (4 vertices)"));
-  const Structure s = column(1);
+  const Structure s = stacked_boxes(1);
   EXPECT_TRUE(contains(error_of([&] { FeaMesh(s, 0); }), "refine: expected a whole number from 1 to 64"));
   FeaSettings settings;
   settings.material.poisson = 0.5;
   EXPECT_TRUE(contains(error_of([&] { analyze_fea(s, FeaMesh(s, 1), settings); }), "poisson"));
-  Structure cabled = column(1);
+  Structure cabled = stacked_boxes(1);
   Cable cable;
   cable.from = {0, Vec3(0.9, 0, 0)};
   cable.to = {1, Vec3(0.25, 0, 0.5)};

@@ -19,7 +19,7 @@ namespace {
 
 // The solver held to 1e-8 of g h, so that "does not move" can be asserted
 // near round-off; every step recorded.
-SimulationOptions lasting(double duration, double friction) {
+SimulationOptions recorded_run(double duration, double friction) {
   SimulationOptions options;
   options.duration = duration;
   options.friction = friction;
@@ -68,7 +68,7 @@ TEST(GroundRotation, ABlockOnASlowlyTiltedSupportSlidesAtTheFrictionAngle) {
   Structure s;
   s.add(box({4, 1, 0.2}, {0, 0, -0.1}), true, "ground");
   s.add(box({0.4, 0.4, 0.2}, {0, 0, 0.1}), false, "block");
-  SimulationOptions options = lasting(5.2, mu);
+  SimulationOptions options = recorded_run(5.2, mu);
   options.ground_rotation = [rate](double t) { return Vec3(0, rate * t, 0); };
   const SimulationResult r = simulate(s, options);
 
@@ -122,7 +122,7 @@ TEST(GroundRotation, ASlenderBlockOnASlowlyTiltedSupportLiftsOffAtAtanBOverH) {
   Structure s;
   s.add(box({3, 1, 0.2}, {0, 0, -0.1}), true, "ground");
   s.add(box({b, 0.4, h}, {0, 0, 0.5 * h}), false, "block");
-  SimulationOptions options = lasting(4.2, 0.8);
+  SimulationOptions options = recorded_run(4.2, 0.8);
   options.ground_rotation = [rate](double t) { return Vec3(0, rate * t, 0); };
   const SimulationResult r = simulate(s, options);
 
@@ -156,7 +156,7 @@ TEST(GroundRotation, ABlockOnASpinningSupportSlidesOutwardOnceOmegaSquaredRExcee
     Structure s;
     s.add(box({4, 4, 0.2}, {0, 0, -0.1}), true, "ground");
     s.add(box({0.2, 0.2, 0.1}, {radius, 0, 0.05}), false, "block");
-    SimulationOptions options = lasting(duration, mu);
+    SimulationOptions options = recorded_run(duration, mu);
     options.ground_rotation = [omega](double t) { return Vec3(0, 0, omega * t); };
     return simulate(s, options);
   };
@@ -192,7 +192,7 @@ TEST(GroundRotation, AFreeBlockStaysStillInTheWorldWhileTheGroundTurnsUnderIt) {
   // The largest distance (m) and angle (rad) from the world's stillness
   // over a run of 1 s with steps of h.
   const auto errors = [&](double h) {
-    SimulationOptions options = lasting(1.0, 0.5);
+    SimulationOptions options = recorded_run(1.0, 0.5);
     options.step = h;
     options.gravity = Vec3::Zero();
     options.ground_pivot = pivot;
@@ -223,7 +223,7 @@ TEST(GroundRotation, AGroundThatDoesNotTurnChangesNothingToTheBit) {
   Structure s;
   s.add(box({3, 1, 0.2}, {0, 0, -0.1}), true, "base");
   s.add(box({0.3, 0.4, 1.2}, {0, 0, 0.6}), false, "block");
-  SimulationOptions options = lasting(0.3, 0.8);
+  SimulationOptions options = recorded_run(0.3, 0.8);
   options.ground_acceleration = [](double t) { return Vec3(0.5 * kGravity * std::sin(2 * kPi * 2 * t), 0, 0); };
   const SimulationResult still = simulate(s, options);
   options.ground_rotation = [](double) { return Vec3::Zero(); };
@@ -241,7 +241,7 @@ TEST(GroundRotation, BadRotationsAndPivotsNameTheOptionAndTheValue) {
   Structure s;
   s.add(box({3, 1, 0.2}, {0, 0, -0.1}), true, "base");
   s.add(box({0.3, 0.4, 0.3}, {0, 0, 0.15}), false, "block");
-  SimulationOptions options = lasting(0.01, 0.8);
+  SimulationOptions options = recorded_run(0.01, 0.8);
   options.ground_pivot = Vec3(0, std::nan(""), 0);
   EXPECT_TRUE(contains(error_of([&] { simulate(s, options); }), "ground_pivot must be a finite point (m), got nan"));
   options.ground_pivot = Vec3::Zero();

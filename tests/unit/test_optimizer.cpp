@@ -20,7 +20,7 @@ using namespace ashlar;
 namespace {
 
 // Blocks (as face loops and vertices) and free points of a design.
-struct Model {
+struct DesignModel {
   std::vector<std::vector<FaceLoop>> faces;
   DesignPoint design;
 
@@ -47,7 +47,7 @@ Vec3& position(DesignPoint& design, const PositionRef& ref) {
 }
 
 // The vertex of `block` at p (exactly).
-PositionRef vertex_at(const Model& model, int block, const Vec3& p) {
+PositionRef vertex_at(const DesignModel& model, int block, const Vec3& p) {
   const auto& vertices = model.design.block_vertices[block];
   for (size_t k = 0; k < vertices.size(); ++k) {
     if (vertices[k] == p) return PositionRef::vertex(block, static_cast<int>(k));
@@ -57,7 +57,7 @@ PositionRef vertex_at(const Model& model, int block, const Vec3& p) {
 }
 
 // The face of `block` whose outward normal is `normal`.
-FaceRef face_facing(const Model& model, int block, const Vec3& normal) {
+FaceRef face_facing(const DesignModel& model, int block, const Vec3& normal) {
   const auto planes = face_planes(model.design.block_vertices[block], model.faces[block]);
   for (size_t f = 0; f < planes.size(); ++f) {
     if (planes[f].normal.dot(normal) > 0.999) return FaceRef{block, static_cast<int>(f)};
@@ -112,7 +112,7 @@ double planarity_error(const DesignPoint& design, const std::vector<std::vector<
   return worst;
 }
 
-double volume_of(const Model& model, const DesignPoint& design, int block) {
+double volume_of(const DesignModel& model, const DesignPoint& design, int block) {
   return mass_properties(design.block_vertices[block], model.faces[block]).volume;
 }
 
@@ -133,15 +133,15 @@ void expect_near(const Vec3& actual, const Vec3& expected, double tolerance, con
 }
 
 // Two unit boxes side by side along x, sharing the face x = 1.
-Model two_boxes() {
-  Model model;
+DesignModel two_boxes() {
+  DesignModel model;
   model.add_box(Vec3(1, 1, 1), Vec3(0.5, 0.5, 0.5));
   model.add_box(Vec3(1, 1, 1), Vec3(1.5, 0.5, 0.5));
   return model;
 }
 
 // Every vertex of block a pulled by shift_a, of block b by shift_b.
-std::vector<Target> shifted_blocks(const Model& model, const Vec3& shift_a, const Vec3& shift_b) {
+std::vector<Target> shifted_blocks(const DesignModel& model, const Vec3& shift_a, const Vec3& shift_b) {
   std::vector<Target> targets;
   for (int b = 0; b < 2; ++b) {
     const auto& vertices = model.design.block_vertices[b];
@@ -156,7 +156,7 @@ std::vector<Target> shifted_blocks(const Model& model, const Vec3& shift_a, cons
 }  // namespace
 
 TEST(DesignSpace, WeldsCoincidentVerticesAndCountsSharedFacesOnce) {
-  const Model model = two_boxes();
+  const DesignModel model = two_boxes();
   const DesignSpace space(model.faces, model.design);
   EXPECT_EQ(space.position_variable_count(), 12 * 3);  // 16 vertices, 4 pairs welded
   // 12 quads, the shared one once, each a plane of 3 variables and 4 nodes.
@@ -167,7 +167,7 @@ TEST(DesignSpace, WeldsCoincidentVerticesAndCountsSharedFacesOnce) {
 }
 
 TEST(DesignSpace, ChartGradientMatchesFiniteDifferences) {
-  Model model = two_boxes();
+  DesignModel model = two_boxes();
   model.add_box(Vec3(2, 1, 0.5), Vec3(1, 0.5, 1.25));  // on both: T-junctions under it
   const std::vector<Target> targets = {
       {PositionRef::vertex(0, 7), Vec3(1.3, 1.2, 1.4)},
@@ -206,7 +206,7 @@ TEST(DesignSpace, ChartGradientMatchesFiniteDifferences) {
 }
 
 TEST(Optimizer, WeldedVerticesMeetHalfwayBetweenTheirTargets) {
-  const Model model = two_boxes();
+  const DesignModel model = two_boxes();
   const Vec3 shift_a(0.1, -0.2, 0.3), shift_b(-0.3, 0.2, 0.1);
   const auto targets = shifted_blocks(model, shift_a, shift_b);
   const DesignSpace space(model.faces, model.design);
@@ -229,7 +229,7 @@ TEST(Optimizer, WeldedVerticesMeetHalfwayBetweenTheirTargets) {
 }
 
 TEST(Optimizer, FixedBlocksVerticesAndPointsStay) {
-  Model model = two_boxes();
+  DesignModel model = two_boxes();
   const int fixed_point = model.add_point(Vec3(3, 0, 0));
   const int free_point = model.add_point(Vec3(3, 1, 0));
   auto targets = shifted_blocks(model, Vec3(0.2, 0.2, 0.2), Vec3(0.3, -0.1, 0.2));
@@ -257,7 +257,7 @@ TEST(Optimizer, FixedBlocksVerticesAndPointsStay) {
 }
 
 TEST(Optimizer, MoveTogetherSharesOneDisplacement) {
-  Model model;
+  DesignModel model;
   const int box = model.add_box(Vec3(1, 1, 1), Vec3(0, 0, 0));
   const int p = model.add_point(Vec3(5, 0, 0));
   const int q = model.add_point(Vec3(6, 0, 0));
@@ -289,7 +289,7 @@ TEST(Optimizer, MoveTogetherSharesOneDisplacement) {
 }
 
 TEST(Optimizer, MirrorSymmetryMirrorsDisplacementsAndKeepsPlanePointsInIt) {
-  Model model;
+  DesignModel model;
   const int p = model.add_point(Vec3(-1, 0, 0));
   const int q = model.add_point(Vec3(1, 0, 0));
   const int r = model.add_point(Vec3(0, 0, 1));
@@ -327,7 +327,7 @@ TEST(Optimizer, MirrorSymmetryMirrorsDisplacementsAndKeepsPlanePointsInIt) {
 }
 
 TEST(Optimizer, MaxDisplacementBoundsEveryCoordinate) {
-  Model model;
+  DesignModel model;
   const int p = model.add_point(Vec3(0, 0, 0));
   const int q = model.add_point(Vec3(1, 0, 0));
   const std::vector<Target> targets = {
@@ -357,7 +357,7 @@ TEST(Optimizer, MaxDisplacementBoundsEveryCoordinate) {
 }
 
 TEST(Optimizer, KeptNormalRaisesTheWholeTopFace) {
-  Model model;
+  DesignModel model;
   const int box = model.add_box(Vec3(1, 1, 1), Vec3(0.5, 0.5, 0.5));
   DesignConstraints constraints;
   for (int k = 0; k < 8; ++k) {
@@ -384,7 +384,7 @@ TEST(Optimizer, KeptNormalRaisesTheWholeTopFace) {
 }
 
 TEST(Optimizer, EveryEvaluatedDesignHasPlanarFacesAndClosedContacts) {
-  Model model = two_boxes();
+  DesignModel model = two_boxes();
   const int top = model.add_box(Vec3(2, 1, 0.5), Vec3(1, 0.5, 1.25));
   const int base = model.add_box(Vec3(2, 1, 0.2), Vec3(1, 0.5, -0.1));
   // Vertices of the two middle boxes that lie on the faces of the others.
@@ -439,7 +439,7 @@ TEST(Optimizer, EveryEvaluatedDesignHasPlanarFacesAndClosedContacts) {
 TEST(Optimizer, RunningBondWallKeepsItsBedJointsPlanar) {
   // Three courses of three bricks, the middle course offset by half a brick:
   // each bed joint is one plane through the T-junctions of the vertical joints.
-  Model model;
+  DesignModel model;
   for (int course = 0; course < 3; ++course) {
     const double offset = course == 1 ? 0.5 : 0.0;
     for (int brick = 0; brick < 3; ++brick) {
@@ -485,7 +485,7 @@ TEST(Optimizer, FlatStripHeldAtBothEndsStaysFlat) {
   // of the three free ones are flat strips held at both ends, which could
   // stay flat or fold; their planarity equations are singular where the two
   // meet, so the strips stay flat.
-  Model model;
+  DesignModel model;
   for (int box = 0; box < 5; ++box) model.add_box(Vec3(1, 1, 1), Vec3(box + 0.5, 0.5, 0.5));
   DesignConstraints constraints;
   constraints.fixed_blocks = {0, 4};
@@ -511,7 +511,7 @@ TEST(Optimizer, FlatStripHeldAtBothEndsStaysFlat) {
 }
 
 TEST(Optimizer, MinBlockVolumeHoldsAtEveryEvaluation) {
-  Model model;
+  DesignModel model;
   const int box = model.add_box(Vec3(1, 1, 1), Vec3(0.5, 0.5, 0.5));
   DesignConstraints constraints;
   std::vector<Target> targets;
@@ -545,7 +545,7 @@ TEST(Optimizer, MinBlockVolumeHoldsAtEveryEvaluation) {
 }
 
 TEST(Optimizer, StopsAtTheFirstStableEvaluation) {
-  Model model;
+  DesignModel model;
   const int p = model.add_point(Vec3(0, 0, 0));
   const std::vector<Target> targets = {{PositionRef::point(p), Vec3(1, 2, 0)}};
   const DesignSpace space(model.faces, model.design);
@@ -578,7 +578,7 @@ TEST(Optimizer, StopsAtTheFirstStableEvaluation) {
 }
 
 TEST(Optimizer, LbfgsNeedsFewerIterationsThanGradientDescentWhenIllConditioned) {
-  Model model;
+  DesignModel model;
   const int p = model.add_point(Vec3(0, 0, 0));
   const Eigen::Matrix3d rotation =
       Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
@@ -606,7 +606,7 @@ TEST(Optimizer, LbfgsNeedsFewerIterationsThanGradientDescentWhenIllConditioned) 
 }
 
 TEST(Optimizer, HistoryRecordsEveryAcceptedIterate) {
-  Model model;
+  DesignModel model;
   const int p = model.add_point(Vec3(0, 0, 0));
   const std::vector<Target> targets = {{PositionRef::point(p), Vec3(1, 0, 0)}};
   const DesignSpace space(model.faces, model.design);
@@ -650,7 +650,7 @@ TEST(Optimizer, HistoryRecordsEveryAcceptedIterate) {
 }
 
 TEST(Optimizer, GeometryErrorsShortenTheStepAndOtherErrorsEndTheRun) {
-  Model model;
+  DesignModel model;
   const int p = model.add_point(Vec3(0, 0, 0));
   const std::vector<Target> targets = {{PositionRef::point(p), Vec3(1, 0, 0)}};
   const DesignSpace space(model.faces, model.design);
@@ -737,7 +737,7 @@ TEST(Optimizer, ParametersStayWithinTheirBounds) {
 }
 
 TEST(Optimizer, BadConstraintsThrowNamingTheBadThing) {
-  Model model = two_boxes();
+  DesignModel model = two_boxes();
   model.add_box(Vec3(1, 1, 1), Vec3(0.5, 0.5, 1.5));
   model.add_point(Vec3(5, 5, 5));
   const auto error_with = [&](DesignConstraints constraints) {
@@ -786,7 +786,7 @@ TEST(Optimizer, BadConstraintsThrowNamingTheBadThing) {
                        "weld tolerance (2 m)"))
       << error_with(c);
 
-  Model mismatched = model;
+  DesignModel mismatched = model;
   mismatched.faces.pop_back();
   EXPECT_EQ(error_of([&] { DesignSpace(mismatched.faces, mismatched.design); }),
             "design: 2 blocks of faces but 3 blocks of vertices");
@@ -797,7 +797,7 @@ TEST(Optimizer, BadConstraintsThrowNamingTheBadThing) {
 }
 
 TEST(Optimizer, BadSettingsAndParameterBoundsThrow) {
-  Model model;
+  DesignModel model;
   model.add_point(Vec3(0, 0, 0));
   const DesignSpace space(model.faces, model.design);
   const DesignObjective objective = [](const DesignPoint& d) {

@@ -13,7 +13,7 @@ namespace {
 // A column of four unit cubes on a ground slab: ground (0), cubes 1..4 from
 // z = 0 up. Loads on cubes 1, 2 and 4; a cable from the ground to cube 2
 // and one from cube 1 to cube 4; an explicit interface between cubes 3 and 4.
-Structure column() {
+Structure three_boxes() {
   Structure s;
   s.add(box({3, 3, 1}, {0, 0, -0.5}), true, "ground");
   for (int k = 1; k <= 4; ++k) s.add(box({1, 1, 1}, {0, 0, k - 0.5}), false, "cube " + std::to_string(k));
@@ -34,7 +34,7 @@ Structure column() {
 }  // namespace
 
 TEST(StructureRemove, RenumbersWhatFollowsAndDropsWhatReferredToTheBlock) {
-  Structure s = column();
+  Structure s = three_boxes();
   // Contacts before, cached: ground-1, 1-2, 2-3 detected, 3-4 explicit.
   ASSERT_EQ(s.interfaces()->size(), 4u);
   const StructureBlock removed = s.remove(2);  // cube 2
@@ -68,7 +68,7 @@ TEST(StructureRemove, RenumbersWhatFollowsAndDropsWhatReferredToTheBlock) {
 }
 
 TEST(StructureRemove, DropsTheExplicitInterfacesOfTheBlockAndKeepsTheRestSeparate) {
-  Structure s = column();
+  Structure s = three_boxes();
   s.remove(4);  // cube 4: its load, the cable to it and the explicit interface go
   EXPECT_EQ(s.size(), 4);
   EXPECT_EQ(s.loads().size(), 2u);
@@ -84,7 +84,7 @@ TEST(StructureRemove, DropsTheExplicitInterfacesOfTheBlockAndKeepsTheRestSeparat
 }
 
 TEST(StructureRemove, RefusesABadIndex) {
-  Structure s = column();
+  Structure s = three_boxes();
   EXPECT_EQ(error_of([&] { s.remove(5); }), "remove: block 6 does not exist (the structure has 5 blocks)");
   EXPECT_EQ(error_of([&] { s.remove(-1); }), "remove: block 0 does not exist (the structure has 5 blocks)");
   EXPECT_EQ(s.size(), 5);

@@ -24,7 +24,7 @@ using namespace ashlar::study;
 
 namespace {
 
-std::string temp_db(const std::string& name) {
+std::string claims_db(const std::string& name) {
   const auto path =
       std::filesystem::temp_directory_path() / ("ashlar_claims_" + name + "_" + std::to_string(::getpid()) + ".sqlite");
   for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path.string() + suffix);
@@ -55,7 +55,7 @@ Outcome squared(const Task& task) {
 }  // namespace
 
 TEST(StudyClaims, TwoConnectionsClaimDisjointRowsAndReleaseThem) {
-  const std::string db = temp_db("disjoint");
+  const std::string db = claims_db("disjoint");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(10));
   ASSERT_EQ(b.open_study("s", numbers(10)).rows.size(), 10u);  // the same rows, not added twice
@@ -88,7 +88,7 @@ TEST(StudyClaims, TwoConnectionsClaimDisjointRowsAndReleaseThem) {
 }
 
 TEST(StudyClaims, AClaimOfARunWhoseHeartbeatIsOlderThanTheLeaseIsTaken) {
-  const std::string db = temp_db("lease");
+  const std::string db = claims_db("lease");
   StudyStore a(db), b(db);
   const std::vector<std::int64_t> ids = ids_of(a.open_study("s", numbers(4)));
   const double lease = 0.3;
@@ -118,7 +118,7 @@ TEST(StudyClaims, AClaimOfARunWhoseHeartbeatIsOlderThanTheLeaseIsTaken) {
 }
 
 TEST(StudyClaims, AFieldColumnAnotherConnectionAddedIsNotAddedTwice) {
-  const std::string db = temp_db("columns");
+  const std::string db = claims_db("columns");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(3));
   b.open_study("s", numbers(3));  // B has read the columns: none yet
@@ -135,7 +135,7 @@ TEST(StudyClaims, AFieldColumnAnotherConnectionAddedIsNotAddedTwice) {
 }
 
 TEST(StudyClaims, OpeningANewStudyFromManyConnectionsAtOnceMakesOneTable) {
-  const std::string db = temp_db("open");
+  const std::string db = claims_db("open");
   std::vector<std::thread> threads;
   std::atomic<int> failures{0};
   for (int t = 0; t < 6; ++t)
@@ -173,7 +173,7 @@ private:
 }  // namespace
 
 TEST(StudyClaims, TwoRunnersOnOneDatabaseRunEveryRowOnce) {
-  const std::string db = temp_db("runners");
+  const std::string db = claims_db("runners");
   const int count = 200;
   std::vector<std::atomic<int>> runs(count + 1);
   StudyRunInfo infos[2];
@@ -203,7 +203,7 @@ TEST(StudyClaims, TwoRunnersOnOneDatabaseRunEveryRowOnce) {
 }
 
 TEST(StudyClaims, ClaimedRowsWaitForRowsHeldElsewhereAndTakeThemWhenStale) {
-  const std::string db = temp_db("wait");
+  const std::string db = claims_db("wait");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(3));
   ClaimTimes times;
@@ -234,7 +234,7 @@ TEST(StudyClaims, ClaimedRowsWaitForRowsHeldElsewhereAndTakeThemWhenStale) {
 // asleep) is told so by its next beat, and claims its unstarted rows again:
 // those another run took meanwhile it leaves to that run.
 TEST(StudyClaims, ARunThatLostItsLeaseClaimsItsUnstartedRowsAgain) {
-  const std::string db = temp_db("lost");
+  const std::string db = claims_db("lost");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(4));
   std::vector<Task> tasks;
@@ -277,7 +277,7 @@ public:
 // A row longer than the lease, run on the calling thread: the heartbeat
 // thread keeps the claim.
 TEST(StudyClaims, ARowLongerThanTheLeaseKeepsItsClaim) {
-  const std::string db = temp_db("long");
+  const std::string db = claims_db("long");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(2));
   StudySettings settings;
