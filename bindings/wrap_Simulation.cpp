@@ -359,6 +359,7 @@ int w_Simulation_index(lua_State* L) {
       else if (is("frames")) lua_pushinteger(L, static_cast<lua_Integer>(r.times.size()));
       else if (is("sweeps")) lua_pushinteger(L, static_cast<lua_Integer>(r.sweeps));
       else if (is("unconverged_steps")) lua_pushinteger(L, r.unconverged_steps);
+      else if (is("split_steps")) lua_pushinteger(L, r.split_steps);
       else if (is("searches")) lua_pushinteger(L, r.searches);
       else if (is("max_active_contacts")) lua_pushinteger(L, r.max_active_contacts);
       else if (is("global_steps")) lua_pushinteger(L, static_cast<lua_Integer>(r.global_steps));

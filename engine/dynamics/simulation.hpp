@@ -106,7 +106,7 @@ struct SimulationOptions {
   // The run has settled when at the end no point of any free block moves
   // faster than this (m/s).
   double settle_speed = 1e-3;
-  // Contact solver: sweeps per step, and how far a contact may break the
+  // Contact solver: sweeps per solve (see split_steps), and how far a contact may break the
   // contact laws, as a velocity (a fraction of 9.81 m/s^2 times the step,
   // m/s), for a sweep to end the solve (contact_solver.hpp). A block at
   // rest then drifts by at most about tolerance x 9.81 h per second.
@@ -149,6 +149,14 @@ struct SimulationResult {
   // their neighbours), and the most contact points taking part in a step.
   long long sweeps = 0;
   int unconverged_steps = 0;
+  // Steps (and parts of steps) taken again as two half steps because their
+  // contact solve stopped at max_sweeps within twice the tolerance: split
+  // down to a quarter of the step where it must, with the same velocity
+  // tolerance (so the drift per second stays bounded as before). A step
+  // counts as unconverged when a solve of it or of a part of it ended above
+  // the tolerance. The sweeps and global steps above include the solves
+  // split away. Steps are not split while the ground turns (ground_rotation).
+  int split_steps = 0;
   int searches = 0;
   int max_active_contacts = 0;
   // The contact solve (contact_solver.hpp): its global steps and the

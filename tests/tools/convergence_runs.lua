@@ -14,8 +14,8 @@ local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
 local function line(name, sim)
-  return ("%s: steps %d unconverged %d max_residual %.3g m/s at %s s, %.1f sweeps and %.2f global steps a step, "
-    .. "%.2f s, largest displacement %.6g m"):format(name, sim.steps, sim.unconverged_steps, sim.max_residual,
+  return ("%s: steps %d unconverged %d split %d max_residual %.3g m/s at %s s, %.1f sweeps and %.2f global steps a step, "
+    .. "%.2f s, largest displacement %.6g m"):format(name, sim.steps, sim.unconverged_steps, sim.split_steps, sim.max_residual,
     tostring(sim.max_residual_time), sim.sweeps / sim.steps, sim.global_steps / sim.steps, sim.seconds,
     sim.max_displacement)
 end
