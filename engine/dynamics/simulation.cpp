@@ -155,13 +155,14 @@ private:
                     const std::vector<Vec3>& angular, double warm_scale);
   // One step of length h (s) from the present state, the ground's
   // acceleration going from ground_start to ground_end over it, ending at
-  // end_time (s). False, with nothing changed, when its contact solve did
-  // not converge and may_split: the caller takes it in halves. Otherwise
-  // the step is taken and converged is cleared if its solve did not.
+  // end_time (s). False, with nothing changed, when may_split and its
+  // contact solve stalled within kSplitWithin times the tolerance: the
+  // caller takes it in halves. Otherwise the step is taken, and converged is
+  // cleared if its solve did not converge.
   bool advance(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, bool may_split,
                bool& converged);
   // A step of length h, split in halves up to `splits` times over where
-  // a contact solve does not converge.
+  // its contact solve stalls near its answer (advance).
   void step(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, int splits,
             bool& converged);
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
