@@ -304,6 +304,8 @@ TEST(StudyJob, ThreadsFollowWorkersAndRowsLeft) {
   EXPECT_EQ(study_threads(0, true, 12), std::min(cores, 12) > 1 ? std::min(cores, 12) : 0);
 }
 
+namespace {
+
 // A counting worker for the calling thread, so a test sees which path ran.
 class CountingWorker : public ProductWorker {
 public:
@@ -313,6 +315,8 @@ public:
   }
   int runs = 0;
 };
+
+}  // namespace
 
 TEST(StudyJob, OneWorkerRunsOnTheCallingThreadAndResumesFromTheStore) {
   StudyJob job;
@@ -371,6 +375,8 @@ TEST(StudyJob, SeveralWorkersRunOnThreadsOfTheirOwn) {
   EXPECT_THROW(run_study_job(job, local, {}), InvalidArgument);
 }
 
+namespace {
+
 // Stops the study (as Ctrl-C does) after `stop_after` rows.
 class InterruptingWorker : public ProductWorker {
 public:
@@ -384,6 +390,8 @@ private:
   int stop_after_;
   int runs_ = 0;
 };
+
+}  // namespace
 
 TEST(StudyJob, AnInterruptedStudyKeepsItsFinishedRows) {
   StudyJob job;
