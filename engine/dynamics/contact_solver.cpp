@@ -46,9 +46,8 @@ constexpr int kGlobalStepsWorse = 3;
 // and 2.44 with 8; 16 took 8.7 and 2.20, but left the wall at rest with
 // 0.55 global steps a step instead of 0.08 (a step finished by sweeps just
 // below the tolerance leaves the next a worse start than one a global step
-// finished). Once that many sweeps have
-// passed since the first global step skipped and the solve has not
-// finished, the guess was wrong (a collapse's hard steps, where the
+// finished). Once that many sweeps have passed since the first global step
+// skipped and the solve has not finished, the guess was wrong (a collapse's hard steps, where the
 // residual falls fast for a few sweeps, then stalls), and the solve takes
 // every global step from then on: six arch collapses (16-24 voussoirs,
 // 8,700 steps) left 683 steps unconverged when the guess was never

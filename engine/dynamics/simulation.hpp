@@ -106,10 +106,11 @@ struct SimulationOptions {
   // The run has settled when at the end no point of any free block moves
   // faster than this (m/s).
   double settle_speed = 1e-3;
-  // Contact solver: sweeps per solve (see split_steps), and how far a contact may break the
-  // contact laws, as a velocity (a fraction of 9.81 m/s^2 times the step,
-  // m/s), for a sweep to end the solve (contact_solver.hpp). A block at
-  // rest then drifts by at most about tolerance x 9.81 h per second.
+  // Contact solver: sweeps per solve (see split_steps), and how far a
+  // contact may break the contact laws, as a velocity (a fraction of 9.81
+  // m/s^2 times the step, m/s), for a sweep to end the solve
+  // (contact_solver.hpp). A block at rest then drifts by at most about
+  // tolerance x 9.81 h per second.
   int max_sweeps = 1000;
   double tolerance = 1e-4;
   // Threads of the contact solve (contact_solver.hpp): 0, one per core (at
