@@ -33,10 +33,8 @@ struct ContactPoint {
   Vec3 normal = Vec3::Zero();      // b's outward face normal, reference frame (unit)
   double offset = 0.0;             // normal . (y - b's reference centroid) = offset on the plane (m)
   // Impulse (N s, world frame) the contact gave block b in the last step
-  // (block a got its opposite): the solver's warm start; and in the step
-  // before (the warm start's extrapolation while the ground shakes).
+  // (block a got its opposite): the solver's warm start.
   Vec3 impulse = Vec3::Zero();
-  Vec3 earlier_impulse = Vec3::Zero();
 };
 
 // A contact point's place now: the point (m, world), the unit normal from a

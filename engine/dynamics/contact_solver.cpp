@@ -32,6 +32,9 @@ constexpr double kSettled = 0.1;
 // 11.6 sweeps and 2.62 global steps a step (the solves 2.28 s of 0.1 s), 4
 // took 10.8 and 3.18 (2.88 s), 8 took 11.7 and 2.72.
 constexpr int kSweepsPerGlobalStep = 6;
+// Global steps in a row at most, each without the points the one before
+// left pulling.
+constexpr int kGlobalStepRepeats = 2;
 // A solve stops taking global steps once this many left a larger residual
 // than the sweep before them.
 constexpr int kGlobalStepsWorse = 3;
@@ -857,7 +860,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
         // Points the step left pulling are released, and the step taken
         // again without them, a few times at most.
         int released = global_step();
-        for (int again = 1; again < settings.global_step_repeats && released > 0; ++again) released = global_step();
+        for (int again = 1; again < kGlobalStepRepeats && released > 0; ++again) released = global_step();
         global_steps = released != -2;
         std::fill(settled.begin(), settled.end(), 0);
         before_global_step = released >= 0 ? report.residual : -1.0;

@@ -43,8 +43,7 @@
 // (each on M dv of the one before: what is left is known without a pass
 // over the rows).
 // The impulses are projected on the cones; points the step left pulling
-// are released and the step taken once more without them (once by
-// default: global_step_repeats). Then the
+// are released and the step taken once more without them. Then the
 // sweeps go on: they alone decide convergence, with the same residual
 // test, so the answer's accuracy is the sweeps'. A solve stops taking
 // global steps after three left the residual larger than before them.
@@ -116,12 +115,6 @@ struct ContactSolverSettings {
   double velocity_tolerance = 1e-9;
   // Take global steps between the sweeps (see above); false: sweeps only.
   bool global_steps = true;
-  // Global steps in a row at most, each without the points the one before
-  // left pulling (at least 1). A simulation takes 1 where its warm start
-  // follows the load's change (simulation.cpp): the first step then leaves
-  // few points pulling, and the sweeps release them for less than a
-  // factorisation.
-  int global_step_repeats = 2;
   // A solve that has not converged after this many sweeps (and after each
   // as many more) takes semismooth Newton iterations on its rows
   // (contact_newton.hpp) before sweeping on; 0: never.

@@ -42,22 +42,6 @@ constexpr int kParallelPoints = 4000;
 // times the time.
 constexpr int kStepSplits = 2;
 constexpr double kSplitWithin = 2.0;
-// While the ground's acceleration changes (a shaken structure), a step's
-// contact impulses change by about as much as the last step's did, so a
-// point pressed in the last two steps starts from their linear
-// extrapolation, 2 P_n - P_(n-1) (steps of one length), and the solve
-// takes one global step at a time instead of two
-// (ContactSolverSettings::global_step_repeats): the first leaves few
-// points pulling, which the sweeps release for less than a factorisation.
-// On the 1,006-block wall shaken at 0.3 g, 2 Hz (0.1 s): 11.6 sweeps and
-// 2.62 global steps a step before, 3.6 and 2.04 with the extrapolation
-// alone, 9.7 and 1.20 with both; 10,006 blocks: 10.8 and 2.34 before, 8.8
-// and 1.14 after. Either alone was tried on every step: the points' share
-// of a face's load differs from step to step where nothing drives it, so
-// the extrapolated start of a wall at rest took 1.18 global steps a step
-// against 0.06; one global step at a time left the six collapsing arches
-// of tests/tools/convergence_runs.lua 594 unconverged steps against 435.
-constexpr int kExtrapolatedGlobalStepRepeats = 1;
 
 [[noreturn]] void fail(const std::string& what, double value, const std::string& allowed) {
   throw InvalidArgument("simulate: " + what + " must be " + allowed + ", got " + shortest_number(value));
@@ -166,11 +150,9 @@ private:
   void search(const std::vector<int>& moved);
   std::vector<int> neighbourhood(const std::vector<int>& moved) const;
   void free_velocities(const Vec3& ground);  // and the ground's turning, rotation_
-  // warm_scale: the points' last impulses times it start the solve;
-  // extrapolate: pressed points start from the linear extrapolation of
-  // their last two impulses instead.
+  // warm_scale: the points' last impulses times it start the solve.
   void contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
-                    const std::vector<Vec3>& angular, double warm_scale, bool extrapolate);
+                    const std::vector<Vec3>& angular, double warm_scale);
   // One step of length h (s) from the present state, the ground's
   // acceleration going from ground_start to ground_end over it, ending at
   // end_time (s). False, with nothing changed, when may_split and its
@@ -206,13 +188,6 @@ private:
   const SimulationOptions& o_;
   const int n_;
   double h_ = 0.0, tolerance_ = 0.0, distance_ = 0.0;
-  // The steps taken last (their impulses are the contact points' impulse
-  // and earlier_impulse): lengths (s), and whether the ground's
-  // acceleration changed over the last.
-  struct TakenSteps {
-    double last = 0.0, earlier = 0.0;
-    bool ground_changed = false;
-  } taken_;
   std::vector<BodyData> data_;
   std::vector<bool> fixed_;
   std::vector<RigidPose> poses_, start_, searched_;
@@ -342,7 +317,6 @@ void Run::search(const std::vector<int>& moved) {
       if (d <= nearest) {
         nearest = d;
         c.impulse = previous->impulse;
-        c.earlier_impulse = previous->earlier_impulse;
       }
     }
   }
@@ -399,7 +373,7 @@ void Run::free_velocities(const Vec3& ground) {
 // of the step's start, is within the contact tolerance, from the highest
 // down; `which` gets their indices into contacts_.
 void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, const std::vector<Vec3>& linear,
-                       const std::vector<Vec3>& angular, double warm_scale, bool extrapolate) {
+                       const std::vector<Vec3>& angular, double warm_scale) {
   candidates_.resize(contacts_.size());
   geometry_loop_.run(static_cast<int>(contacts_.size()), [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
@@ -415,9 +389,7 @@ void Run::contact_rows(std::vector<int>& which, std::vector<ContactRow>& rows, c
       row = row_at(c, g);
       row.friction = o_.friction;
       row.target_normal = o_.restitution * std::max(0.0, -approach);
-      const Vec3 last = row.frame * c.impulse;
-      const bool pressed = last.x() > 0.0 && (row.frame * c.earlier_impulse).x() > 0.0;
-      row.impulse = warm_scale * (extrapolate && pressed ? Vec3(2.0 * last - row.frame * c.earlier_impulse) : last);
+      row.impulse = warm_scale * (row.frame * c.impulse);
     }
   });
   which.clear();
@@ -499,15 +471,11 @@ void Run::correct_overlaps(const std::vector<int>& active) {
 bool Run::advance(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, bool may_split,
                   bool& converged) {
   const double warm_scale = h / h_;  // impulses scale with the step
-  const bool ground_changes = ground_end != ground_start;
-  const bool extrapolate = ground_changes && taken_.ground_changed && h == taken_.last && h == taken_.earlier;
   h_ = h;
   const std::vector<Vec3> linear0 = bodies_.linear, angular0 = bodies_.angular;
   free_velocities((1.0 - o_.theta) * ground_start + o_.theta * ground_end);
-  contact_rows(active_, rows_, linear0, angular0, warm_scale, extrapolate);
-  ContactSolverSettings settings = solver_;
-  if (extrapolate) settings.global_step_repeats = kExtrapolatedGlobalStepRepeats;
-  const ContactSolverReport report = contact_solver_.solve(rows_, bodies_, settings);
+  contact_rows(active_, rows_, linear0, angular0, warm_scale);
+  const ContactSolverReport report = contact_solver_.solve(rows_, bodies_, solver_);
   result_.sweeps += report.sweeps;
   result_.global_steps += report.global_steps;
   result_.factorizations += report.factorizations;
@@ -524,12 +492,8 @@ bool Run::advance(double h, const Vec3& ground_start, const Vec3& ground_end, do
     result_.max_residual_blocks = {rows_[report.worst_row].a, rows_[report.worst_row].b};
   }
   result_.max_active_contacts = std::max(result_.max_active_contacts, static_cast<int>(rows_.size()));
-  for (ContactPoint& c : contacts_) {
-    c.earlier_impulse = c.impulse;
-    c.impulse.setZero();
-  }
+  for (ContactPoint& c : contacts_) c.impulse.setZero();
   for (size_t r = 0; r < rows_.size(); ++r) contacts_[active_[r]].impulse = rows_[r].frame.transpose() * rows_[r].impulse;
-  taken_ = {h, taken_.last, ground_changes};
   integrate(linear0, angular0);
   correct_overlaps(active_);
   return true;

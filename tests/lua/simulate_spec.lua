@@ -205,26 +205,6 @@ describe("ashlar.simulate", function()
     assert.is_true(split.max_displacement < 1e-7 and one.max_displacement < 1e-7)
   end)
 
-  it("starts a shaken wall's steps from the extrapolated impulses: about one global step a step", function()
-    -- A wall of 106 blocks shaken at 0.3 g, 2 Hz for 50 steps: the
-    -- impulses change with the shake, and a step starting from the last
-    -- two steps' extrapolation takes one global step (a factorisation)
-    -- and a few sweeps: 56 global steps and 253 sweeps in all, the
-    -- first step from zero impulses included, against 114 and 481 from
-    -- the last step's impulses. At rest nothing is extrapolated: 8
-    -- global steps either way. Nothing may move (0.3 g is below the
-    -- friction limit and the bricks' uplift threshold).
-    local s = models.wall{ length = 10 * 0.24, height = 10 * 0.07, brick = { 0.24, 0.07 } }
-    local shaken = ashlar.simulate(s, { duration = 0.05, friction = 0.6,
-      ground_acceleration = function(t) return 0.3 * 9.81 * math.sin(4 * math.pi * t), 0, 0 end })
-    local still = ashlar.simulate(s, { duration = 0.05, friction = 0.6 })
-    assert.equal(0, shaken.unconverged_steps)
-    assert.is_true(shaken.global_steps <= 1.5 * shaken.steps, tostring(shaken.global_steps))
-    assert.is_true(shaken.sweeps <= 7 * shaken.steps, tostring(shaken.sweeps))
-    assert.is_true(still.global_steps <= 0.25 * still.steps, tostring(still.global_steps))
-    assert.is_true(shaken.max_displacement < 1e-7 and still.max_displacement < 1e-7)
-  end)
-
   it("stops on an interrupt with what it computed and no verdict", function()
     local outcome = ashlar.sandbox{ source = [[
       local ashlar = require "ashlar"
