@@ -47,12 +47,12 @@ constexpr int kGlobalStepsWorse = 3;
 // 0.55 global steps a step instead of 0.08 (a step finished by sweeps just
 // below the tolerance leaves the next a worse start than one a global step
 // finished). Once that many sweeps have passed since the first global step
-// skipped and the solve has not finished, the guess was wrong (a collapse's hard steps, where the
-// residual falls fast for a few sweeps, then stalls), and the solve takes
-// every global step from then on: six arch collapses (16-24 voussoirs,
-// 8,700 steps) left 683 steps unconverged when the guess was never
-// checked, 584 with this, 545 without skipping; the shaken wall 8.7 sweeps
-// and 2.60 global steps a step.
+// skipped and the solve has not finished, the guess was wrong (a
+// collapse's hard steps, where the residual falls fast for a few sweeps,
+// then stalls), and the solve takes every global step from then on: six
+// arch collapses (16-24 voussoirs, 8,700 steps) left 683 steps unconverged
+// when the guess was never checked, 584 with this, 545 without skipping;
+// the shaken wall 8.7 sweeps and 2.60 global steps a step.
 constexpr double kSweepsAhead = 8.0;
 // The global step's compliance: each constrained component c of row k
 // gets E = kCompliance W_cc s_k (m/s per N s), so that a solve leaves

@@ -470,7 +470,9 @@ void Run::correct_overlaps(const std::vector<int>& active) {
 
 bool Run::advance(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, bool may_split,
                   bool& converged) {
-  const double warm_scale = h / h_;  // impulses scale with the step
+  // The contact points' impulses are the last step's, of length h_: they
+  // scale with the step.
+  const double last_h = h_, warm_scale = h / last_h;
   h_ = h;
   const std::vector<Vec3> linear0 = bodies_.linear, angular0 = bodies_.angular;
   free_velocities((1.0 - o_.theta) * ground_start + o_.theta * ground_end);
@@ -481,6 +483,7 @@ bool Run::advance(double h, const Vec3& ground_start, const Vec3& ground_end, do
   result_.factorizations += report.factorizations;
   if (!report.converged && may_split && report.residual <= kSplitWithin * solver_.velocity_tolerance) {
     // Taken again in halves, from where it began.
+    h_ = last_h;
     bodies_.linear = linear0;
     bodies_.angular = angular0;
     return false;
