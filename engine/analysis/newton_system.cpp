@@ -16,7 +16,7 @@ NewtonSystem<D>::NewtonSystem(const EquilibriumProblem& problem, const Inequalit
       iterate_(iterate),
       phi_factors_(problem.groups.size()),
       rhs_(normal.rows()),
-      error_(NewtonVectors::sized(static_cast<int>(problem.groups.size()), normal.rows(), inequality.total())) {}
+      error_(NewtonVectors::sized(static_cast<int>(problem.groups.size()), normal.rows(), 0)) {}
 
 template <int D>
 void NewtonSystem<D>::assemble() {
@@ -28,13 +28,16 @@ void NewtonSystem<D>::solve(NewtonVectors& v) {
   const Eigen::VectorXd& w = iterate_.w;
   const Eigen::VectorXd& z = iterate_.z;
   const InequalityRows& ineq = inequality_;
+  const bool slack_parts = v.w.size() > 0;  // else e.w = e.z = 0, and dw, dz are not wanted
   rhs_ = -v.y;
   passes_.each_into(rhs_, [&](int k, Eigen::VectorXd& rows) {
-    // Per inequality row (c + Z g) / W, combined as G^T (...).
-    GroupRowsVector per_row =
-        (ineq.of(v.z, k) + ineq.of(z, k).cwiseProduct(ineq.of(v.w, k))).cwiseQuotient(ineq.of(w, k));
-    const Eigen::Vector4d reduced =
-        -v.x.template segment<4>(4 * k) - problem_.rules_of(problem_.groups[k]).rows.transpose() * per_row;
+    Eigen::Vector4d reduced = -v.x.template segment<4>(4 * k);
+    if (slack_parts) {
+      // Per inequality row (c + Z g) / W, combined as G^T (...).
+      const GroupRowsVector per_row =
+          (ineq.of(v.z, k) + ineq.of(z, k).cwiseProduct(ineq.of(v.w, k))).cwiseQuotient(ineq.of(w, k));
+      reduced.noalias() -= problem_.rules_of(problem_.groups[k]).rows.transpose() * per_row;
+    }
     const Eigen::Vector4d t = solve_phi(phi_factors_[k], reduced);
     v.x.template segment<4>(4 * k) = t;  // dx, completed below with the A^T dy part
     add_group_effect<D>(problem_.groups[k], -t, rows);
@@ -43,13 +46,17 @@ void NewtonSystem<D>::solve(NewtonVectors& v) {
   passes_.each([&](int k) {
     v.x.template segment<4>(4 * k) += solve_phi(phi_factors_[k], group_reaction<D>(problem_.groups[k], v.y));
     // dw = G dx + g
-    ineq.of(v.w, k).noalias() += problem_.rules_of(problem_.groups[k]).rows * v.x.template segment<4>(4 * k);
+    if (slack_parts) {
+      ineq.of(v.w, k).noalias() += problem_.rules_of(problem_.groups[k]).rows * v.x.template segment<4>(4 * k);
+    }
   });
-  v.z = -(v.z + z.cwiseProduct(v.w)).cwiseQuotient(w);
+  if (slack_parts) v.z = -(v.z + z.cwiseProduct(v.w)).cwiseQuotient(w);
 }
 
 // Computed from the problem's data (not from phi_factors_), so that
-// solving for it corrects the rounding of the elimination.
+// solving for it corrects the rounding of the elimination. Only the x and
+// y parts: `dir`'s dw and dz are computed from its dx row by row (solve()),
+// so the last two equations hold to the rounding of one row's product.
 template <int D>
 void NewtonSystem<D>::residual(const NewtonVectors& e, const NewtonVectors& dir, NewtonVectors& out) {
   const InequalityRows& ineq = inequality_;
@@ -62,10 +69,7 @@ void NewtonSystem<D>::residual(const NewtonVectors& e, const NewtonVectors& dir,
     out.x.template segment<4>(4 * k) = e.x.template segment<4>(4 * k) +
                                        twins_.count(k) * rules.hessian.cwiseProduct(dxk) -
                                        group_reaction<D>(v, dir.y) - rules.rows.transpose() * ineq.of(dir.z, k);
-    ineq.of(out.w, k) = ineq.of(e.w, k) - ineq.of(dir.w, k);
-    ineq.of(out.w, k).noalias() += rules.rows * dxk;
   });
-  out.z = e.z + iterate_.z.cwiseProduct(dir.w) + iterate_.w.cwiseProduct(dir.z);
 }
 
 // Iterative refinement: near the optimum z / w spreads over twenty orders
@@ -87,11 +91,15 @@ void NewtonSystem<D>::direction(const NewtonVectors& e, NewtonVectors& out, doub
     const double size = error_.largest();
     if (size <= target || size >= 0.5 * previous) break;
     previous = size;
-    solve(error_);  // now the correction
+    solve(error_);  // now the correction's dx and dy; its dw = G dx and dz = -Z dw / W
     out.x += error_.x;
     out.y += error_.y;
-    out.w += error_.w;
-    out.z += error_.z;
+    passes_.each([&](int k) {
+      const GroupRowsVector dw = problem_.rules_of(problem_.groups[k]).rows * error_.x.template segment<4>(4 * k);
+      inequality_.of(out.w, k) += dw;
+      inequality_.of(out.z, k) -=
+          inequality_.of(iterate_.z, k).cwiseProduct(dw).cwiseQuotient(inequality_.of(iterate_.w, k));
+    });
   }
 }
 

@@ -52,9 +52,11 @@ public:
 
 private:
   // Solves in place: `v` holds the right-hand side on entry and the
-  // direction on return.
+  // direction on return. With v.w and v.z empty, for e.w = e.z = 0, and
+  // only dx and dy computed.
   void solve(NewtonVectors& v);
-  // How far `dir` is from solving the system for `e`, into `out`.
+  // How far `dir` is from solving the first two equations for `e`, into
+  // out.x and out.y.
   void residual(const NewtonVectors& e, const NewtonVectors& dir, NewtonVectors& out);
 
   const EquilibriumProblem& problem_;
@@ -65,7 +67,7 @@ private:
   const InteriorPointSolution& iterate_;
   std::vector<PhiFactor> phi_factors_;  // per group, at the last assemble()
   Eigen::VectorXd rhs_;                 // the normal equations' right-hand side
-  NewtonVectors error_;                 // a direction's residual, then its correction
+  NewtonVectors error_;                 // x, y: a direction's residual, then its correction
 };
 
 extern template class NewtonSystem<3>;
