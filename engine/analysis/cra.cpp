@@ -306,7 +306,8 @@ private:
     // Balance: every group's effect on its blocks' rows, nonzeros only.
     for (int k = 0; k < vertices_; ++k) {
       const ForceGroup& g = problem_.groups[k];
-      for (const auto& [first, effect] : {std::pair{g.row_a, &g.on_a}, std::pair{g.row_b, &g.on_b}}) {
+      const Eigen::Matrix<double, 6, 4> on_a = g.on_a(rows_);
+      for (const auto& [first, effect] : {std::pair{g.row_a, &on_a}, std::pair{g.row_b, &g.on_b}}) {
         if (first < 0) continue;
         for (int r = 0; r < rows_; ++r) {
           for (int j = 0; j < columns; ++j) {
@@ -320,6 +321,7 @@ private:
     const double eps = settings_.overlap;
     for (int k = 0; k < vertices_; ++k) {
       const ForceGroup& g = problem_.groups[k];
+      const Eigen::Matrix<double, 6, 4> on_a = g.on_a(rows_);
       const int at = stride * k;
       const Index row = problem_.row_count + per_vertex_rows_ * k;
       // d_n, d_u, d_v pair with the group columns c, f_u, f_v.
@@ -327,7 +329,7 @@ private:
       const int pairs_with[3] = {0, 2, 3};
       for (int j = 0; j < 3; ++j) {
         jacobian_.push_back({row + j, at + displacement[j], -1, 1.0});
-        for (const auto& [first, effect] : {std::pair{g.row_a, &g.on_a}, std::pair{g.row_b, &g.on_b}}) {
+        for (const auto& [first, effect] : {std::pair{g.row_a, &on_a}, std::pair{g.row_b, &g.on_b}}) {
           if (first < 0) continue;
           for (int r = 0; r < rows_; ++r) {
             const double value = (*effect)(r, pairs_with[j]);

@@ -141,14 +141,14 @@ const std::array<int, 6>& balance_rows(bool planar) {
 
 Eigen::Matrix<double, 6, 4> contact_vertex_effect(const Interface& contact, const Vec3& position,
                                           const Vec3& centroid, double length_unit,
-                                          double sign, const std::array<int, 6>& rows) {
+                                          const std::array<int, 6>& rows) {
   const Vec3 arm = (position - centroid) / length_unit;
   Eigen::Matrix<double, 6, 4> effect;
   const Vec3 directions[3] = {contact.normal, contact.u, contact.v};
   const int columns[3] = {0, 2, 3};
   for (int k = 0; k < 3; ++k) {
-    effect.block<3, 1>(0, columns[k]) = sign * directions[k];
-    effect.block<3, 1>(3, columns[k]) = sign * arm.cross(directions[k]);
+    effect.block<3, 1>(0, columns[k]) = directions[k];
+    effect.block<3, 1>(3, columns[k]) = arm.cross(directions[k]);
   }
   effect.col(1) = -effect.col(0);  // tension pulls where compression pushes
   Eigen::Matrix<double, 6, 4> ordered;
@@ -404,6 +404,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
     const Interface& contact = interfaces[k];
     const int row_a = problem.row_of_block[contact.a], row_b = problem.row_of_block[contact.b];
     if (row_a < 0 && row_b < 0) continue;  // between supports, or floating
+    const Vec3& centroid_a = structure.block(contact.a).centroid();
+    const Vec3& centroid_b = structure.block(contact.b).centroid();
     for (const Vec3& p : contact.vertices) {
       ForceGroup vertex;
       vertex.source = static_cast<int>(k);
@@ -412,14 +414,9 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
       vertex.row_a = row_a;
       vertex.row_b = row_b;
       vertex.position = p;
-      vertex.on_b =
-          contact_vertex_effect(contact, p, structure.block(contact.b).centroid(), lu, 1.0, rows);
-      vertex.on_a =
-          contact_vertex_effect(contact, p, structure.block(contact.a).centroid(), lu, -1.0, rows);
-      if (given_strength) {  // joints without tension: its unknown only pays for excess friction
-        vertex.on_a.col(1).setZero();
-        vertex.on_b.col(1).setZero();
-      }
+      vertex.on_b = contact_vertex_effect(contact, p, centroid_b, lu, rows);
+      vertex.lever = (centroid_a - centroid_b) / lu;  // (p - centroid_b) - (p - centroid_a)
+      if (given_strength) vertex.on_b.col(1).setZero();  // joints without tension: its unknown only pays for excess friction
       problem.groups.push_back(vertex);
     }
   }
@@ -440,8 +437,10 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
     const Vec3 along = (cables[c].to.point - cables[c].from.point) / cable_length[c];
     const Vec3* centroid_a = body_a < n ? &structure.block(body_a).centroid() : nullptr;
     const Vec3* centroid_b = body_b < n ? &structure.block(body_b).centroid() : nullptr;
-    cable.on_a = cable_effect(along, cables[c].from.point, centroid_a, lu, rows);
     cable.on_b = cable_effect(-along, cables[c].to.point, centroid_b, lu, rows);
+    const Vec3 arm_a = centroid_a ? Vec3(cables[c].from.point - *centroid_a) : Vec3::Zero();
+    const Vec3 arm_b = centroid_b ? Vec3(cables[c].to.point - *centroid_b) : Vec3::Zero();
+    cable.lever = (arm_b - arm_a) / lu;
     problem.groups.push_back(cable);
     has_cable[body_a] = has_cable[body_a] || cable.row_a >= 0;
     has_cable[body_b] = has_cable[body_b] || cable.row_b >= 0;
@@ -470,8 +469,8 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
       slack.block_a = body < n ? body : -1;
       slack.row_a = row_of_body(body);
       const double scale = !inertial ? 1.0 : std::sqrt(rows[r] < 3 ? mass : mass * gyration * gyration / 18.0);
-      slack.on_a(r, 0) = scale;
-      slack.on_a(r, 1) = -scale;
+      slack.set_alone_on_a(r, 0, scale);
+      slack.set_alone_on_a(r, 1, -scale);
       problem.groups.push_back(slack);
     }
   }
@@ -533,6 +532,15 @@ double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen
   return worst;
 }
 
+Eigen::Matrix<double, 6, 4> ForceGroup::on_a(int block_rows) const {
+  const std::array<int, 6>& order = balance_rows(block_rows == 3);  // row r holds component order[r]
+  Eigen::Matrix<double, 6, 4> at_b, at_a, out;
+  for (int r = 0; r < 6; ++r) at_b.row(order[r]) = on_b.row(r);
+  for (int c = 0; c < 4; ++c) at_a.col(c) = effect_at_a<6>(at_b.col(c));
+  for (int r = 0; r < 6; ++r) out.row(r) = at_a.row(order[r]);
+  return out;
+}
+
 int EquilibriumProblem::vertical_row() const {
   const std::array<int, 6>& rows = balance_rows(block_rows == 3);
   return static_cast<int>(std::find(rows.begin(), rows.end(), 2) - rows.begin());
@@ -543,14 +551,15 @@ Eigen::SparseMatrix<double> EquilibriumProblem::equality_matrix() const {
   entries.reserve(groups.size() * 48);
   for (size_t k = 0; k < groups.size(); ++k) {
     const ForceGroup& v = groups[k];
+    const Eigen::Matrix<double, 6, 4> on_a = v.on_a(block_rows);
     for (int col = 0; col < 4; ++col) {
       const int variable = 4 * static_cast<int>(k) + col;
       for (int r = 0; r < block_rows; ++r) {
         if (v.row_b >= 0 && v.on_b(r, col) != 0.0) {
           entries.emplace_back(v.row_b + r, variable, v.on_b(r, col));
         }
-        if (v.row_a >= 0 && v.on_a(r, col) != 0.0) {
-          entries.emplace_back(v.row_a + r, variable, v.on_a(r, col));
+        if (v.row_a >= 0 && on_a(r, col) != 0.0) {
+          entries.emplace_back(v.row_a + r, variable, on_a(r, col));
         }
       }
     }

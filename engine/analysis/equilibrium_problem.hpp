@@ -114,11 +114,54 @@ struct ForceGroup {
   int row_a = -1, row_b = -1;  // first of each body's balance rows, -1 for supports
   Vec3 position = Vec3::Zero();  // m: contact vertex
   double bound = 0.0;  // scaled: a bounded cable's max_tension; a contact vertex's shear strength (FrictionLaw)
-  // Scaled effect of the four unknowns on the balance rows of body b and of
-  // body a: force, then moment about the block's centroid / L. Only the
-  // first block_rows rows count: for planar problems they are Fx, Fz, My.
+  // Scaled effect of the four unknowns on the balance rows of body b: force,
+  // then moment about the block's centroid / L. Only the first block_rows
+  // rows count: for planar problems they are Fx, Fz, My (balance_rows).
   Eigen::Matrix<double, 6, 4> on_b = Eigen::Matrix<double, 6, 4>::Zero();
-  Eigen::Matrix<double, 6, 4> on_a = Eigen::Matrix<double, 6, 4>::Zero();
+  // Body a gets the opposite force at its own arm (a contact's two blocks,
+  // a cable's two ends): its effect, on_a(), is -on_b with lever x (b's
+  // force) added to its moments, lever = (arm at b - arm at a) / L, an arm
+  // 0 at a junction (no moment rows). Derived, not stored: a second matrix
+  // was 192 bytes a group, 200 MB on a 100,052-block vault. A group on
+  // body a alone (slack, weight: row_b -1) keeps the negative of its effect
+  // in on_b and lever 0 (set_alone_on_a).
+  Vec3 lever = Vec3::Zero();
+
+  // The first D rows (D = block_rows: 6, or 3 planar) of body a's effect
+  // T at_b of what has the effect `at_b` on body b (effect vectors or
+  // columns), and T^T m: what multipliers m on a's rows give through b's.
+  template <int D>
+  Eigen::Matrix<double, D, 1> effect_at_a(const Eigen::Matrix<double, D, 1>& at_b) const {
+    Eigen::Matrix<double, D, 1> out = -at_b;
+    if constexpr (D == 6) {
+      out.template tail<3>() += lever.cross(at_b.template head<3>());
+    } else {  // My += (lever x F)_y
+      out(2) += lever.z() * at_b(0) - lever.x() * at_b(1);
+    }
+    return out;
+  }
+  template <int D>
+  Eigen::Matrix<double, D, 1> multipliers_at_a(const Eigen::Matrix<double, D, 1>& m) const {
+    Eigen::Matrix<double, D, 1> out = -m;
+    if constexpr (D == 6) {
+      out.template head<3>() += m.template tail<3>().cross(lever);
+    } else {
+      out(0) += lever.z() * m(2);
+      out(1) -= lever.x() * m(2);
+    }
+    return out;
+  }
+  // The first D rows of body a's effect.
+  template <int D>
+  Eigen::Matrix<double, D, 4> on_a_rows() const {
+    Eigen::Matrix<double, D, 4> out;
+    for (int c = 0; c < 4; ++c) out.col(c) = effect_at_a<D>(on_b.template block<D, 1>(0, c));
+    return out;
+  }
+  // All six rows of it, in the order of a problem with `block_rows` rows.
+  Eigen::Matrix<double, 6, 4> on_a(int block_rows) const;
+  // Entry (row, column) of body a's effect, for a group on a alone.
+  void set_alone_on_a(int row, int column, double value) { on_b(row, column) = -value; }
 };
 
 // add_effect and reaction of EquilibriumProblem for D = block_rows balance
@@ -126,20 +169,17 @@ struct ForceGroup {
 // times).
 template <int D>
 void add_group_effect(const ForceGroup& v, const Eigen::Vector4d& forces, Eigen::VectorXd& rows) {
-  if (v.row_a >= 0) rows.segment<D>(v.row_a).noalias() += v.on_a.topRows<D>() * forces;
-  if (v.row_b >= 0) rows.segment<D>(v.row_b).noalias() += v.on_b.topRows<D>() * forces;
+  const Eigen::Matrix<double, D, 1> at_b = v.on_b.topRows<D>() * forces;
+  if (v.row_a >= 0) rows.segment<D>(v.row_a) += v.effect_at_a<D>(at_b);
+  if (v.row_b >= 0) rows.segment<D>(v.row_b) += at_b;
 }
 
 template <int D>
 Eigen::Vector4d group_reaction(const ForceGroup& v, const Eigen::VectorXd& multipliers) {
-  Eigen::Vector4d out = Eigen::Vector4d::Zero();
-  if (v.row_a >= 0) {
-    out.noalias() += v.on_a.topRows<D>().transpose() * multipliers.segment<D>(v.row_a);
-  }
-  if (v.row_b >= 0) {
-    out.noalias() += v.on_b.topRows<D>().transpose() * multipliers.segment<D>(v.row_b);
-  }
-  return out;
+  Eigen::Matrix<double, D, 1> m = Eigen::Matrix<double, D, 1>::Zero();
+  if (v.row_a >= 0) m = v.multipliers_at_a<D>(multipliers.segment<D>(v.row_a));
+  if (v.row_b >= 0) m += multipliers.segment<D>(v.row_b);
+  return v.on_b.topRows<D>().transpose() * m;
 }
 
 struct EquilibriumProblem {
@@ -224,13 +264,13 @@ double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen
 // first.
 const std::array<int, 6>& balance_rows(bool planar);
 
-// Columns (c, s, f_u, f_v) of the balance rows of a block with centroid
-// `centroid` (m) for a contact force acting on it at `position` (m), in the
-// frame of `contact`; sign +1 for block b, -1 for block a; moments about the
+// Columns (c, s, f_u, f_v) of the balance rows of block b, with centroid
+// `centroid` (m), for a contact force acting on it at `position` (m), in
+// the frame of `contact` (block a's: ForceGroup::on_a); moments about the
 // centroid divided by `length_unit` (m); rows in the order `rows`.
 Eigen::Matrix<double, 6, 4> contact_vertex_effect(const Interface& contact, const Vec3& position,
                                                   const Vec3& centroid, double length_unit,
-                                                  double sign, const std::array<int, 6>& rows);
+                                                  const std::array<int, 6>& rows);
 
 // The right-hand side of a body's six balance rows (Fx, Fy, Fz, Mx, My, Mz,
 // scaled) for a force `force` (N) applied at `at` (m): moments about

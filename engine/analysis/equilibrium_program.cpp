@@ -58,9 +58,10 @@ int EquilibriumProgram::add_group_column(const EquilibriumProblem& problem, int 
                                          double lower, double upper) {
   const ForceGroup& group = problem.groups[k];
   const int column = add_column(lower, upper, k, unknowns);
+  const Eigen::Matrix<double, 6, 4> on_a = group.on_a(problem.block_rows);
   for (int r = 0; r < problem.block_rows; ++r) {
     if (group.row_a >= 0) {
-      const double entry = group.on_a.row(r).dot(unknowns);
+      const double entry = on_a.row(r).dot(unknowns);
       if (entry != 0.0) add_entry(group.row_a + r, column, entry);
     }
     if (group.row_b >= 0) {

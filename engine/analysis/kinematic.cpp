@@ -169,7 +169,7 @@ EquilibriumResult analyze_kinematic(const Structure& structure, const AnalysisSe
     for (size_t k = 0; k < problem.groups.size(); ++k) {
       const ForceGroup& g = problem.groups[k];
       if (g.kind != GroupKind::slack) continue;
-      virtual_loads += std::abs((x(4 * k) - x(4 * k + 1)) * g.on_a(g.component, 0));
+      virtual_loads += std::abs((x(4 * k) - x(4 * k + 1)) * g.on_b(g.component, 0));  // on a alone: -on_b
     }
     result.infeasibility = virtual_loads / std::max(problem.body_count, 1);
   }

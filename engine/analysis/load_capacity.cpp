@@ -123,7 +123,7 @@ public:
     const int multiple = multiple_group_;
     ForceGroup group = maximum_ ? maximum_->problem().groups[multiple] : program_.groups[multiple];
     group.row_a = row;
-    group.on_a(vertical, 0) = -weight;
+    group.set_alone_on_a(vertical, 0, -weight);
     group.bound = cap;
     Eigen::VectorXd rhs = rhs_;
     rhs(row + vertical) -= weight;
@@ -177,10 +177,7 @@ private:
     groups.erase(std::remove_if(groups.begin(), groups.end(),
                                 [](const ForceGroup& group) { return group.kind != GroupKind::contact_vertex; }),
                  groups.end());
-    for (ForceGroup& group : groups) {  // tension acts on no block
-      group.on_a.col(1).setZero();
-      group.on_b.col(1).setZero();
-    }
+    for (ForceGroup& group : groups) group.on_b.col(1).setZero();  // tension acts on no block
     // Rows c >= 0 and the friction rows, without s >= 0.
     GroupRules& contact = program_.rules[static_cast<int>(GroupKind::contact_vertex)];
     const Eigen::Matrix<double, Eigen::Dynamic, 4> rows = contact.rows;

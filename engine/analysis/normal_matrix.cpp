@@ -110,7 +110,7 @@ void NormalMatrix::assemble(const EquilibriumProblem& problem, const std::vector
       // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
       BlockByVertexD a_part, b_part;
       if (v.row_a >= 0 && (owned(a) || ab)) {
-        a_part = divide_by_factor<D>(v.on_a.topRows<D>(), phi_factors[k]);
+        a_part = divide_by_factor<D>(v.on_a_rows<D>(), phi_factors[k]);
         if (owned(a)) add_product(a, slot.aa, a_part, a_part, true);
       }
       if (v.row_b >= 0 && (owned(b) || ab)) {

@@ -144,9 +144,10 @@ private:
     const bool swapped = !same_order && side_maps(group.block_a, group.row_a, image.block_b, image.row_b) &&
                          side_maps(group.block_b, group.row_b, image.block_a, image.row_a);
     if (!same_order && !swapped) return false;
-    const Effect on_a = t * group.on_a, on_b = t * group.on_b;
-    const Effect& image_on_a = same_order ? image.on_a : image.on_b;
-    const Effect& image_on_b = same_order ? image.on_b : image.on_a;
+    const Effect image_a = image.on_a_rows<6>();
+    const Effect on_a = t * group.on_a_rows<6>(), on_b = t * group.on_b;
+    const Effect& image_on_a = same_order ? image_a : image.on_b;
+    const Effect& image_on_b = same_order ? image.on_b : image_a;
     for (const Eigen::Matrix4d& s : permutations_[static_cast<int>(group.kind)]) {
       if ((group.row_a < 0 || same_scaled(image_on_a * s, on_a)) &&
           (group.row_b < 0 || same_scaled(image_on_b * s, on_b))) {

@@ -8,8 +8,8 @@ namespace ashlar {
 namespace {
 
 // Whether contact vertices p and q are twins: the same rules, bodies and
-// bound, and the same effect on the d balance rows to rounding. Effects are
-// scaled, O(1) per unit force.
+// bound, and the same effect on the d balance rows to rounding (on b's,
+// and the same lever for a's). Effects are scaled, O(1) per unit force.
 bool are_twins(const ForceGroup& p, const ForceGroup& q, int d) {
   constexpr double kSameEffect = 1e-13;
   auto same = [&](const Eigen::Matrix<double, 6, 4>& e, const Eigen::Matrix<double, 6, 4>& f) {
@@ -18,7 +18,8 @@ bool are_twins(const ForceGroup& p, const ForceGroup& q, int d) {
   };
   return p.kind == GroupKind::contact_vertex && q.kind == GroupKind::contact_vertex &&
          p.row_a == q.row_a && p.row_b == q.row_b && p.bound == q.bound &&
-         (p.row_a < 0 || same(p.on_a, q.on_a)) && (p.row_b < 0 || same(p.on_b, q.on_b));
+         same(p.on_b, q.on_b) &&
+         (p.row_a < 0 || (p.lever - q.lever).lpNorm<Eigen::Infinity>() <= kSameEffect * (1.0 + p.lever.lpNorm<Eigen::Infinity>()));
 }
 
 }  // namespace
@@ -66,8 +67,7 @@ EquilibriumProblem TwinGroups::merge(const EquilibriumProblem& problem) const {
   for (int j = 0; j < n; ++j) {
     ForceGroup& group = merged.groups[j];
     group = merged.groups[first_member_[j]];
-    group.on_a *= count_[j];
-    group.on_b *= count_[j];
+    group.on_b *= count_[j];  // and so on_a()
     if (group.kind == GroupKind::contact_vertex) ++merged.contact_vertex_count;
   }
   merged.groups.resize(n);

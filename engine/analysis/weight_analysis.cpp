@@ -80,7 +80,7 @@ public:
       weight.block_a = j;
       weight.row_a = row;
       weight.position = structure.block(j).centroid();
-      weight.on_a(vertical_, 0) = -1.0;  // the weight joins the loads the contacts carry
+      weight.set_alone_on_a(vertical_, 0, -1.0);  // the weight joins the loads the contacts carry
       group_of_block_[j] = static_cast<int>(problem.groups.size());
       problem.groups.push_back(weight);
     }
@@ -139,7 +139,7 @@ private:
   void set_weight_effect(int j, double effect) {
     const int k = group_of_block_[j];
     ForceGroup group = analysis_->problem().groups[k];
-    group.on_a(vertical_, 0) = effect;
+    group.set_alone_on_a(vertical_, 0, effect);
     analysis_->set_group(k, group);
   }
 

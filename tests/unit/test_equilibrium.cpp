@@ -282,7 +282,7 @@ TEST(Equilibrium, ARefittedSolverSolvesAsANewOne) {
   ForceGroup lift;
   lift.kind = GroupKind::weight;
   lift.row_a = problem.row_of_block[3];
-  lift.on_a(problem.vertical_row(), 0) = 1.0;
+  lift.set_alone_on_a(problem.vertical_row(), 0, 1.0);
   problem.groups.push_back(lift);
   EquilibriumSolver solver(problem);
   InteriorPointSolution first;

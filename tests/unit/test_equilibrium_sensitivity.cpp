@@ -51,8 +51,8 @@ EquilibriumProblem with_data(const Structure& s, EquilibriumProblem p, const Pro
     contact.u = d.frames[k][1];
     contact.v = d.frames[k][2];
     v.position = d.positions[k];
-    v.on_b = contact_vertex_effect(contact, v.position, d.centroids[v.block_b], d.length_unit, 1.0, rows);
-    v.on_a = contact_vertex_effect(contact, v.position, d.centroids[v.block_a], d.length_unit, -1.0, rows);
+    v.on_b = contact_vertex_effect(contact, v.position, d.centroids[v.block_b], d.length_unit, rows);
+    v.lever = (d.centroids[v.block_a] - d.centroids[v.block_b]) / d.length_unit;
   }
   for (int i = 0; i < s.size(); ++i) {
     const int row = p.row_of_block[i];
