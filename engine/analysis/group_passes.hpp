@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 #include "core/parallel_loop.hpp"
@@ -42,6 +43,18 @@ public:
       for (int k = begin; k < end; ++k) per_group(k, target);
     });
     for (int part = 1; part < parts; ++part) rows += row_parts_[part - 1];
+  }
+
+  // The largest of per_group(k) over every group k (0 with no groups).
+  template <typename PerGroup>
+  double largest(const PerGroup& per_group) {
+    std::vector<double> part_largest(loop_.parts(), 0.0);
+    loop_.run(groups_, [&](int begin, int end, int part) {
+      double most = 0.0;
+      for (int k = begin; k < end; ++k) most = std::max(most, per_group(k));
+      part_largest[part] = most;
+    });
+    return *std::max_element(part_largest.begin(), part_largest.end());
   }
 
 private:

@@ -134,10 +134,11 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
   GroupPasses passes(loop_, nv, balance_rows);
   IterateResiduals residuals(problem, inequality, twins_, passes);
   NewtonSystem<D> newton(problem, inequality, twins_, normal_, passes, solution);
-  // The residuals at the iterate (the Newton right-hand side, its
-  // complementarity part set per direction) and a Newton direction.
-  NewtonVectors r = NewtonVectors::sized(nv, balance_rows, m_total);
-  NewtonVectors direction = r;
+  // The residuals at the iterate (the Newton right-hand side's x and y
+  // parts; the newton system makes its w and z parts as it solves) and a
+  // Newton direction.
+  NewtonVectors r = NewtonVectors::sized(nv, balance_rows, 0);
+  NewtonVectors direction = NewtonVectors::sized(nv, balance_rows, m_total);
   BestIterate best(solution, direction, settings.inaccurate_tolerance);
   const int factorizations_before = normal_.factorizations();
 
@@ -188,8 +189,7 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
     // starting point), so it is not refined: the corrector, the step taken,
     // is.
     start = Clock::now();
-    r.z = solution.w.cwiseProduct(solution.z);
-    newton.direction(r, direction, NewtonSystem<D>::kNoRefinement);
+    newton.direction(r, {}, direction, NewtonSystem<D>::kNoRefinement);
     info.solve_seconds += seconds_since(start);
     if (starting) {
       starting = false;
@@ -197,9 +197,9 @@ InteriorPointInfo EquilibriumSolver::solve_rows(const EquilibriumProblem& proble
       continue;
     }
     // Corrector: second-order term and centring, same factorisation.
-    set_corrector_complementarity(solution, direction, mu, r.z);
+    const double centring = corrector_centring(solution, direction, mu);
     start = Clock::now();
-    newton.direction(r, direction, error_now);
+    newton.direction(r, {true, centring}, direction, error_now);
     info.solve_seconds += seconds_since(start);
     StepLengths step;
     if (!choose_step_lengths(problem, solution, direction, settings.step_fraction, error_now,

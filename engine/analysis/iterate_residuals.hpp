@@ -3,14 +3,15 @@
 //
 //   r.x = H x + q - A^T y - G^T z      dual residual       (4 per group)
 //   r.y = A x - b                      balance residual    (balance rows)
-//   r.w = G x - lower - w              slack residual      (inequality rows)
+//   G x - lower - w                    slack residual      (inequality rows)
 //
 // (H, q: the group's Hessian and linear term, m times a twin's for a class
-// of m twins), the Newton system's right-hand side (newton_system.hpp) but
-// for its complementarity part, and the scaled error that decides
-// convergence: the largest of the balance and slack residuals over
-// rhs_scale, the dual residual over dual_scale, and the total duality gap
-// w^T z relative to the objective (all dimensionless, scaled units).
+// of m twins), the Newton system's right-hand side (newton_system.hpp,
+// which computes the slack residual group by group as it solves), and the
+// scaled error that decides convergence: the largest of the balance and
+// slack residuals over rhs_scale, the dual residual over dual_scale, and
+// the total duality gap w^T z relative to the objective (all
+// dimensionless, scaled units).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,7 +30,7 @@ public:
   IterateResiduals(const EquilibriumProblem& problem, const InequalityRows& inequality, const TwinGroups& twins,
                    GroupPasses& passes);
 
-  // Fills r.x, r.y and r.w at `iterate`, and info's primal and dual
+  // Fills r.x and r.y at `iterate`, and info's primal and dual
   // residuals and complementarity (the mean w_i z_i); returns the total
   // duality gap w^T z. D: balance rows per body.
   template <int D>

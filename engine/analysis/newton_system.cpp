@@ -24,18 +24,27 @@ void NewtonSystem<D>::assemble() {
 }
 
 template <int D>
-void NewtonSystem<D>::solve(NewtonVectors& v) {
+void NewtonSystem<D>::solve(NewtonVectors& v, const Complementarity* complementarity) {
   const Eigen::VectorXd& w = iterate_.w;
   const Eigen::VectorXd& z = iterate_.z;
   const InequalityRows& ineq = inequality_;
-  const bool slack_parts = v.w.size() > 0;  // else e.w = e.z = 0, and dw, dz are not wanted
   rhs_ = -v.y;
   passes_.each_into(rhs_, [&](int k, Eigen::VectorXd& rows) {
     Eigen::Vector4d reduced = -v.x.template segment<4>(4 * k);
-    if (slack_parts) {
+    if (complementarity) {
+      // The group's e.w and e.z, into v's rows (the corrector's read the
+      // predictor's direction there first).
+      auto ew = ineq.of(v.w, k);
+      auto ez = ineq.of(v.z, k);
+      const GroupRowsVector wz = ineq.of(w, k).cwiseProduct(ineq.of(z, k));
+      if (complementarity->corrector) {
+        ez = wz + ew.cwiseProduct(ez) - GroupRowsVector::Constant(ez.size(), complementarity->centring);
+      } else {
+        ez = wz;
+      }
+      ew = slack_residual_of(problem_, ineq, iterate_, k);
       // Per inequality row (c + Z g) / W, combined as G^T (...).
-      const GroupRowsVector per_row =
-          (ineq.of(v.z, k) + ineq.of(z, k).cwiseProduct(ineq.of(v.w, k))).cwiseQuotient(ineq.of(w, k));
+      const GroupRowsVector per_row = (ez + ineq.of(z, k).cwiseProduct(ew)).cwiseQuotient(ineq.of(w, k));
       reduced.noalias() -= problem_.rules_of(problem_.groups[k]).rows.transpose() * per_row;
     }
     const Eigen::Vector4d t = solve_phi(phi_factors_[k], reduced);
@@ -45,12 +54,13 @@ void NewtonSystem<D>::solve(NewtonVectors& v) {
   normal_.solve(rhs_, v.y);
   passes_.each([&](int k) {
     v.x.template segment<4>(4 * k) += solve_phi(phi_factors_[k], group_reaction<D>(problem_.groups[k], v.y));
-    // dw = G dx + g
-    if (slack_parts) {
-      ineq.of(v.w, k).noalias() += problem_.rules_of(problem_.groups[k]).rows * v.x.template segment<4>(4 * k);
+    if (complementarity) {
+      // dw = G dx + e.w, dz = -(e.z + Z dw) / W
+      auto dw = ineq.of(v.w, k);
+      dw.noalias() += problem_.rules_of(problem_.groups[k]).rows * v.x.template segment<4>(4 * k);
+      ineq.of(v.z, k) = -(ineq.of(v.z, k) + ineq.of(z, k).cwiseProduct(dw)).cwiseQuotient(ineq.of(w, k));
     }
   });
-  if (slack_parts) v.z = -(v.z + z.cwiseProduct(v.w)).cwiseQuotient(w);
 }
 
 // Computed from the problem's data (not from phi_factors_), so that
@@ -79,11 +89,13 @@ void NewtonSystem<D>::residual(const NewtonVectors& e, const NewtonVectors& dir,
 // beside the iterate's own error, and the check (a pass over every group)
 // is skipped.
 template <int D>
-void NewtonSystem<D>::direction(const NewtonVectors& e, NewtonVectors& out, double iterate_error) {
+void NewtonSystem<D>::direction(const NewtonVectors& e, Complementarity complementarity, NewtonVectors& out,
+                                double iterate_error) {
   constexpr int kRefinements = 3;
   constexpr double kRefineBelow = 1e-4;
-  out = e;  // same sizes: no allocation
-  solve(out);
+  out.x = e.x;  // same sizes: no allocation
+  out.y = e.y;
+  solve(out, &complementarity);
   const double target = std::max(1e-14 * e.largest(), 1e-2 * iterate_error);
   double previous = std::numeric_limits<double>::infinity();
   for (int refinement = 0; refinement < kRefinements && iterate_error <= kRefineBelow; ++refinement) {
@@ -91,7 +103,7 @@ void NewtonSystem<D>::direction(const NewtonVectors& e, NewtonVectors& out, doub
     const double size = error_.largest();
     if (size <= target || size >= 0.5 * previous) break;
     previous = size;
-    solve(error_);  // now the correction's dx and dy; its dw = G dx and dz = -Z dw / W
+    solve(error_, nullptr);  // now the correction's dx and dy; its dw = G dx and dz = -Z dw / W
     out.x += error_.x;
     out.y += error_.y;
     passes_.each([&](int k) {

@@ -44,17 +44,32 @@ public:
   // Factorises it; false when that fails (numerically not positive definite).
   bool factor() { return normal_.factorize_shifted(); }
 
-  // The Newton direction for right-hand side `e` into `out`, with iterative
-  // refinement when the iterate's scaled error `iterate_error` is small
-  // enough for the elimination's rounding to matter (kNoRefinement: never).
-  void direction(const NewtonVectors& e, NewtonVectors& out, double iterate_error);
+  // The complementarity part of a right-hand side: the predictor's w z,
+  // or the corrector's w z + dw_aff dz_aff - centring (step_policy.hpp's
+  // corrector_centring), with (dw_aff, dz_aff) the predictor's direction.
+  struct Complementarity {
+    bool corrector = false;
+    double centring = 0.0;
+  };
+  // The Newton direction into `out` for the right-hand side whose x and y
+  // parts are `e`'s (the iterate's residuals, iterate_residuals.hpp), w
+  // part the iterate's slack residual G x - lower - w, and z part
+  // `complementarity`; for the corrector `out` holds the predictor's
+  // direction on entry. The last two parts are computed group by group as
+  // the solve goes, never stored (two inequality-sized vectors: 115 MB on
+  // a 100,052-block vault). With iterative refinement when the iterate's
+  // scaled error `iterate_error` is small enough for the elimination's
+  // rounding to matter (kNoRefinement: never).
+  void direction(const NewtonVectors& e, Complementarity complementarity, NewtonVectors& out,
+                 double iterate_error);
   static constexpr double kNoRefinement = std::numeric_limits<double>::infinity();
 
 private:
-  // Solves in place: `v` holds the right-hand side on entry and the
-  // direction on return. With v.w and v.z empty, for e.w = e.z = 0, and
-  // only dx and dy computed.
-  void solve(NewtonVectors& v);
+  // Solves in place: `v` holds the right-hand side's x and y parts on
+  // entry and the direction on return. Its w and z parts are those of
+  // direction(), or with `complementarity` null 0 (v.w and v.z empty: only
+  // dx and dy computed).
+  void solve(NewtonVectors& v, const Complementarity* complementarity);
   // How far `dir` is from solving the first two equations for `e`, into
   // out.x and out.y.
   void residual(const NewtonVectors& e, const NewtonVectors& dir, NewtonVectors& out);

@@ -108,15 +108,24 @@ void NormalMatrix::assemble(const EquilibriumProblem& problem, const std::vector
       const int a = v.row_a / D, b = v.row_b / D;
       const bool ab = slot.ab >= 0 && owned(std::max(a, b));
       // With C = A R^-1 per side: the blocks C_a C_a^T, C_b C_b^T, C_a C_b^T.
-      BlockByVertexD a_part, b_part;
-      if (v.row_a >= 0 && (owned(a) || ab)) {
-        a_part = divide_by_factor<D>(v.on_a_rows<D>(), phi_factors[k]);
+      // A's rows on a are T times its rows on b (ForceGroup::on_a), so C_a = T C_b.
+      const bool on_a = v.row_a >= 0 && (owned(a) || ab), on_b = v.row_b >= 0 && (owned(b) || ab);
+      if (!on_a && !on_b) return;
+      const BlockByVertexD b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
+      BlockByVertexD a_part;
+      if (on_a) {
+        a_part = -b_part;  // and the moments of b's forces about the lever (ForceGroup::add_effect_at_a)
+        const Vec3& l = v.lever;
+        if constexpr (D == 6) {
+          a_part.row(3) += l.y() * b_part.row(2) - l.z() * b_part.row(1);
+          a_part.row(4) += l.z() * b_part.row(0) - l.x() * b_part.row(2);
+          a_part.row(5) += l.x() * b_part.row(1) - l.y() * b_part.row(0);
+        } else {
+          a_part.row(2) += l.z() * b_part.row(0) - l.x() * b_part.row(1);
+        }
         if (owned(a)) add_product(a, slot.aa, a_part, a_part, true);
       }
-      if (v.row_b >= 0 && (owned(b) || ab)) {
-        b_part = divide_by_factor<D>(v.on_b.topRows<D>(), phi_factors[k]);
-        if (owned(b)) add_product(b, slot.bb, b_part, b_part, true);
-      }
+      if (on_b && owned(b)) add_product(b, slot.bb, b_part, b_part, true);
       if (ab) {  // C_a C_b^T: rows of a, columns of b
         if (slot.ab_transposed) add_product(a, slot.ab, b_part, a_part, false);
         else add_product(b, slot.ab, a_part, b_part, false);

@@ -32,12 +32,11 @@ void start_iterate(const EquilibriumProblem& problem, const InequalityRows& ineq
 // Mehrotra's starting point from the cold start and its affine direction.
 void take_mehrotra_start(const NewtonVectors& affine, InteriorPointSolution& iterate);
 
-// Mehrotra's corrector: the complementarity part of the Newton right-hand
-// side, w z + dw_aff dz_aff - sigma mu, with the centring sigma from how
-// far the affine direction `affine` can go (mu: the iterate's mean
-// complementarity).
-void set_corrector_complementarity(const InteriorPointSolution& iterate, const NewtonVectors& affine, double mu,
-                                   Eigen::VectorXd& complementarity);
+// Mehrotra's corrector, whose complementarity part of the Newton
+// right-hand side is w z + dw_aff dz_aff - sigma mu: sigma mu, with the
+// centring sigma from how far the affine direction `affine` can go (mu:
+// the iterate's mean complementarity).
+double corrector_centring(const InteriorPointSolution& iterate, const NewtonVectors& affine, double mu);
 
 // The primal and dual step lengths along `direction` from `iterate`, a
 // fraction `step_fraction` of the way to the boundary; `error` is the
