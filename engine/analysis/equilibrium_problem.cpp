@@ -534,9 +534,10 @@ double compression_only_imbalance(const EquilibriumProblem& problem, const Eigen
 
 Eigen::Matrix<double, 6, 4> ForceGroup::on_a(int block_rows) const {
   const std::array<int, 6>& order = balance_rows(block_rows == 3);  // row r holds component order[r]
-  Eigen::Matrix<double, 6, 4> at_b, at_a, out;
+  Eigen::Matrix<double, 6, 4> at_b, out;
   for (int r = 0; r < 6; ++r) at_b.row(order[r]) = on_b.row(r);
-  for (int c = 0; c < 4; ++c) at_a.col(c) = effect_at_a<6>(at_b.col(c));
+  Eigen::Matrix<double, 6, 4> at_a = Eigen::Matrix<double, 6, 4>::Zero();
+  for (int c = 0; c < 4; ++c) add_effect_at_a<6>(at_b.col(c), at_a.col(c));
   for (int r = 0; r < 6; ++r) out.row(r) = at_a.row(order[r]);
   return out;
 }

@@ -127,14 +127,13 @@ struct ForceGroup {
   // in on_b and lever 0 (set_alone_on_a).
   Vec3 lever = Vec3::Zero();
 
-  // The first D rows (D = block_rows: 6, or 3 planar) of body a's effect
-  // T at_b of what has the effect `at_b` on body b (an effect vector or
-  // column; group_reaction below applies T^T). add_effect_at_a adds
-  // T at_b to `out` entry by entry: built as an Eigen
-  // vector and read back whole, the cross product's scalar stores stalled
-  // the loads that followed (perf, the imperfect dome's load capacity:
-  // add_group_effect 1,988 samples against 1,235 with a stored on_a; 857
-  // written so).
+  // Adds to `out` the first D rows (D = block_rows: 6, or 3 planar) of
+  // body a's effect T at_b of what has the effect `at_b` on body b (an
+  // effect vector or column; group_reaction below applies T^T), entry by
+  // entry: built as an Eigen vector and read back whole, the cross
+  // product's scalar stores stalled the loads that followed (perf, the
+  // imperfect dome's load capacity: add_group_effect 1,988 samples against
+  // 1,235 with a stored on_a; 857 written so).
   template <int D, typename In, typename Out>
   void add_effect_at_a(const In& at_b, Out&& out) const {
     if constexpr (D == 6) {
@@ -151,20 +150,7 @@ struct ForceGroup {
       out(2) += lever.z() * at_b(0) - lever.x() * at_b(1) - at_b(2);
     }
   }
-  template <int D>
-  Eigen::Matrix<double, D, 1> effect_at_a(const Eigen::Matrix<double, D, 1>& at_b) const {
-    Eigen::Matrix<double, D, 1> out = Eigen::Matrix<double, D, 1>::Zero();
-    add_effect_at_a<D>(at_b, out);
-    return out;
-  }
-  // The first D rows of body a's effect.
-  template <int D>
-  Eigen::Matrix<double, D, 4> on_a_rows() const {
-    Eigen::Matrix<double, D, 4> out;
-    for (int c = 0; c < 4; ++c) out.col(c) = effect_at_a<D>(on_b.template block<D, 1>(0, c));
-    return out;
-  }
-  // All six rows of it, in the order of a problem with `block_rows` rows.
+  // All six rows of body a's effect, in the order of a problem with `block_rows` rows.
   Eigen::Matrix<double, 6, 4> on_a(int block_rows) const;
   // Entry (row, column) of body a's effect, for a group on a alone.
   void set_alone_on_a(int row, int column, double value) { on_b(row, column) = -value; }

@@ -144,8 +144,8 @@ private:
     const bool swapped = !same_order && side_maps(group.block_a, group.row_a, image.block_b, image.row_b) &&
                          side_maps(group.block_b, group.row_b, image.block_a, image.row_a);
     if (!same_order && !swapped) return false;
-    const Effect image_a = image.on_a_rows<6>();
-    const Effect on_a = t * group.on_a_rows<6>(), on_b = t * group.on_b;
+    const Effect image_a = image.on_a(problem_.block_rows);
+    const Effect on_a = t * group.on_a(problem_.block_rows), on_b = t * group.on_b;
     const Effect& image_on_a = same_order ? image_a : image.on_b;
     const Effect& image_on_b = same_order ? image.on_b : image_a;
     for (const Eigen::Matrix4d& s : permutations_[static_cast<int>(group.kind)]) {
