@@ -134,6 +134,15 @@ void EquilibriumAnalysis::set_group(int k, const ForceGroup& group) {
   }
 }
 
+void EquilibriumAnalysis::set_rules(GroupKind kind, GroupRules rules) {
+  GroupRules& old = problem_.rules[static_cast<int>(kind)];
+  if (rules.rows.rows() != old.rows.rows()) {
+    throw std::invalid_argument("set_rules: " + std::to_string(old.rows.rows()) + " rows expected, got " +
+                                std::to_string(rules.rows.rows()));
+  }
+  old = std::move(rules);
+}
+
 void EquilibriumAnalysis::set_shear_strengths(const std::vector<double>& strengths) {
   if (strengths.size() != static_cast<size_t>(problem_.contact_vertex_count)) {
     throw std::logic_error("set_shear_strengths: one strength per contact vertex needed");

@@ -88,6 +88,11 @@ public:
   // analysed again when the new rows are not in it. Throws
   // std::invalid_argument for a group out of range or of another kind.
   void set_group(int k, const ForceGroup& group);
+  // The rules of every group of `kind` become `rules`, with as many
+  // inequality rows (a friction coefficient changed in a program built
+  // from the problem): the pattern, the symbolic analysis and the last
+  // solution stay. Throws std::invalid_argument for another row count.
+  void set_rules(GroupKind kind, GroupRules rules);
   // FrictionLaw::given_strength: the shear strength (scaled) of every
   // contact vertex, in group order (problem().contact_vertex_count of
   // them). The QP's pattern, and so the symbolic analysis, stays.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "analysis/clp_barrier.hpp"
 #include "analysis/equilibrium.hpp"
@@ -339,6 +340,175 @@ LoadFactor load_factor(const Structure& structure, const LoadFactorSettings& set
 
 namespace {
 
+// The friction-borrowing program (FrictionPrograms below) at a finite
+// coefficient as the equilibrium solver's problem, on 3D structures of
+// contacts alone: each contact vertex's tension unknown acts on no block
+// and becomes the friction it borrows, b >= 0, which widens every side of
+// its friction pyramid by b (in tangential force), at cost 1; no
+// regularisation, no virtual torques: a linear program in (c, b, f_u,
+// f_v). Clp's simplex took 40,000 crossover pivots on the degenerate
+// optimal face of a 1,008-voussoir vault's first program (35 s); the
+// interior point needs no vertex.
+//
+// Its verdicts:
+// - too small: by the balance multipliers y of the solver's last iterate,
+//   however accurate, through weak duality. For any forces x in the cones
+//   that balance the loads, what they borrow is q.x = rhs.y + sum_k g_k.x_k
+//   with g_k = q_k - A_k^T y, so rhs.y bounds it from below when every g_k
+//   is non-negative on vertex k's cone (on its extreme rays: c = 1 with f
+//   at a corner of the pyramid of radius mu, and b = 1 with f at a corner
+//   of the unit pyramid). Where rounding leaves a g_k slightly negative on
+//   a ray, y scaled down by s <= 1 mends the rays with b (their g's b part
+//   is the cost 1), and a coefficient mu' <= mu, which narrows every cone,
+//   those with c: then s rhs.y > 0 proves mu' too small. On the
+//   1,008-voussoir vault a program just below the demand stopped with
+//   primal residuals of 1e-7 and a borrowed amount 1e-4 too small, yet
+//   its multipliers proved the coefficient too small to the bit.
+// - stands: borrowing below FrictionPrograms' threshold (1e-10 per body)
+//   with the loads balanced to Clp's primal tolerance (1e-7): the forces
+//   are inside the cones and balance to the rounding the simplex's do.
+// Anything else is left to the simplex.
+class InteriorBorrowing {
+public:
+  static bool applies(const EquilibriumProblem& problem, const EquilibriumOptions& options) {
+    return problem.block_rows == 6 && options.friction_law == FrictionLaw::coulomb && problem.junctions.empty() &&
+           std::all_of(problem.groups.begin(), problem.groups.end(), [](const ForceGroup& group) {
+             return group.kind == GroupKind::contact_vertex || group.kind == GroupKind::slack;
+           });
+  }
+
+  // problem: built with unbounded friction, its other options `options`.
+  InteriorBorrowing(const EquilibriumProblem& problem, const EquilibriumOptions& options) : options_(options) {
+    EquilibriumProblem program = problem;
+    program.groups.resize(problem.contact_vertex_count);  // contact vertices come first
+    for (ForceGroup& group : program.groups) group.on_b.col(1).setZero();
+    options_.friction = 1.0;  // a placeholder of the rules' shape: solve() sets the coefficient
+    program.rules[static_cast<int>(GroupKind::contact_vertex)] = rules();
+    AnalysisSettings settings;
+    settings.problem = options_;
+    analysis_ = std::make_unique<EquilibriumAnalysis>(std::move(program), settings);
+    set_corners();
+  }
+
+  struct Answer {
+    SolverStatus status = SolverStatus::numerical_error;  // the solver's
+    double borrowed = kNaN;      // scaled, by the last iterate (when it has one)
+    double too_small = kNaN;     // a coefficient proven too small: the one asked, or a rounding below; else NaN
+    double imbalance = kNaN;     // the iterate's largest balance residual (scaled)
+    std::vector<Eigen::Vector4d> unknowns;  // (c, b, f_u, f_v) per group of the problem, zero past the contact vertices
+  };
+
+  // The program at `friction`, warm from the last one's iterate; `groups`:
+  // the problem's.
+  Answer solve(double friction, size_t groups) {
+    options_.friction = friction;
+    analysis_->set_rules(GroupKind::contact_vertex, rules());
+    Answer answer;
+    const InteriorPointInfo info = analysis_->solve_qp(InteriorPointSettings{}, warm_);
+    answer.status = info.status;
+    iterations_ = info.iterations;
+    warm_ = !has_no_answer(info.status);
+    if (!warm_) return answer;
+    const InteriorPointSolution& solution = analysis_->solution();
+    answer.unknowns.assign(groups, Eigen::Vector4d::Zero());
+    answer.borrowed = 0.0;
+    for (int k = 0; k < analysis_->problem().contact_vertex_count; ++k) {
+      answer.unknowns[k] = solution.x.segment<4>(4 * k);
+      answer.borrowed += answer.unknowns[k](1);
+    }
+    answer.too_small = proven_too_small(friction, solution.y, solution.x);
+    answer.imbalance = info.primal_residual;
+    return answer;
+  }
+  int iterations() const { return iterations_; }
+
+private:
+  GroupRules rules() const {
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> sides = friction_rows(options_);
+    GroupRules contact;
+    contact.rows = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(2 + sides.rows(), 4);
+    contact.rows(0, 0) = 1.0;  // c >= 0
+    contact.rows(1, 1) = 1.0;  // b >= 0
+    for (int j = 0; j < sides.rows(); ++j) {
+      contact.rows.row(2 + j) << sides(j, 0), sides.row(j).tail<2>().norm(), sides(j, 1), sides(j, 2);
+    }
+    contact.linear << 0.0, 1.0, 0.0, 0.0;
+    return contact;
+  }
+
+  // The corners (f_u, f_v) of the friction polygon at c = 1, b = 0 for a
+  // unit coefficient, and at c = 0, b = 1 (friction_rows' sides with b's
+  // column their tangential length): the pyramid's on the unit circle at
+  // angles 2 pi i / m, and its unit polygon's at 1 / cos(pi / m); the box's
+  // (+-1, +-1) both.
+  void set_corners() {
+    if (options_.friction_model == FrictionModel::box) {
+      for (const double u : {-1.0, 1.0}) {
+        for (const double v : {-1.0, 1.0}) friction_corners_.emplace_back(u, v);
+      }
+      borrowed_corners_ = friction_corners_;
+      return;
+    }
+    const int m = options_.friction_sides;
+    for (int i = 0; i < m; ++i) {
+      const double angle = 2.0 * kPi * i / m;
+      friction_corners_.emplace_back(std::cos(angle), std::sin(angle));
+      borrowed_corners_.push_back(friction_corners_.back() / std::cos(kPi / m));
+    }
+  }
+
+  // See the class's comment: the coefficient mu' (at most `friction`)
+  // that the multipliers y prove too small, or NaN. x: the iterate's
+  // unknowns, the size of the forces at vertices taken as still.
+  double proven_too_small(double friction, const Eigen::VectorXd& y, const Eigen::VectorXd& x) const {
+    const EquilibriumProblem& problem = analysis_->problem();
+    double scale = 1.0, proven = friction, still_work = 0.0;
+    for (int k = 0; k < problem.contact_vertex_count; ++k) {
+      const ForceGroup& group = problem.groups[k];
+      const Eigen::Vector4d reaction = problem.reaction(group, y);  // A_k^T y; its b entry 0
+      // A vertex whose blocks move together, compressed and not sliding,
+      // has g_k = 0 at the optimum, and in the iterate g_k at the dual
+      // residual (1e-13 of the blocks' motion on an 8 x 4 dome, where a
+      // proof through such a vertex's g_c / -least_friction fell to a
+      // third of mu): taken as still, the work of its forces on that
+      // residual, g_k . x_k, is charged to the bound instead.
+      double motion = 0.0;
+      for (const int row : {group.row_a, group.row_b}) {
+        if (row >= 0) motion = std::max(motion, y.segment<6>(row).lpNorm<Eigen::Infinity>());
+      }
+      if (reaction.lpNorm<Eigen::Infinity>() <= kStill * motion) {
+        still_work += std::abs(reaction.dot(x.segment<4>(4 * k)));
+        continue;
+      }
+      const double g_c = -reaction(0);
+      const Eigen::Vector2d g_f(-reaction(2), -reaction(3));
+      double least_friction = kInfinity, least_borrowed = kInfinity;
+      for (const Eigen::Vector2d& corner : friction_corners_) least_friction = std::min(least_friction, g_f.dot(corner));
+      for (const Eigen::Vector2d& corner : borrowed_corners_) least_borrowed = std::min(least_borrowed, g_f.dot(corner));
+      if (least_borrowed < 0.0) scale = std::min(scale, 1.0 / -least_borrowed);  // 1 + s least_borrowed >= 0
+      if (least_friction < 0.0) {
+        proven = std::min(proven, g_c / -least_friction);  // g_c + mu' least_friction >= 0
+      } else if (g_c < 0.0) {
+        return kNaN;
+      }
+    }
+    // rhs.y's rounding: a few ulps of the sum of its terms' sizes.
+    const double bound = scale * (problem.rhs.dot(y) - still_work);
+    const double rounding = 64.0 * std::numeric_limits<double>::epsilon() * problem.rhs.cwiseAbs().dot(y.cwiseAbs());
+    return proven > 0.0 && bound > rounding ? proven : kNaN;
+  }
+
+  // Relative motion at a vertex, against its blocks' largest multiplier,
+  // below which the vertex is taken as still: the solver's tolerance.
+  static constexpr double kStill = 1e-10;
+
+  EquilibriumOptions options_;
+  std::unique_ptr<EquilibriumAnalysis> analysis_;
+  std::vector<Eigen::Vector2d> friction_corners_, borrowed_corners_;
+  bool warm_ = false;
+  int iterations_ = 0;
+};
+
 // Programs of one problem at several friction coefficients; each starts
 // from the previous basis of the same shape. At a finite coefficient the
 // program does not ask whether an equilibrium fits in the friction cones
@@ -352,17 +522,38 @@ namespace {
 class FrictionPrograms {
 public:
   FrictionPrograms(const EquilibriumProblem& problem, EquilibriumOptions options, FrictionDemand& tally)
-      : problem_(problem), options_(std::move(options)), tally_(tally) {}
+      : problem_(problem), options_(std::move(options)), tally_(tally) {
+    if (InteriorBorrowing::applies(problem_, options_)) interior_ = std::make_unique<InteriorBorrowing>(problem_, options_);
+  }
 
-  // 0: stands, 1: does not (it must borrow friction), other: Clp's failure
-  // status. The friction borrowed (scaled) goes to `borrowed`, the scaled
-  // unknowns of the equilibrium found (borrowed friction included) to
-  // `unknowns`.
-  int stands(double friction, std::vector<Eigen::Vector4d>* unknowns = nullptr, double* borrowed = nullptr) {
+  // 0: stands, 1: does not (it must borrow friction; proven_short() says
+  // at which coefficient, above `known_short`, the largest already known
+  // too small), other: Clp's failure status. The friction borrowed
+  // (scaled) goes to `borrowed`, the scaled unknowns of the equilibrium
+  // found (borrowed friction included) to `unknowns`.
+  int stands(double friction, std::vector<Eigen::Vector4d>* unknowns = nullptr, double* borrowed = nullptr,
+             double known_short = 0.0) {
     // A program small enough to end without iterating never asks the
     // event handler: ask here, so that a stop requested is always heard.
     if (stop_requested()) return kClpInterrupted;
     options_.friction = friction;
+    proven_short_ = friction;
+    if (interior_ && friction > 0.0 && std::isfinite(friction)) {
+      InteriorBorrowing::Answer answer = interior_->solve(friction, problem_.groups.size());
+      tally_.iterations += interior_->iterations();
+      ++tally_.programs;
+      if (answer.status == SolverStatus::interrupted) return kClpInterrupted;
+      if (answer.too_small > known_short) {  // false for NaN
+        proven_short_ = answer.too_small;
+        if (borrowed) *borrowed = answer.borrowed;
+        if (unknowns) *unknowns = std::move(answer.unknowns);
+        return 1;
+      }
+      if (answer.imbalance <= kStandsImbalance && stands_with(answer.borrowed)) {  // false for NaN
+        return verdict(answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
+      }
+      // Undecided: the simplex decides.
+    }
     EquilibriumProgram program = equilibrium_program(problem_, options_);
     const int first_borrowed = program.columns;
     // Without friction or without a bound on it, the program asks only
@@ -405,15 +596,16 @@ public:
     double* columns = simplex.primalColumnSolution();
     double amount = 0.0;
     for (int column = first_borrowed; column < program.columns; ++column) amount += std::max(0.0, columns[column]);
-    if (borrowed) *borrowed = amount;
-    const bool stands = amount <= kBorrowedNothing * std::max(problem_.body_count, 1);
     // What a program that stands borrows is rounding: its equilibrium is
     // the one in the cones (a vertex with no compression must not seem to
     // need infinite friction for a borrowed 1e-12).
-    if (stands) std::fill(columns + first_borrowed, columns + program.columns, 0.0);
-    if (unknowns) *unknowns = program.group_unknowns(problem_, columns);
-    return stands ? 0 : 1;
+    if (stands_with(amount)) std::fill(columns + first_borrowed, columns + program.columns, 0.0);
+    return verdict(amount, program.group_unknowns(problem_, columns), unknowns, borrowed);
   }
+
+  // The coefficient the last verdict 1 proved too small: the one asked, or
+  // a rounding below it (InteriorBorrowing).
+  double proven_short() const { return proven_short_; }
 
   // The coefficient an equilibrium needs, and the interfaces that need it.
   double needed(const std::vector<Eigen::Vector4d>& unknowns, std::vector<int>* critical = nullptr) const {
@@ -440,6 +632,21 @@ public:
   }
 
 private:
+  bool stands_with(double borrowed) const { return borrowed <= kBorrowedNothing * std::max(problem_.body_count, 1); }
+  // stands()'s answer for a program that borrowed `amount` with the
+  // unknowns `found`, which go to the caller's `unknowns` and `borrowed`.
+  int verdict(double amount, std::vector<Eigen::Vector4d> found, std::vector<Eigen::Vector4d>* unknowns,
+              double* borrowed) const {
+    if (borrowed) *borrowed = amount;
+    if (unknowns) *unknowns = std::move(found);
+    return stands_with(amount) ? 0 : 1;
+  }
+
+  // The balance residual (scaled) below which the interior point's forces
+  // stand: Clp's primal tolerance, which the simplex's forces meet. Near
+  // the demand, from above, the solver may stop short of its own tolerance
+  // there (1e-8 on an 8 x 4 dome, borrowing 1e-11).
+  static constexpr double kStandsImbalance = 1e-7;
   // Friction borrowed per body (scaled: a mean body weight) below which a
   // program stands. Borrowing is about proportional to how far below the
   // demand the coefficient is (a block on an incline: 1 per unit of it),
@@ -454,6 +661,8 @@ private:
   EquilibriumOptions options_;
   FrictionDemand& tally_;
   std::vector<unsigned char> basis_;
+  std::unique_ptr<InteriorBorrowing> interior_;  // null where the simplex answers alone
+  double proven_short_ = kNaN;
 };
 
 // Brackets the least friction coefficient with which a structure stands,
@@ -538,17 +747,26 @@ private:
 constexpr double kLargestDemand = 1e6;
 
 // The relative width to which the equilibrium analyses bracket the demand
-// before the programs take over. Three more analyses than at 1e-3 put the
-// programs' first steps (the upper end's, warm from the lower's basis)
-// closer to the demand, where the simplex takes fewer pivots and the
-// secant closes sooner: the imperfect 16 x 18 dome 9 programs -> 5 (CPU
-// 3.0-3.1 s -> 2.8-2.9 s), the 1,008-voussoir vault's upper end 3,372
-// pivots -> 550 (CPU 62-64 s -> 36-41 s), on a shared machine. At 1e-5
-// the analyses cost more than the programs save (the dome 6 programs).
-constexpr double kAnalysedWidth = 1e-4;
+// before the programs take over, when the simplex solves them. Three more
+// analyses than at 1e-3 put the programs' first steps (the upper end's,
+// warm from the lower's basis) closer to the demand, where the simplex
+// takes fewer pivots and the secant closes sooner: the imperfect 16 x 18
+// dome 9 programs -> 5 (CPU 3.0-3.1 s -> 2.8-2.9 s), the 1,008-voussoir
+// vault's upper end 3,372 pivots -> 550 (CPU 62-64 s -> 36-41 s), on a
+// shared machine. At 1e-5 the analyses cost more than the programs save
+// (the dome 6 programs).
+constexpr double kSimplexAnalysedWidth = 1e-4;
+// The same when the interior point solves them (InteriorBorrowing): a
+// program then costs about an analysis, warm or not, and the secant closes
+// from further out. The imperfect 16 x 18 dome and the 1,008-voussoir
+// vault at 1e-4, 1e-3, 1e-2, 1e-1, 0.3: the analyses 0.97, 0.62, 0.47,
+// 0.37, 0.33 s and 5.1, 4.4, 3.5, 1.6, 1.4 s; the whole demand 1.37,
+// 1.02, 0.96, 0.88, 1.07 s (5, 5, 7, 8, 13 programs) and 6.7, 6.3, 5.2,
+// 3.7, 4.5 s (5, 5, 5, 7, 12 programs).
+constexpr double kInteriorAnalysedWidth = 1e-1;
 
 // The demand as the equilibrium analysis sees it: a bracket grown from 1 by
-// doubling, then halved to kAnalysedWidth, on its verdicts: one QP each,
+// doubling, then halved to a relative `width`, on its verdicts: one QP each,
 // warm from the last, about a twentieth of a second on a 305-block dome,
 // where a program far from the demand takes seconds. A verdict is all a
 // step needs: an analysis that stands stops at its first compression-only
@@ -560,7 +778,7 @@ constexpr double kAnalysedWidth = 1e-4;
 // or infinity when it does not stand without sliding, when no coefficient
 // up to kLargestDemand stands, or when an analysis gives no verdict. Only a
 // guide: the programs decide.
-double analysed_demand(const Structure& structure, const EquilibriumOptions& options) {
+double analysed_demand(const Structure& structure, const EquilibriumOptions& options, double width) {
   AnalysisSettings settings;
   settings.problem = options;
   settings.problem.friction = 1.0;
@@ -592,11 +810,11 @@ double analysed_demand(const Structure& structure, const EquilibriumOptions& opt
   }
   high = std::max(low, needed);
   bool frictionless_asked = false;
-  while (high - low > kAnalysedWidth * high) {
+  while (high - low > width * high) {
     // Halving never brackets a demand of 0 to a relative width: a
     // running-bond wall, which needs no friction, took 1,077 analyses
     // down to 4.9e-324 (45 s for a 431-block wall). Below the width, ask.
-    if (low == 0.0 && high < kAnalysedWidth && !frictionless_asked) {
+    if (low == 0.0 && high < width && !frictionless_asked) {
       frictionless_asked = true;
       const int verdict = stands(0.0);
       if (verdict < 0) return kInfinity;
@@ -647,24 +865,25 @@ FrictionDemand friction_demand(const Structure& structure, const FrictionDemandS
   // to reach it cold (the 16 x 18 dome: 2.27 s above, 0.55 s below, and
   // the upper end from the lower's basis 0.11 s; its friction demand
   // 3.9 s -> 1.9 s).
-  const double analysed = analysed_demand(structure, options);
+  const double width = InteriorBorrowing::applies(problem, options) ? kInteriorAnalysedWidth : kSimplexAnalysedWidth;
+  const double analysed = analysed_demand(structure, options, width);
   if (std::isfinite(analysed)) {
     // One end's program: it moves the lower end (too small) or the upper
     // (stands); false when Clp failed (status says how).
     auto confirm = [&](double friction) {
       double borrowed = 0.0;
-      status = programs.stands(friction, &unknowns, &borrowed);
+      status = programs.stands(friction, &unknowns, &borrowed, demand.low);
       if (status == 1) {
-        demand.known_short(friction, borrowed);
+        demand.known_short(programs.proven_short(), borrowed);
       } else if (status == 0) {
         demand.high = std::min(friction, programs.needed(unknowns));
         high_stands = true;
       }
       return status == 0 || status == 1;
     };
-    const double below = analysed * (1.0 - 2.0 * kAnalysedWidth);
+    const double below = analysed * (1.0 - 2.0 * width);
     if ((below > 0.0 && !confirm(below)) ||
-        (!high_stands && !confirm(analysed * (1.0 + kAnalysedWidth)))) {
+        (!high_stands && !confirm(analysed * (1.0 + width)))) {
       return finish(clp_failure(status), kNaN);
     }
   }
@@ -684,8 +903,8 @@ FrictionDemand friction_demand(const Structure& structure, const FrictionDemandS
     // compression: grow a finite coefficient until one stands.
     double high = std::max(1.0, 2.0 * demand.low);
     double borrowed = 0.0;
-    while ((status = programs.stands(high, &unknowns, &borrowed)) == 1 && high < kLargestDemand) {
-      demand.known_short(high, borrowed);
+    while ((status = programs.stands(high, &unknowns, &borrowed, demand.low)) == 1 && high < kLargestDemand) {
+      demand.known_short(programs.proven_short(), borrowed);
       high *= 4;
     }
     if (status == 1) {
@@ -695,7 +914,7 @@ FrictionDemand friction_demand(const Structure& structure, const FrictionDemandS
     if (status != 0) return finish(clp_failure(status), kNaN);
     demand.high = std::min(high, programs.needed(unknowns));
   } else if (!high_stands) {
-    status = programs.stands(demand.high, &unknowns);
+    status = programs.stands(demand.high, &unknowns, nullptr, demand.low);
     if (status != 0) return finish(status == 1 ? MarginStatus::numerical_difficulties : clp_failure(status), kNaN);
   }
   if (high_stands && demand.high == 0.0) return finish(MarginStatus::optimal, 0.0);  // it stood without friction
@@ -711,13 +930,13 @@ FrictionDemand friction_demand(const Structure& structure, const FrictionDemandS
   while (!demand.closed()) {
     const double next = demand.next();
     double borrowed = 0.0;
-    status = programs.stands(next, &unknowns, &borrowed);
+    status = programs.stands(next, &unknowns, &borrowed, demand.low);
     if (status == 0) {
       // The equilibrium found may need less than the coefficient tried.
       demand.enough(std::max(demand.low, std::min(next, programs.needed(unknowns))));
       at_high = unknowns;
     } else if (status == 1) {
-      demand.too_small(next, borrowed);
+      demand.too_small(programs.proven_short(), borrowed);
     } else if (status == kClpInterrupted) {
       result.lower = demand.low;  // the bracket so far: it stands with demand.high
       return finish(clp_failure(status), demand.high);

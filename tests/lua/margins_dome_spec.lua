@@ -52,6 +52,26 @@ describe("a dome of 8 x 4 blocks (3D references)", function()
     assert.is_true(d.lower <= d.friction and d.lower >= d.friction * (1 - 2 * EXACT))
   end)
 
+  -- The interior point's programs (3D, contacts alone) prove each end: the
+  -- lower by their multipliers, the upper by forces in the cones. The
+  -- analysis, a QP solved apart, must agree a little way out, whatever
+  -- the friction polygon (the certificate checks its corners).
+  for _, polygon in ipairs{ { friction_sides = 3 }, { friction_sides = 8 }, { friction_model = "box" } } do
+    local name = polygon.friction_model or (polygon.friction_sides .. " sides")
+    it("friction_demand's ends agree with the analysis: " .. name, function()
+      local d = ashlar.friction_demand(s, polygon)
+      assert.are.equal("optimal", d.status)
+      assert.is_true(d.lower < d.friction and d.lower >= d.friction * (1 - 2 * EXACT))
+      local function stands(mu)
+        local o = { friction = mu }
+        for k, v in pairs(polygon) do o[k] = v end
+        return ashlar.analyze(s, o).stable
+      end
+      assert.is_false(stands(d.lower * (1 - 1e-4)))
+      assert.is_true(stands(d.friction * (1 + 1e-4)))
+    end)
+  end
+
   it("load_capacity: unbounded on the bottom course, 113.68, 44.30 and 33.88 above, 7.14 for the keystone", function()
     -- Its 16 symmetries (8 turns, 8 mirrors) leave one block per course
     -- and the keystone to solve: 5 blocks; every block solved, 33. Both
