@@ -156,6 +156,12 @@ Eigen::Matrix<double, 6, 4> contact_vertex_effect(const Interface& contact, cons
   return ordered;
 }
 
+bool EquilibriumProblem::contacts_only() const {
+  return junctions.empty() && std::all_of(groups.begin(), groups.end(), [](const ForceGroup& group) {
+           return group.kind == GroupKind::contact_vertex || group.kind == GroupKind::slack;
+         });
+}
+
 Eigen::Matrix<double, Eigen::Dynamic, 3> friction_rows(const EquilibriumOptions& options) {
   const double mu = options.friction;
   Eigen::Matrix<double, Eigen::Dynamic, 3> rows;

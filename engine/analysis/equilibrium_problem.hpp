@@ -234,6 +234,12 @@ struct EquilibriumProblem {
   // Position of the vertical force (Fz) among a body's balance rows, where
   // its weight enters: 2, or 1 for planar problems.
   int vertical_row() const;
+  // Whether the forces are the contacts' alone: no cables and no
+  // junctions (slack groups, the virtual torques, may be there). The
+  // linear programs built from such a problem by dropping the slacks
+  // (load capacity's largest multiple, friction demand's borrowing) have
+  // every force bounded by its friction rows.
+  bool contacts_only() const;
   // The equality constraint matrix (row_count x variable_count), for export
   // and residual checks; the solver works with the per-group blocks.
   Eigen::SparseMatrix<double> equality_matrix() const;

@@ -74,11 +74,8 @@ public:
     return problem.block_rows == 6 && options.friction_law == FrictionLaw::coulomb;
   }
   static bool maximises(const EquilibriumProblem& problem, const EquilibriumOptions& options) {
-    return certifies(problem, options) && problem.junctions.empty() && options.friction > 0.0 &&
-           std::isfinite(options.friction) &&
-           std::all_of(problem.groups.begin(), problem.groups.end(), [](const ForceGroup& group) {
-             return group.kind == GroupKind::contact_vertex || group.kind == GroupKind::slack;
-           });
+    return certifies(problem, options) && problem.contacts_only() && options.friction > 0.0 &&
+           std::isfinite(options.friction);
   }
 
   // analysis: of the problem (its right-hand side is changed per block),

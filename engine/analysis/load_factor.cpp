@@ -371,10 +371,7 @@ namespace {
 class InteriorBorrowing {
 public:
   static bool applies(const EquilibriumProblem& problem, const EquilibriumOptions& options) {
-    return problem.block_rows == 6 && options.friction_law == FrictionLaw::coulomb && problem.junctions.empty() &&
-           std::all_of(problem.groups.begin(), problem.groups.end(), [](const ForceGroup& group) {
-             return group.kind == GroupKind::contact_vertex || group.kind == GroupKind::slack;
-           });
+    return problem.block_rows == 6 && options.friction_law == FrictionLaw::coulomb && problem.contacts_only();
   }
 
   // problem: built with unbounded friction, its other options `options`.
