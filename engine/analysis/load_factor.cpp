@@ -364,9 +364,8 @@ namespace {
 //   1,008-voussoir vault a program just below the demand stopped with
 //   primal residuals of 1e-7 and a borrowed amount 1e-4 too small, yet
 //   its multipliers proved the coefficient too small to the bit.
-// - stands: borrowing below FrictionPrograms' threshold (1e-10 per body)
-//   with the loads balanced to Clp's primal tolerance (1e-7): the forces
-//   are inside the cones and balance to the rounding the simplex's do.
+// - stands: forces that balance every block and borrow at every vertex to
+//   the analysis's stable_tolerance, its own test of forces that stand.
 // Anything else is left to the simplex.
 class InteriorBorrowing {
 public:
@@ -392,6 +391,7 @@ public:
     double borrowed = kNaN;      // scaled, by the last iterate (when it has one)
     double too_small = kNaN;     // a coefficient proven too small: the one asked, or a rounding below; else NaN
     double imbalance = kNaN;     // the iterate's largest balance residual (scaled)
+    double most_borrowed = kNaN;  // at one vertex (scaled)
     std::vector<Eigen::Vector4d> unknowns;  // (c, b, f_u, f_v) per group of the problem, zero past the contact vertices
   };
 
@@ -408,10 +408,11 @@ public:
     if (!warm_) return answer;
     const InteriorPointSolution& solution = analysis_->solution();
     answer.unknowns.assign(groups, Eigen::Vector4d::Zero());
-    answer.borrowed = 0.0;
+    answer.borrowed = answer.most_borrowed = 0.0;
     for (int k = 0; k < analysis_->problem().contact_vertex_count; ++k) {
       answer.unknowns[k] = solution.x.segment<4>(4 * k);
       answer.borrowed += answer.unknowns[k](1);
+      answer.most_borrowed = std::max(answer.most_borrowed, answer.unknowns[k](1));
     }
     answer.too_small = proven_too_small(friction, solution.y, solution.x);
     answer.imbalance = info.primal_residual;
@@ -546,8 +547,8 @@ public:
         if (unknowns) *unknowns = std::move(answer.unknowns);
         return 1;
       }
-      if (answer.imbalance <= kStandsImbalance && stands_with(answer.borrowed)) {  // false for NaN
-        return verdict(answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
+      if (answer.imbalance <= kStandsTolerance && answer.most_borrowed <= kStandsTolerance) {  // false for NaN
+        return verdict(true, answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
       }
       // Undecided: the simplex decides.
     }
@@ -596,8 +597,9 @@ public:
     // What a program that stands borrows is rounding: its equilibrium is
     // the one in the cones (a vertex with no compression must not seem to
     // need infinite friction for a borrowed 1e-12).
-    if (stands_with(amount)) std::fill(columns + first_borrowed, columns + program.columns, 0.0);
-    return verdict(amount, program.group_unknowns(problem_, columns), unknowns, borrowed);
+    const bool stands = amount <= kBorrowedNothing * std::max(problem_.body_count, 1);
+    if (stands) std::fill(columns + first_borrowed, columns + program.columns, 0.0);
+    return verdict(stands, amount, program.group_unknowns(problem_, columns), unknowns, borrowed);
   }
 
   // The coefficient the last verdict 1 proved too small: the one asked, or
@@ -629,21 +631,24 @@ public:
   }
 
 private:
-  bool stands_with(double borrowed) const { return borrowed <= kBorrowedNothing * std::max(problem_.body_count, 1); }
-  // stands()'s answer for a program that borrowed `amount` with the
-  // unknowns `found`, which go to the caller's `unknowns` and `borrowed`.
-  int verdict(double amount, std::vector<Eigen::Vector4d> found, std::vector<Eigen::Vector4d>* unknowns,
-              double* borrowed) const {
+  // stands()'s answer for a program that stands or not, borrowing
+  // `amount` with the unknowns `found`, which go to the caller's
+  // `unknowns` and `borrowed`.
+  static int verdict(bool stands, double amount, std::vector<Eigen::Vector4d> found,
+                     std::vector<Eigen::Vector4d>* unknowns, double* borrowed) {
     if (borrowed) *borrowed = amount;
     if (unknowns) *unknowns = std::move(found);
-    return stands_with(amount) ? 0 : 1;
+    return stands ? 0 : 1;
   }
 
-  // The balance residual (scaled) below which the interior point's forces
-  // stand: Clp's primal tolerance, which the simplex's forces meet. Near
-  // the demand, from above, the solver may stop short of its own tolerance
-  // there (1e-8 on an 8 x 4 dome, borrowing 1e-11).
-  static constexpr double kStandsImbalance = 1e-7;
+  // The interior point's forces stand when they balance every block and
+  // borrow at every vertex at most this (scaled: the mean block weight):
+  // the analysis's own test of forces that stand
+  // (AnalysisSettings::stable_tolerance). Near the demand, from above, the
+  // solver may stop short of its tolerance: balance residuals of 7e-9 to
+  // 6e-8 on an 8 x 4 dome and 1.5e-7 on the 16 x 18 dome, 2.8e-8
+  // borrowed in all on a 128-block vault.
+  static constexpr double kStandsTolerance = AnalysisSettings{}.stable_tolerance;
   // Friction borrowed per body (scaled: a mean body weight) below which a
   // program stands. Borrowing is about proportional to how far below the
   // demand the coefficient is (a block on an incline: 1 per unit of it),
