@@ -17,35 +17,66 @@
 -- simplex iterations) do not depend on the machine's load. A third
 -- argument, dome, imperfect or vault, runs that structure alone:
 --   ashlar scripts/bench_weights.lua margins [dome|imperfect|vault]
+-- With `friction`, friction_demand alone on nine structures (below).
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
+-- The CPU seconds of this process so far (user + system), from /proc.
+local function cpu_seconds()
+  local f = io.open("/proc/self/stat")
+  if not f then return 0 / 0 end
+  local fields = {}
+  for field in f:read("a"):gsub("^.*%) ", ""):gmatch("%S+") do fields[#fields + 1] = field end
+  f:close()
+  return (tonumber(fields[12]) + tonumber(fields[13])) / 100  -- utime, stime in clock ticks (USER_HZ 100)
+end
+-- The imperfect dome's contacts: a joint between blocks a and b opens
+-- or closes by at most the amount times size_a + size_b (each vertex
+-- moves by up to the amount times its block's size), so a tolerance 2.5
+-- times the amount times the largest block's size covers every joint.
+-- (The mean block size, as tests/lua/perturbed_spec.lua takes for its
+-- vault of equal blocks, left one joint of the dome's larger lower
+-- courses open by 4.703e-6 against 4.696e-6.)
+local function imperfect(amount)
+  local s = models.perturbed(models.dome{}, { amount = amount, seed = 1 })
+  local largest = 0
+  for i = 1, #s do
+    local lo, hi = s:block(i):bounds()
+    largest = math.max(largest, math.sqrt((hi[1] - lo[1]) ^ 2 + (hi[2] - lo[2]) ^ 2 + (hi[3] - lo[3]) ^ 2))
+  end
+  return s, { contact_tolerance = 2.5 * amount * largest }
+end
+-- With `friction`, ashlar.friction_demand alone (default bracket 1e-6) on
+-- the structures of docs/performance.md's table: its demand, bracket,
+-- programs and iterations, wall and CPU time of each.
+if arg[1] == "friction" then
+  local wall3d = models.wall{ length = 4.8, height = 1.47 }
+  wall3d:set_planar(false)
+  local cases = {
+    { "dome 16 x 18", models.dome{}, {} },
+    { "dome 16 x 24", models.dome{ meridians = 16, parallels = 24 }, {} },
+    { "dome 16 x 18, every vertex moved by up to 0.1 %", imperfect(1e-3) },
+    { "barrel vault 32 x 15, running bond",
+      models.barrel_vault{ voussoirs = 32, courses = 15, length = 7.5, bond = "running" }, {} },
+    { "barrel vault 32 x 31, running bond",
+      models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5, bond = "running" }, {} },
+    { "barrel vault 16 x 8", models.barrel_vault{ voussoirs = 16, courses = 8 }, {} },
+    { "groin vault", models.groin_vault{}, {} },
+    { "wall of 431 blocks, 3D", wall3d, {} },
+    { "the same wall, planar", models.wall{ length = 4.8, height = 1.47 }, {} },
+  }
+  for _, case in ipairs(cases) do
+    local name, s, options = case[1], case[2], case[3]
+    options.progress = false
+    local wall, cpu = ashlar.clock(), cpu_seconds()
+    local d = ashlar.friction_demand(s, options)
+    print(("%-50s %.10g [%.10g] %s, %d programs, %d iterations, %.2f s wall, %.2f s CPU"):format(name, d.friction,
+      d.lower, d.status, d.programs, d.iterations, ashlar.clock() - wall, cpu_seconds() - cpu))
+  end
+  return
+end
+
 if arg[1] == "margins" then
-  -- The CPU seconds of this process so far (user + system), from /proc.
-  local function cpu_seconds()
-    local f = io.open("/proc/self/stat")
-    if not f then return 0 / 0 end
-    local fields = {}
-    for field in f:read("a"):gsub("^.*%) ", ""):gmatch("%S+") do fields[#fields + 1] = field end
-    f:close()
-    return (tonumber(fields[12]) + tonumber(fields[13])) / 100  -- utime, stime in clock ticks (USER_HZ 100)
-  end
-  -- The imperfect dome's contacts: a joint between blocks a and b opens
-  -- or closes by at most the amount times size_a + size_b (each vertex
-  -- moves by up to the amount times its block's size), so a tolerance 2.5
-  -- times the amount times the largest block's size covers every joint.
-  -- (The mean block size, as tests/lua/perturbed_spec.lua takes for its
-  -- vault of equal blocks, left one joint of the dome's larger lower
-  -- courses open by 4.703e-6 against 4.696e-6.)
-  local function imperfect(amount)
-    local s = models.perturbed(models.dome{}, { amount = amount, seed = 1 })
-    local largest = 0
-    for i = 1, #s do
-      local lo, hi = s:block(i):bounds()
-      largest = math.max(largest, math.sqrt((hi[1] - lo[1]) ^ 2 + (hi[2] - lo[2]) ^ 2 + (hi[3] - lo[3]) ^ 2))
-    end
-    return s, { contact_tolerance = 2.5 * amount * largest }
-  end
   local perturbed, perturbed_contact = imperfect(1e-3)
   local structures = {
     { "dome", "dome 16 x 18", models.dome{}, {} },
