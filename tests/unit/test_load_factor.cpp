@@ -191,6 +191,25 @@ TEST(FrictionDemand, BlockOnAnInclineNeedsTheTangentOfItsSlope) {
   }
 }
 
+TEST(FrictionDemand, AStopAskedMidSearchKeepsTheBracketItHad) {
+  // Ctrl-C asked once the bracket has its first digit, on a 3D block on an
+  // incline (the interior point's programs): interrupted, and the bracket
+  // so far still holds the closed form tan(slope).
+  const double slope = 0.35;
+  Structure s;
+  const Vec3 axis(0, 1, 0), origin(0, 0, 0);
+  s.add(std::make_shared<const Block>(make_box({3.0, 1.0, 0.2}, {0, 0, -0.1}).rotated(axis, slope, origin)), true);
+  s.add(std::make_shared<const Block>(make_box({1.0, 0.6, 0.4}, {0, 0, 0.2}).rotated(axis, slope, origin)));
+  const FrictionDemand demand = friction_demand(s, {EquilibriumOptions{}, 1e-9}, [](int done, int) {
+    if (done >= 1) interrupt_requested() = true;
+  });
+  interrupt_requested() = false;
+  EXPECT_EQ(demand.status, MarginStatus::interrupted);
+  EXPECT_LT(demand.lower, std::tan(slope));
+  EXPECT_GE(demand.friction, std::tan(slope) * (1 - 1e-12));
+  EXPECT_GT(demand.friction - demand.lower, 1e-9 * demand.friction);  // stopped before the bracket closed
+}
+
 TEST(FrictionDemand, ArchAgreesWithTheAnalysis) {
   const Structure s = semicircular_arch(16, 0.65);
   const FrictionDemand demand = friction_demand(s, {});
