@@ -357,10 +357,11 @@ namespace {
 //   with g_k = q_k - A_k^T y, so rhs.y bounds it from below when every g_k
 //   is non-negative on vertex k's cone (on its extreme rays: c = 1 with f
 //   at a corner of the pyramid of radius mu, and b = 1 with f at a corner
-//   of the unit pyramid). Where rounding leaves a g_k slightly negative on
-//   a ray, y scaled down by s <= 1 mends the rays with b (their g's b part
-//   is the cost 1), and a coefficient mu' <= mu, which narrows every cone,
-//   those with c: then s rhs.y > 0 proves mu' too small. On the
+//   of the unit pyramid). Where a g_k is slightly negative on a ray, y
+//   scaled down by s <= 1 mends the rays with b (their g's b part is the
+//   cost 1), and a coefficient mu' <= mu, which narrows every cone, those
+//   with c: then s rhs.y > 0 proves mu' too small. A vertex whose blocks
+//   move together is taken as still (proven_too_small). On the
 //   1,008-voussoir vault a program just below the demand stopped with
 //   primal residuals of 1e-7 and a borrowed amount 1e-4 too small, yet
 //   its multipliers proved the coefficient too small to the bit.
