@@ -91,7 +91,7 @@ struct FrictionDemand {
   double lower = 0.0;          // the largest coefficient found too small
   std::vector<int> critical;   // interfaces at the friction limit in the final equilibrium
   int programs = 0;            // feasibility programs solved
-  int iterations = 0;          // Clp's: barrier iterations, crossover and simplex pivots
+  int iterations = 0;          // the interior point's (3D programs); Clp's barrier iterations and simplex pivots
   double seconds = 0.0;
 };
 
