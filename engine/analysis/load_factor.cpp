@@ -365,8 +365,9 @@ namespace {
 //   1,008-voussoir vault a program just below the demand stopped with
 //   primal residuals of 1e-7 and a borrowed amount 1e-4 too small, yet
 //   its multipliers proved the coefficient too small to the bit.
-// - stands: forces that balance every block and borrow at every vertex to
-//   the analysis's stable_tolerance, its own test of forces that stand.
+// - stands: the iterate's forces, each vertex's friction scaled into its
+//   cone, balance every block to the analysis's stable_tolerance, its own
+//   test of forces that stand.
 // Anything else is left to the simplex.
 class InteriorBorrowing {
 public:
@@ -391,9 +392,10 @@ public:
     SolverStatus status = SolverStatus::numerical_error;  // the solver's
     double borrowed = kNaN;      // scaled, by the last iterate (when it has one)
     double too_small = kNaN;     // a coefficient proven too small: the one asked, or a rounding below; else NaN
-    double imbalance = kNaN;     // the iterate's largest balance residual (scaled)
-    double most_borrowed = kNaN;  // at one vertex (scaled)
-    std::vector<Eigen::Vector4d> unknowns;  // (c, b, f_u, f_v) per group of the problem, zero past the contact vertices
+    bool stands = false;         // the iterate's forces, friction brought into the cones, pass the analysis's test
+    // (c, b, f_u, f_v) per group of the problem, zero past the contact
+    // vertices; where it stands, with b = 0 and the friction in the cones.
+    std::vector<Eigen::Vector4d> unknowns;
   };
 
   // The program at `friction`, warm from the last one's iterate; `groups`:
@@ -409,14 +411,25 @@ public:
     if (!warm_) return answer;
     const InteriorPointSolution& solution = analysis_->solution();
     answer.unknowns.assign(groups, Eigen::Vector4d::Zero());
-    answer.borrowed = answer.most_borrowed = 0.0;
+    answer.borrowed = 0.0;
     for (int k = 0; k < analysis_->problem().contact_vertex_count; ++k) {
       answer.unknowns[k] = solution.x.segment<4>(4 * k);
       answer.borrowed += answer.unknowns[k](1);
-      answer.most_borrowed = std::max(answer.most_borrowed, answer.unknowns[k](1));
     }
     answer.too_small = proven_too_small(friction, solution.y, solution.x);
-    answer.imbalance = info.primal_residual;
+    if (std::isnan(answer.too_small)) {
+      // The forces without what they borrow: each vertex's friction scaled
+      // into its cone, what that takes off left to the balance.
+      Eigen::VectorXd forces = solution.x;
+      for (int k = 0; k < analysis_->problem().contact_vertex_count; ++k) {
+        Eigen::Vector4d& x = answer.unknowns[k];
+        const double needed = friction_needed(options_, x(0), x(2), x(3));
+        if (needed > friction) x.tail<2>() *= x(0) > 0.0 ? friction / needed : 0.0;
+        x(1) = 0.0;
+        forces.segment<4>(4 * k) = x;
+      }
+      answer.stands = compression_only_imbalance(analysis_->problem(), forces) <= kStandsTolerance;
+    }
     return answer;
   }
   int iterations() const { return iterations_; }
@@ -497,6 +510,13 @@ private:
     return proven > 0.0 && bound > rounding ? proven : kNaN;
   }
 
+  // Forces stand when, their friction scaled into the cones, they balance
+  // every block to this fraction of its load: the analysis's own test
+  // (AnalysisSettings::stable_tolerance, compression_only_imbalance). Near
+  // the demand, from above, the solver may stop short of its tolerance
+  // (balance residuals of 1.5e-7 on the 16 x 18 dome, 2.8e-8 borrowed in
+  // all on a 128-block vault).
+  static constexpr double kStandsTolerance = AnalysisSettings{}.stable_tolerance;
   // Relative motion at a vertex, against its blocks' largest multiplier,
   // below which the vertex is taken as still: the solver's tolerance.
   static constexpr double kStill = 1e-10;
@@ -548,9 +568,7 @@ public:
         if (unknowns) *unknowns = std::move(answer.unknowns);
         return 1;
       }
-      if (answer.imbalance <= kStandsTolerance && answer.most_borrowed <= kStandsTolerance) {  // false for NaN
-        return verdict(true, answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
-      }
+      if (answer.stands) return verdict(true, answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
       // Undecided: the simplex decides.
     }
     EquilibriumProgram program = equilibrium_program(problem_, options_);
@@ -642,14 +660,6 @@ private:
     return stands ? 0 : 1;
   }
 
-  // The interior point's forces stand when they balance every block and
-  // borrow at every vertex at most this (scaled: the mean block weight):
-  // the analysis's own test of forces that stand
-  // (AnalysisSettings::stable_tolerance). Near the demand, from above, the
-  // solver may stop short of its tolerance: balance residuals of 7e-9 to
-  // 6e-8 on an 8 x 4 dome and 1.5e-7 on the 16 x 18 dome, 2.8e-8
-  // borrowed in all on a 128-block vault.
-  static constexpr double kStandsTolerance = AnalysisSettings{}.stable_tolerance;
   // Friction borrowed per body (scaled: a mean body weight) below which a
   // program stands. Borrowing is about proportional to how far below the
   // demand the coefficient is (a block on an incline: 1 per unit of it),
