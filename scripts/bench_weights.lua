@@ -17,7 +17,8 @@
 -- simplex iterations) do not depend on the machine's load. A third
 -- argument, dome, imperfect or vault, runs that structure alone:
 --   ashlar scripts/bench_weights.lua margins [dome|imperfect|vault]
--- With `friction`, friction_demand alone on nine structures (below).
+-- With `friction`, friction_demand alone on ten structures (below), run
+-- from the repository's root.
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
@@ -62,6 +63,9 @@ if arg[1] == "friction" then
       models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5, bond = "running" }, {} },
     { "barrel vault 16 x 8", models.barrel_vault{ voussoirs = 16, courses = 8 }, {} },
     { "groin vault", models.groin_vault{}, {} },
+    { "Armadillo vault (tests/data/compas_cra)",
+      ashlar.import("tests/data/compas_cra/armadillo_cra.json", { planarity = 0.05, interfaces = "detect" }),
+      { contact_tolerance = 0.03 } },
     { "wall of 431 blocks, 3D", wall3d, {} },
     { "the same wall, planar", models.wall{ length = 4.8, height = 1.47 }, {} },
   }
