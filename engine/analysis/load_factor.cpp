@@ -392,7 +392,7 @@ public:
     SolverStatus status = SolverStatus::numerical_error;  // the solver's
     double borrowed = kNaN;      // scaled, by the last iterate (when it has one)
     double too_small = kNaN;     // a coefficient proven too small: the one asked, or a rounding below; else NaN
-    bool stands = false;         // the iterate's forces, friction brought into the cones, pass the analysis's test
+    bool stands = false;         // the iterate's forces, friction scaled into the cones, pass the analysis's test
     // (c, b, f_u, f_v) per group of the problem, zero past the contact
     // vertices; where it stands, with b = 0 and the friction in the cones.
     std::vector<Eigen::Vector4d> unknowns;
@@ -417,19 +417,19 @@ public:
       answer.borrowed += answer.unknowns[k](1);
     }
     answer.too_small = proven_too_small(friction, solution.y, solution.x);
-    if (std::isnan(answer.too_small)) {
-      // The forces without what they borrow: each vertex's friction scaled
-      // into its cone, what that takes off left to the balance.
-      Eigen::VectorXd forces = solution.x;
-      for (int k = 0; k < analysis_->problem().contact_vertex_count; ++k) {
-        Eigen::Vector4d& x = answer.unknowns[k];
-        const double needed = friction_needed(options_, x(0), x(2), x(3));
-        if (needed > friction) x.tail<2>() *= x(0) > 0.0 ? friction / needed : 0.0;
-        x(1) = 0.0;
-        forces.segment<4>(4 * k) = x;
-      }
-      answer.stands = compression_only_imbalance(analysis_->problem(), forces) <= kStandsTolerance;
+    // The forces without what they borrow: each vertex's friction scaled
+    // into its cone, what that takes off left to the balance.
+    std::vector<Eigen::Vector4d> within = answer.unknowns;
+    Eigen::VectorXd forces = solution.x;
+    for (int k = 0; k < analysis_->problem().contact_vertex_count; ++k) {
+      Eigen::Vector4d& x = within[k];
+      const double needed = friction_needed(options_, x(0), x(2), x(3));
+      if (needed > friction) x.tail<2>() *= x(0) > 0.0 ? friction / needed : 0.0;
+      x(1) = 0.0;
+      forces.segment<4>(4 * k) = x;
     }
+    answer.stands = compression_only_imbalance(analysis_->problem(), forces) <= kStandsTolerance;
+    if (answer.stands) answer.unknowns = std::move(within);
     return answer;
   }
   int iterations() const { return iterations_; }
