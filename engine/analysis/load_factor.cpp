@@ -564,9 +564,7 @@ public:
       if (answer.status == SolverStatus::interrupted) return kClpInterrupted;
       if (answer.too_small > known_short) {  // false for NaN
         proven_short_ = answer.too_small;
-        if (borrowed) *borrowed = answer.borrowed;
-        if (unknowns) *unknowns = std::move(answer.unknowns);
-        return 1;
+        return verdict(false, answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
       }
       if (answer.stands) return verdict(true, answer.borrowed, std::move(answer.unknowns), unknowns, borrowed);
       // Undecided: the simplex decides.
