@@ -622,6 +622,8 @@ public:
   // The coefficient the last verdict 1 proved too small: the one asked, or
   // a rounding below it (InteriorBorrowing).
   double proven_short() const { return proven_short_; }
+  // Whether the interior point solves the programs at finite coefficients.
+  bool by_interior_point() const { return interior_ != nullptr; }
 
   // The coefficient an equilibrium needs, and the interfaces that need it.
   double needed(const std::vector<Eigen::Vector4d>& unknowns, std::vector<int>* critical = nullptr) const {
@@ -876,7 +878,7 @@ FrictionDemand friction_demand(const Structure& structure, const FrictionDemandS
   // to reach it cold (the 16 x 18 dome: 2.27 s above, 0.55 s below, and
   // the upper end from the lower's basis 0.11 s; its friction demand
   // 3.9 s -> 1.9 s).
-  const double width = InteriorBorrowing::applies(problem, options) ? kInteriorAnalysedWidth : kSimplexAnalysedWidth;
+  const double width = programs.by_interior_point() ? kInteriorAnalysedWidth : kSimplexAnalysedWidth;
   const double analysed = analysed_demand(structure, options, width);
   if (std::isfinite(analysed)) {
     // One end's program: it moves the lower end (too small) or the upper
