@@ -166,9 +166,9 @@ ContactProgramResult solve_contact_program(const SparseMatrix& stiffness, const 
   app->Options()->SetStringValue("hessian_constant", "yes");
   app->Options()->SetStringValue("jac_c_constant", "yes");
   app->Options()->SetStringValue("jac_d_constant", "yes");
-  // PORD, MUMPS's own nested dissection: good on 3D meshes like METIS's
-  // (cra.cpp), without METIS, whose calls must pass core/cholmod_system's
-  // guard (one at a time, SIGTERM kept) and MUMPS's would not.
+  // PORD, MUMPS's own nested dissection: good on 3D meshes like METIS's,
+  // without METIS, whose calls must pass core/cholmod_system's guard (one
+  // at a time, SIGTERM kept) and MUMPS's would not.
   app->Options()->SetIntegerValue("mumps_pivot_order", 4);
   // No options file: an ipopt.opt in the working directory would change the answer unseen.
   if (app->Initialize("") != Ipopt::Solve_Succeeded) throw std::runtime_error("IPOPT failed to initialise");
