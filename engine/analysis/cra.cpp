@@ -500,15 +500,16 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
     // The ordering of MUMPS's indefinite factorisations. "cra": approximate
     // minimum degree, with which the Armadillo vault's iterates are the
-    // same run after run (231 iterations, 113-119 s every run): with METIS (5) or AMF (2) its iterates parted in the eighth digit
-    // after about 20 iterations, and runs took 226-393 iterations and
-    // 98-530 s; MUMPS's default (QAMD) gave fronts whose dense
-    // factorisation took 2-20 s per iteration. "cra_penalty", whose
-    // f+ f- = 0 rows make every step degenerate: PORD, MUMPS's own nested
-    // dissection, with which compas_cra's A converges (292 iterations,
-    // the same every run) where AMD and QAMD end in a numerical error
-    // after 224. METIS, with which it also converges, would bypass
-    // core/cholmod_system's guard (one call at a time, SIGTERM kept).
+    // same run after run (231 iterations, 113-119 s every run): with
+    // METIS (5) or AMF (2) its iterates parted in the eighth digit after
+    // about 20 iterations, and runs took 226-393 iterations and 98-530 s;
+    // MUMPS's default (QAMD) gave fronts whose dense factorisation took
+    // 2-20 s per iteration. "cra_penalty", whose f+ f- = 0 rows make every
+    // step degenerate: PORD, MUMPS's own nested dissection, with which
+    // compas_cra's A converges (292 iterations, the same every run) where
+    // AMD and QAMD end in a numerical error after 224. METIS, with which it
+    // also converges, would bypass core/cholmod_system's guard (one call at
+    // a time, SIGTERM kept).
     app->Options()->SetIntegerValue("mumps_pivot_order", penalty ? 4 : 0);
     // No options file: an ipopt.opt in the working directory would change the answer unseen.
     if (app->Initialize("") != Ipopt::Solve_Succeeded) {
