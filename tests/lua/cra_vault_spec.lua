@@ -4,8 +4,8 @@
 -- detects. The exact program (complementarity = 0) makes no progress on it
 -- (see docs/api.md); with the complementarity relaxed to kappa = 0.1 IPOPT
 -- converges. Slow: 113-117 s in a Release build on 2 shared cores (231
--- IPOPT iterations; the equilibrium method takes 0.23 s), so it has a spec file
--- of its own and a COST in tests/CMakeLists.txt that starts it first.
+-- IPOPT iterations; the equilibrium method takes 0.23 s), so it has a spec
+-- file of its own and a COST in tests/CMakeLists.txt that starts it first.
 local ashlar = require "ashlar"
 local support = require "spec_support"
 
