@@ -10,7 +10,10 @@
 //   landing on a face at an angle), every vertex of either block within the
 //   search distance of the other's solid, against that block's face the
 //   vertex is least deep behind (ties go to the face turned towards the
-//   vertex's block).
+//   vertex's block). Where the two blocks meet corner to corner at a hinge
+//   (a corner of b within the search distance of a corner of a, their
+//   faces turned against each other within 30 degrees), only a's corner
+//   makes a point: one normal at the hinge, not a wedge of two.
 // Edge-to-edge crossings between blocks with no face contact, and corners of
 // non-convex blocks meeting at an angle, are not found.
 #pragma once

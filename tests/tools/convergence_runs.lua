@@ -9,7 +9,9 @@
 --   ashlar tests/tools/convergence_runs.lua arches [k]
 --     six semicircular arches collapsing (radius 5, friction 0.7): 16, 18,
 --     20, 22 and 24 voussoirs 0.45 thick for 1.5 s, 22 voussoirs 0.40
---     thick for 1.2 s; k: the k-th alone
+--     thick for 1.2 s; k: the k-th alone. Each is run again up to its
+--     collapse (sim:summary().collapse_time, the first block's fall), for
+--     the steps of the structure's own motion apart from the debris's
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
@@ -28,16 +30,22 @@ elseif which == "arches" then
   local only = tonumber(arg[2])
   local cases = { { 16, 0.45, 1.5 }, { 18, 0.45, 1.5 }, { 20, 0.45, 1.5 }, { 22, 0.45, 1.5 }, { 24, 0.45, 1.5 },
                   { 22, 0.40, 1.2 } }
-  local unconverged, seconds = 0, 0
+  local unconverged, seconds, before_collapse = 0, 0, 0
   for k, c in ipairs(cases) do
     if not only or only == k then
-      local sim = ashlar.simulate(models.arch{ radius = 5, thickness = c[2], voussoirs = c[1] },
-                                  { duration = c[3], friction = 0.7 })
+      local arch = models.arch{ radius = 5, thickness = c[2], voussoirs = c[1] }
+      local sim = ashlar.simulate(arch, { duration = c[3], friction = 0.7 })
       unconverged, seconds = unconverged + sim.unconverged_steps, seconds + sim.seconds
       print(line(("arch of %d voussoirs, %.2f thick"):format(c[1], c[2]), sim))
+      local collapse = sim:summary().collapse_time
+      if collapse then
+        local standing = ashlar.simulate(arch, { duration = collapse, friction = 0.7 })
+        before_collapse = before_collapse + standing.unconverged_steps
+        print(line(("  up to its collapse at %.3f s"):format(collapse), standing))
+      end
     end
   end
-  print(("all: %d unconverged steps, %.1f s"):format(unconverged, seconds))
+  print(("all: %d unconverged steps (%d before the collapses), %.1f s"):format(unconverged, before_collapse, seconds))
 else
   error("usage: ashlar tests/tools/convergence_runs.lua vault | arches [k]")
 end

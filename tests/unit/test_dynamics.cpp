@@ -5,9 +5,11 @@
 // interrupt.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/interrupt.hpp"
+#include "dynamics/contact_points.hpp"
 #include "dynamics/rigid_body.hpp"
 #include "dynamics/simulation.hpp"
 #include "structure/structure_transform.hpp"
@@ -184,6 +186,43 @@ TEST(Dynamics, ABlockWedgedBetweenWallsWithNoFloorFallsWhateverTheFriction) {
     EXPECT_NEAR(travel(r, 2).z(), -0.5 * kGravity * 0.25, 1e-6);
     EXPECT_TRUE(r.moved);
   }
+}
+
+// Two unit cubes meeting corner to corner along an edge, the upper one
+// turned up about that edge by `opening` degrees (a hinge; beyond the
+// detection's face angle, so the pair has no face contact): the pair's
+// contact points.
+std::vector<ContactPoint> hinge_points(double opening) {
+  const Block lower = make_box({1, 1, 1}, {0.5, 0.5, 0.5});
+  const Block upper = make_box({1, 1, 1}, {0.5, 0.5, 1.5}).rotated({0, 1, 0}, opening * kPi / 180.0, {1, 0, 1});
+  const std::vector<const Block*> posed{&lower, &upper};
+  std::vector<RigidPose> poses(2);
+  poses[0].position = lower.centroid();
+  poses[1].position = upper.centroid();
+  return find_contact_points(posed, poses, {false, false}, {0, 1}, 0.01, std::acos(0.99));
+}
+
+TEST(Dynamics, AHingeBetweenTwoBlocksCarriesOneNormalNotAWedgeOfTwo) {
+  // At 10 degrees the lower cube's two hinge corners press on the upper
+  // cube's bottom face and the upper cube's two corners, at the same
+  // places, are left out: both points have that face's normal. Kept, they
+  // would add two points whose normal is 10 degrees from it, a wedge that
+  // friction locks (tan 5 degrees < 0.7).
+  const std::vector<ContactPoint> hinge = hinge_points(10.0);
+  const Vec3 bottom = Eigen::AngleAxisd(10.0 * kPi / 180.0, Vec3::UnitY()) * Vec3(0, 0, -1);
+  ASSERT_EQ(hinge.size(), 2u);
+  for (const ContactPoint& c : hinge) {
+    EXPECT_EQ(c.a, 0);
+    EXPECT_EQ(c.b, 1);
+    EXPECT_NEAR((c.normal - bottom).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(c.point.x(), 0.5, 1e-12);  // the corners on the edge x = 1, z = 1
+    EXPECT_NEAR(c.point.z(), 0.5, 1e-12);
+  }
+  // At 60 degrees the faces are no hinge's sides: each cube's corners make
+  // points against the other's face, two normals 60 degrees apart.
+  const std::vector<ContactPoint> corner = hinge_points(60.0);
+  ASSERT_EQ(corner.size(), 4u);
+  EXPECT_EQ(std::count_if(corner.begin(), corner.end(), [](const ContactPoint& c) { return c.a == 0; }), 2);
 }
 
 TEST(Dynamics, AnInterruptedRunKeepsWhatItComputedAndGivesNoVerdict) {
