@@ -129,4 +129,24 @@ describe("ashlar.simulate on arches", function()
     assert.equal(0, below.unconverged_steps)
   end)
 
+  it("solves every step of a collapse up to its first block's fall", function()
+    -- Semicircular arches of 18, 22 and 24 voussoirs, t/R 0.09, collapsing
+    -- from rest, for 0.6 s: up to the first fall and a little past it.
+    -- Their hinges opened into wedges of two normals, and their corners on
+    -- the next block's edge pressed the face beside the joint: 26 and 19
+    -- steps of the 18 and 22 voussoirs stopped above the tolerance, up to
+    -- 2.3e-4 m/s (convergence_runs.lua, docs/performance.md).
+    for _, voussoirs in ipairs{ 18, 22, 24 } do
+      local s = models.arch{ radius = 5, thickness = 0.45, voussoirs = voussoirs }
+      local sim = ashlar.simulate(s, { duration = 0.6, friction = 0.7, record_every = 10 })
+      local fell = sim:summary().collapse_time
+      print(("%d voussoirs: first fall at %s s; %d of %d steps unconverged, largest residual %.3g m/s at %s s")
+        :format(voussoirs, tostring(fell), sim.unconverged_steps, sim.steps, sim.max_residual,
+                tostring(sim.max_residual_time)))
+      assert.is_true(fell ~= nil and fell <= 0.6)  -- it collapses within the run
+      assert.equal(0, sim.unconverged_steps)
+      assert.is_true(sim.max_residual <= 1e-4 * 9.81 * 1e-3)
+    end
+  end)
+
 end)
