@@ -48,26 +48,33 @@ int facing_face(const Block& block, const Vec3& n, const Vec3& center, double op
 // the two sides of a hinge (turned against each other, apart by at most
 // 30 degrees): see add_vertex_contacts.
 constexpr double kHingeCosine = -0.866;
+// A vertex within this fraction of the search distance of a face's plane,
+// inside it, is on that face's edge: see add_vertex_contacts.
+constexpr double kOnPlane = 0.01;
 
 // Vertices of convex block `from` within `distance` of convex block `to`
-// (both world). Each presses, of the faces of `to` whose planes it is
-// within `distance` of the least deep one's, the face most turned towards
-// `from` (its outward normal along the centroids' offset): a corner on an
-// edge of `to`, in the plane of the face beside the one it meets (the
-// extrados beside a joint of an arch, the blocks' common front plane),
-// is least deep behind that face when it sinks a little into the joint,
-// and pressed against it, neighbours pushed each other both ways (the
-// debris of six collapsing arches ended 576 steps of 8,700 unconverged,
-// 260 since). `made`, when given, gets each point's vertex and face
-// normal (world). A vertex within `distance` of one in `hinge` (the other
-// block's points) whose face is turned against that point's face
-// (kHingeCosine) is left out: the two blocks meet corner to corner at a
-// hinge, and one point with one normal carries it. With both, the hinge
-// would hold two normals at its opening angle, a wedge that locks under
-// friction when the angle is below twice the friction angle: squeezed,
-// its points may carry any impulse, and the contact solves of six
-// collapsing arches stalled at 50 steps before the first block fell (3
-// without it).
+// (both world), each against a face of `to`: of the faces whose planes the
+// vertex is least deep behind to within kOnPlane x distance, the one most
+// turned towards `from` (its outward normal along the centroids' offset).
+// A corner on an edge of `to` lies in the plane of the face beside the
+// one it meets (an arch's extrados beside a joint, the blocks' common
+// front plane); sunk a little into the joint it is least deep behind that
+// face, and pressed against it the pair pushed itself apart both ways
+// (347 of the 349 stalled solves of a collapsing 18-voussoir arch). A
+// wider window is worse: at a tenth of the search distance the
+// Armadillo's dynamics took 78 sweeps a step instead of 22, and at the
+// whole of it a block tipping off a pedestal's edge, its corner on the
+// top face a centimetre from the edge, took the side face when its
+// centroid was past the edge, and sank 4-6 mm into the pedestal.
+// `made`, when given, gets each point's vertex and face normal (world).
+// A vertex within `distance` of one in `hinge` (the other block's points)
+// whose face is turned against that point's face (kHingeCosine) is left
+// out: the blocks meet corner to corner at a hinge, and one point with one
+// normal carries it. With both, the hinge would hold two normals at its
+// opening angle, a wedge that locks under friction when the angle is
+// below twice the friction angle: squeezed, its points may carry any
+// impulse (six collapsing arches: 50 steps before the first fall stalled
+// with both, 3 without).
 void add_vertex_contacts(int from, int to, const Block& a, const Block& b, double distance,
                          const std::vector<RigidPose>& poses, std::vector<ContactPoint>& out,
                          const std::vector<std::pair<Vec3, Vec3>>& hinge,
@@ -81,7 +88,7 @@ void add_vertex_contacts(int from, int to, const Block& a, const Block& b, doubl
     int best = -1;
     for (size_t f = 0; f < planes.size(); ++f) {
       const double s = planes[f].normal.dot(p) - planes[f].offset;
-      if (s < outside - distance) continue;
+      if (s < outside - kOnPlane * distance) continue;
       if (best < 0 || planes[f].normal.dot(towards) > planes[best].normal.dot(towards)) best = static_cast<int>(f);
     }
     const Vec3& normal = planes[best].normal;

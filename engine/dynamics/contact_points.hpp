@@ -9,12 +9,12 @@
 // - for pairs of convex blocks with no such contact (a corner or an edge
 //   landing on a face at an angle), every vertex of either block within the
 //   search distance of the other's solid, against that block's face most
-//   turned towards the vertex's block among those the vertex is nearly
-//   least deep behind (within the search distance). Where the two blocks
-//   meet corner to corner at a hinge
-//   (a corner of b within the search distance of a corner of a, their
-//   faces turned against each other within 30 degrees), only a's corner
-//   makes a point: one normal at the hinge, not a wedge of two.
+//   turned towards the vertex's block among those the vertex is least deep
+//   behind to within a hundredth of the search distance (a corner on an
+//   edge lies in two faces' planes). Where the two blocks meet corner to corner
+//   at a hinge (a corner of b within the search distance of a corner of a,
+//   their faces turned against each other within 30 degrees), only a's
+//   corner makes a point: one normal at the hinge, not a wedge of two.
 // Edge-to-edge crossings between blocks with no face contact, and corners of
 // non-convex blocks meeting at an angle, are not found.
 #pragma once

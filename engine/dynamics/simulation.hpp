@@ -113,7 +113,7 @@ struct SimulationOptions {
   // tolerance x 9.81 h per second. A collapse's hard steps need up to a
   // few thousand sweeps (Newton's method every 100 among them): six
   // collapsing arches left 260 of 8,700 steps unconverged at 1,000 sweeps,
-  // 61 at 3,000 (42.6 s -> 59.6 s), 51 at 5,000 (81.5 s); a structure at
+  // 60 at 3,000 (42.6 s -> 57.6 s), 51 at 5,000 (81.5 s); a structure at
   // rest or shaken takes a few sweeps a step and never comes near it.
   int max_sweeps = 3000;
   double tolerance = 1e-4;

@@ -27,6 +27,32 @@ describe("ashlar.simulate", function()
     assert.is_true(sim.max_displacement < 1e-7)
   end)
 
+  it("tips a leaning block off a pedestal's edge without its corner sinking into the pedestal", function()
+    -- A 0.1 x 0.4 x 1 m block leaning 30 or 45 degrees past a pedestal's
+    -- edge, its lower corner on the top face 1.5 or 2 cm from the edge (the
+    -- search distance is 2.2 cm). The corner must keep to the top face while
+    -- the block turns over the edge; taken against the side face (turned
+    -- more towards the block's centroid, past the edge), it sank 4.6 and 6.2
+    -- mm into the pedestal.
+    for _, case in ipairs{ { 30, 0.015 }, { 45, 0.02 } } do
+      local s = ashlar.structure()
+      s:add(ashlar.box{ size = {1, 1, 1}, center = {-0.5, 0, -0.5} }, { support = true })
+      s:add(ashlar.box{ size = {0.1, 0.4, 1}, center = {-0.05, 0, 0.5} }
+        :rotated({0, 1, 0}, math.rad(case[1]), {0, 0, 0}):translated({-case[2], 0, 0}))
+      local sim = ashlar.simulate(s, { duration = 0.4, friction = 0.7, record_every = 1 })
+      local deepest = 0  -- how far a corner went inside the pedestal (x < 0, z < 0)
+      for k = 1, sim.frames do
+        for _, v in ipairs(sim:structure(k):block(2):vertices()) do
+          deepest = math.max(deepest, math.min(-v[1], -v[3]))
+        end
+      end
+      print(("leaning %d degrees, corner %.3f m from the edge: deepest into the pedestal %.3g m"):format(case[1], case[2],
+        deepest))
+      assert.is_true(sim.moved)
+      assert.is_true(deepest < 1e-4, tostring(deepest))
+    end
+  end)
+
   it("gives fields, trajectories and a printable Simulation", function()
     local s = cases.stack(1.2)  -- tips
     local sim = ashlar.simulate(s, { duration = 0.2, step = 0.002, record_every = 10 })

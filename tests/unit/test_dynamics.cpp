@@ -227,15 +227,15 @@ TEST(Dynamics, AHingeBetweenTwoBlocksCarriesOneNormalNotAWedgeOfTwo) {
 
 TEST(Dynamics, ACornerAtTheEdgeOfAnotherBlockPressesTheFaceTurnedTowardsIt) {
   // A unit cube leaning back 10 degrees from the end face x = 1 of another,
-  // its two bottom corners on that face's lower edge and 0.1 mm into the
+  // its two bottom corners on that face's lower edge and 0.02 mm into the
   // other cube. Those corners lie on the other's bottom plane too, where
-  // they are least deep (0 against 1e-4 m), but that face is turned away
+  // they are least deep (0 against 2e-5 m), but that face is turned away
   // from the leaning cube: they press the end face, which is turned
   // towards it (before, the bottom face: the two cubes pushed apart along
   // z, and a corner so placed on an arch's extrados made the neighbours
   // push each other both ways).
   const Block leaning =
-      make_box({1, 1, 1}, {0.5 + 1e-4, 0.5, 0.5}).rotated({0, 1, 0}, -10.0 * kPi / 180.0, {1 + 1e-4, 0, 0});
+      make_box({1, 1, 1}, {0.5 + 2e-5, 0.5, 0.5}).rotated({0, 1, 0}, -10.0 * kPi / 180.0, {1 + 2e-5, 0, 0});
   const Block other = make_box({1, 1, 1}, {1.5, 0.5, 0.5});
   const std::vector<const Block*> posed{&leaning, &other};
   std::vector<RigidPose> poses(2);
