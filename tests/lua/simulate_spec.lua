@@ -46,8 +46,8 @@ describe("ashlar.simulate", function()
           deepest = math.max(deepest, math.min(-v[1], -v[3]))
         end
       end
-      print(("leaning %d degrees, corner %.3f m from the edge: deepest into the pedestal %.3g m"):format(case[1], case[2],
-        deepest))
+      print(("leaning %d degrees, corner %.3f m from the edge: deepest into the pedestal %.3g m"):format(case[1],
+        case[2], deepest))
       assert.is_true(sim.moved)
       assert.is_true(deepest < 1e-4, tostring(deepest))
     end
