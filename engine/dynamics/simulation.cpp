@@ -30,18 +30,24 @@ constexpr double kOverlapCorrection = 0.5;
 // (about 0.1 ms per 2,000 points).
 constexpr int kParallelPoints = 4000;
 // A step whose contact solve stops at max_sweeps with its residual within
-// kSplitWithin times the tolerance (a solve stalled near its answer) is
-// taken again in halves (Run::step), at most kStepSplits times over: down to
-// a quarter of the step. A shorter step changes the velocities less, and
-// its solve starts nearer its answer: the thin arch of simulate_arch_spec,
-// whose one unconverged step stalled at 1.6 times the tolerance, converges
-// in quarters. Stalls far above the tolerance (blocks tumbling in a
-// collapse) are rarely helped, and a split that stalls again costs its
-// max_sweeps twice: with every unconverged step split down to an eighth, the
-// 22-voussoir arch's collapse went from 110 to 82 unconverged steps in 9
-// times the time.
-constexpr int kStepSplits = 2;
-constexpr double kSplitWithin = 2.0;
+// kSplitWithin times the tolerance is taken again in halves (Run::step),
+// and so on, at most kStepSplits times over: down to a 64th of the step. A
+// shorter step changes the velocities less, and its solve starts nearer
+// its answer. Six collapsing arches (8,700 steps of 1 ms, mostly after
+// their first fall; tests/tools/convergence_runs.lua arches), unconverged
+// steps and time: split within 2 tolerances down to a quarter, 72 in 47.8
+// s; within 100 down to a quarter, 12; within 100 down to a 64th, 2 in
+// 63.9 s; within 1,000 down to a 64th, 0 in 58.9 s. A split that stalls
+// again costs its solve twice over: a wall sliding on its base (106 blocks
+// shaken at 1.5 g, 50 steps, 23 of them unconverged at 1,919 sweeps a
+// step) took more than 17 times as long split so. A run therefore splits at most
+// kFirstSplits + kSplitsPerStep times its steps so far: the arches never
+// reach that, the sliding wall left 19 steps unconverged at 2,548 sweeps
+// a step (a budget of half the steps: 15 at 4,387).
+constexpr int kStepSplits = 6;
+constexpr double kSplitWithin = 1000.0;
+constexpr double kSplitsPerStep = 0.1;
+constexpr int kFirstSplits = 8;
 
 [[noreturn]] void fail(const std::string& what, double value, const std::string& allowed) {
   throw InvalidArgument("simulate: " + what + " must be " + allowed + ", got " + shortest_number(value));
@@ -162,7 +168,7 @@ private:
   bool advance(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, bool may_split,
                bool& converged);
   // A step of length h, split in halves up to `splits` times over where
-  // its contact solve stalls near its answer (advance).
+  // its contact solve stalls within kSplitWithin tolerances (advance).
   void step(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, int splits,
             bool& converged);
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
@@ -504,7 +510,8 @@ bool Run::advance(double h, const Vec3& ground_start, const Vec3& ground_end, do
 
 void Run::step(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, int splits,
                bool& converged) {
-  if (advance(h, ground_start, ground_end, end_time, splits > 0, converged)) return;
+  const bool within_budget = result_.split_steps < kFirstSplits + kSplitsPerStep * result_.steps;
+  if (advance(h, ground_start, ground_end, end_time, splits > 0 && within_budget, converged)) return;
   ++result_.split_steps;
   const Vec3 ground_middle = 0.5 * (ground_start + ground_end);  // a_g linear over the step
   step(0.5 * h, ground_start, ground_middle, end_time - 0.5 * h, splits - 1, converged);

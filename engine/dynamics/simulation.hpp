@@ -155,8 +155,9 @@ struct SimulationResult {
   long long sweeps = 0;
   int unconverged_steps = 0;
   // Steps (and parts of steps) taken again as two half steps because their
-  // contact solve stopped at max_sweeps within twice the tolerance: split
-  // down to a quarter of the step where it must, with the same velocity
+  // contact solve stopped at max_sweeps within 1,000 times the tolerance:
+  // split down to a 64th of the step where it must, at most 8 + a tenth of
+  // the steps so far in a run, with the same velocity
   // tolerance (so the drift per second stays bounded as before). A step
   // counts as unconverged when a solve of it or of a part of it ended above
   // the tolerance. The sweeps and global steps above include the solves
