@@ -40,10 +40,10 @@ constexpr int kParallelPoints = 4000;
 // 63.9 s; within 1,000 down to a 64th, 0 in 58.9 s. A split that stalls
 // again costs its solve twice over: a wall sliding on its base (106 blocks
 // shaken at 1.5 g, 50 steps, 23 of them unconverged at 1,919 sweeps a
-// step) took more than 17 times as long split so. A run therefore splits at most
-// kFirstSplits + kSplitsPerStep times its steps so far: the arches never
-// reach that, the sliding wall left 19 steps unconverged at 2,548 sweeps
-// a step (a budget of half the steps: 15 at 4,387).
+// step) took more than 17 times as long split so. A run therefore splits
+// at most kFirstSplits + kSplitsPerStep times its steps so far: the arches
+// never reach that, the sliding wall left 19 steps unconverged at 2,548
+// sweeps a step (a budget of half the steps: 15 at 4,387).
 constexpr int kStepSplits = 6;
 constexpr double kSplitWithin = 1000.0;
 constexpr double kSplitsPerStep = 0.1;
@@ -168,7 +168,8 @@ private:
   bool advance(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, bool may_split,
                bool& converged);
   // A step of length h, split in halves up to `splits` times over where
-  // its contact solve stalls within kSplitWithin tolerances (advance).
+  // its contact solve stalls within kSplitWithin tolerances (advance),
+  // while the run's splits are within their budget (kSplitsPerStep).
   void step(double h, const Vec3& ground_start, const Vec3& ground_end, double end_time, int splits,
             bool& converged);
   void integrate(const std::vector<Vec3>& linear0, const std::vector<Vec3>& angular0);
