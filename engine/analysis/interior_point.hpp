@@ -7,7 +7,11 @@
 // blocks) (3 x for planar problems), sparse with the contact graph's
 // pattern. That matrix is analysed once (EquilibriumSolver's constructor)
 // and factorised once per iteration; predictor and corrector share the
-// factorisation.
+// factorisation. Where the iterate tells the optimum's active set (every
+// row's slack and multiplier far apart) the solve tries to finish on it:
+// one Newton step with those rows held as equalities and the others
+// dropped lands on the optimum to rounding (interior_point.cpp's
+// ActiveSetPolish; the 10,051-block walls 18-19 -> 13 iterations).
 //
 // Its pieces: the normal matrix and its pattern (normal_matrix.hpp,
 // normal_pattern.hpp), a group's eliminated block (phi_factor.hpp), twin

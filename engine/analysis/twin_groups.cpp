@@ -84,8 +84,8 @@ std::vector<int> TwinGroups::merged_first_rows(const std::vector<int>& full_firs
   return starts;
 }
 
-void TwinGroups::merge_solution(const InteriorPointSolution& full, const std::vector<int>& full_first_row,
-                                InteriorPointSolution& merged) const {
+void TwinGroups::merge_solution(const InteriorPointIterate& full, const std::vector<int>& full_first_row,
+                                InteriorPointIterate& merged) const {
   const int n = classes();
   merged.x.resize(4 * n);
   merged.y = full.y;
@@ -101,11 +101,11 @@ void TwinGroups::merge_solution(const InteriorPointSolution& full, const std::ve
   }
 }
 
-void TwinGroups::split_solution(const InteriorPointSolution& merged, const std::vector<int>& full_first_row,
-                                InteriorPointSolution& full) const {
+void TwinGroups::split_solution(const InteriorPointIterate& merged, const std::vector<int>& full_first_row,
+                                InteriorPointIterate& full) const {
   const int n = static_cast<int>(merged_of_.size());
   if (merged.x.size() != 4 * classes()) {  // no iterate (the solve stopped before its first)
-    full = InteriorPointSolution{};
+    full = InteriorPointIterate{};
     return;
   }
   const std::vector<int> merged_first_row = merged_first_rows(full_first_row);

@@ -48,10 +48,10 @@ public:
   // problem's (EquilibriumProblem::inequality_starts).
   std::vector<int> merged_first_rows(const std::vector<int>& full_first_row) const;
   // One of the problem's solutions in the classes' unknowns, and back.
-  void merge_solution(const InteriorPointSolution& full, const std::vector<int>& full_first_row,
-                      InteriorPointSolution& merged) const;
-  void split_solution(const InteriorPointSolution& merged, const std::vector<int>& full_first_row,
-                      InteriorPointSolution& full) const;
+  void merge_solution(const InteriorPointIterate& full, const std::vector<int>& full_first_row,
+                      InteriorPointIterate& merged) const;
+  void split_solution(const InteriorPointIterate& merged, const std::vector<int>& full_first_row,
+                      InteriorPointIterate& full) const;
 
 private:
   std::vector<int> merged_of_;     // problem group -> merged group; empty: no twins

@@ -31,6 +31,49 @@ Structure pushed_slab(double push, double press = 0.0, double press_at = 0.0) {
 
 }  // namespace
 
+// Where the iterate tells the optimum's active set (interior_point.cpp's
+// polish), the solve finishes on it, to rounding rather than to the
+// solver's tolerance; a warm start from that answer begins at the
+// interior iterate before it (the polished one is a vertex of the optimal
+// face) and gives the cold answer again. Reference: a block set off
+// (0.2, 0.1) m on another, both on the ground. With no horizontal load
+// the optimum is the least-norm corner compressions (the force_weight
+// term, equilibrium_problem.hpp) that balance each joint's resultant W at
+// (e_x, e_y) from the joint's centre, with corners at (+-a, +-b):
+// c = W / 4 (1 + e_x x / a^2 + e_y y / b^2).
+TEST(EquilibriumAnalysis, AnOffsetBlockIsPolishedToItsLeastNormCorners) {
+  Structure s;
+  s.add(box({3, 3, 0.2}, {0, 0, -0.1}), true);
+  s.add(box({1, 1, 0.4}, {0, 0, 0.2}));
+  s.add(box({1, 1, 0.4}, {0.2, 0.1, 0.6}));
+  const double weight = 1 * 1 * 0.4 * 2400 * kGravity;  // N, each block
+  EquilibriumAnalysis analysis(s, {});
+  const EquilibriumResult cold = analysis.solve();
+  ASSERT_EQ(cold.status, SolverStatus::converged);
+  EXPECT_GT(analysis.solution().interior.x.size(), 0) << "not polished";
+  ASSERT_EQ(cold.interfaces.size(), 2u);
+  int checked = 0;
+  for (size_t v = 0; v < cold.vertex_forces.size(); ++v) {
+    const InterfaceForces& joint = cold.interfaces[cold.vertex_interface[v]];
+    const bool top = std::min(joint.a, joint.b) == 1;
+    // The joint's centre, half sizes and resultant's place (m), and load (N).
+    const Vec3 centre = top ? Vec3(0.1, 0.05, 0.4) : Vec3(0, 0, 0);
+    const double a = top ? 0.4 : 0.5, b = top ? 0.45 : 0.5;
+    const double ex = (top ? 0.2 : 0.1) - centre.x(), ey = (top ? 0.1 : 0.05) - centre.y();
+    const double load = top ? weight : 2 * weight;
+    const Vec3 corner = cold.vertex_positions[v] - centre;
+    const double expected = load / 4 * (1 + ex * corner.x() / (a * a) + ey * corner.y() / (b * b));
+    EXPECT_NEAR(cold.vertex_forces[v](0), expected, 1e-11 * weight) << "vertex " << v << " at " << corner.transpose();
+    ++checked;
+  }
+  EXPECT_EQ(checked, 8);
+  const EquilibriumResult warm = analysis.solve(true);
+  ASSERT_EQ(warm.status, SolverStatus::converged);
+  for (size_t v = 0; v < cold.vertex_forces.size(); ++v) {
+    EXPECT_NEAR(warm.vertex_forces[v](0), cold.vertex_forces[v](0), 1e-8 * weight);
+  }
+}
+
 TEST(EquilibriumAnalysis, NewLoadsKeepTheSymbolicAnalysis) {
   const Structure first = pushed_slab(0.0);
   EquilibriumAnalysis analysis(first, {});
