@@ -11,7 +11,7 @@
 // row's slack and multiplier far apart) the solve tries to finish on it:
 // one Newton step with those rows held as equalities and the others
 // dropped lands on the optimum to rounding (interior_point.cpp's
-// ActiveSetPolish; the 10,051-block walls 18-19 -> 13 iterations).
+// ActiveSetPolish; the 10,051-block walls 18-19 -> 11 iterations).
 //
 // Its pieces: the normal matrix and its pattern (normal_matrix.hpp,
 // normal_pattern.hpp), a group's eliminated block (phi_factor.hpp), twin
