@@ -7,6 +7,8 @@ local models = require "ashlar.models"
 local support = require "spec_support"
 
 local cases = dofile("../../scripts/kinematic_cases.lua")
+-- Newmark's rigid block sliding on a shaken base, in closed form.
+local sliding = dofile("../../scripts/sliding_block.lua")
 
 describe("ashlar.simulate", function()
   it("lets a block clamped between two walls fall freely, whatever the friction", function()
@@ -178,55 +180,18 @@ describe("ashlar.simulate", function()
     support.near(path.positions[#path.positions][1] - path.positions[1][1], -0.5 * 0.05 * 9.81, 1e-3 * 0.245)
   end)
 
-  -- Newmark's rigid block sliding on a base whose acceleration is
-  -- a sin(w t), friction mu: its displacement relative to the base at
-  -- time T (m). It sticks until |a_g| exceeds mu g, then slips against
-  -- a_g (relative acceleration -a_g - mu g s, s the slip's sign) until its
-  -- relative velocity is 0 again, where it sticks or, with |a_g| still
-  -- above mu g, slips back. Each phase in closed form, its ends by
-  -- bisection to rounding.
-  local function newmark_sliding(a, w, mu, g, T)
-    local function ag(t) return a * math.sin(w * t) end
-    -- The first time after t, up to limit, at which past(time) holds (a
-    -- scan by 0.1 ms, far below the motion's quarter period, then bisection).
-    local function first(t, past, limit)
-      local hi = t + 1e-4
-      while hi <= limit and not past(hi) do hi = hi + 1e-4 end
-      if hi > limit then return nil end
-      local lo = hi - 1e-4
-      for _ = 1, 60 do
-        local middle = 0.5 * (lo + hi)
-        if past(middle) then hi = middle else lo = middle end
-      end
-      return hi
-    end
-    local t, x, slipping = 0, 0, false
-    while t < T do
-      local t0 = t
-      if not slipping then
-        t0 = first(t, function(u) return math.abs(ag(u)) > mu * g end, T)
-        if not t0 then break end
-      end
-      local s = ag(t0) > 0 and -1 or 1
-      local c0, s0 = math.cos(w * t0), math.sin(w * t0)
-      local function velocity(u) return a / w * (math.cos(w * u) - c0) - mu * g * s * (u - t0) end
-      local t1 = first(t0, function(u) return s * velocity(u) <= 0 end, T) or T
-      x = x + a / w ^ 2 * (math.sin(w * t1) - s0) - a / w * c0 * (t1 - t0) - mu * g * s * (t1 - t0) ^ 2 / 2
-      t, slipping = t1, math.abs(ag(t1)) > mu * g
-    end
-    return x
-  end
-
   it("slides a wall on its base as Newmark's rigid block under a harmonic ground acceleration", function()
     -- Two courses of running bond, friction 0.6, the ground shaken along
-    -- the wall at 1 g, 4 Hz: far below the in-plane rocking of the wall or
-    -- a brick (2 g), so it slides whole on its base, three times in 0.4 s
-    -- with sticks between (the closed form's phases start at 0.0256,
-    -- 0.1506 and 0.2756 s): every bed joint above the base carries exactly
-    -- its friction limit without slipping. -0.0122439 m at 0.4 s.
+    -- the wall at 1 g, 4 Hz. The wall's load factor along its length is
+    -- the friction (asserted): its base's sliding is its first mechanism,
+    -- so it slides whole on its base, three times in 0.4 s with sticks
+    -- between (the closed form's slips start at 0.0256, 0.1506 and 0.2756
+    -- s), every bed joint above the base at its friction limit without
+    -- slipping. -0.0122439 m at 0.4 s.
     local s = models.wall{ length = 1.2, height = 0.4, thickness = 0.2, brick = { 0.4, 0.2 } }
     s:set_planar(false)
     local a, w, mu = 9.81, 2 * math.pi * 4, 0.6
+    support.near(ashlar.load_factor(s, { friction = mu, direction = { -1, 0, 0 } }).factor, mu, 1e-9)
     local sim = ashlar.simulate(s, { duration = 0.4, friction = mu,
       ground_acceleration = function(t) return a * math.sin(w * t), 0, 0 end })
     assert.equal(0, sim.unconverged_steps)
@@ -238,7 +203,7 @@ describe("ashlar.simulate", function()
         for k, t in ipairs(path.times) do
           -- 7.5e-6 m at most at the 1 ms step (1.3e-6 at 0.5 ms): the
           -- time stepping's error.
-          support.near(path.positions[k][1] - path.positions[1][1], newmark_sliding(a, w, mu, 9.81, t), 2e-5)
+          support.near(path.positions[k][1] - path.positions[1][1], sliding.displacement(a, w, mu, t), 2e-5)
         end
       end
     end
