@@ -1,7 +1,7 @@
 -- A running-bond wall of 0.4 x 0.2 x 0.2 m bricks on the ground (friction
 -- 0.6) shaken along its length at A sin(2 pi f t), simulated, beside the
 -- rigid block sliding on its base in closed form (scripts/sliding_block.lua):
---   ashlar scripts/sliding_wall.lua BRICKS_A_COURSE COURSES A_IN_G F_HZ DURATION_S
+--   ashlar scripts/sliding_wall.lua BRICKS_A_COURSE COURSES A_IN_G F_HZ DURATION_S [MAX_SWEEPS]
 -- e.g. 5 5 1.5 2 0.3. Where the wall's load factor along its length
 -- (ashlar.load_factor at the same friction) is the friction itself, its
 -- base's sliding is its first mechanism: past it the wall slides whole as
@@ -18,15 +18,16 @@ local sliding = require "sliding_block"
 
 local per_course, courses = tonumber(arg[1]), tonumber(arg[2])
 local amplitude, frequency, duration = tonumber(arg[3]), tonumber(arg[4]), tonumber(arg[5])
+local max_sweeps = tonumber(arg[6])  -- nil: simulate's default
 if not (per_course and courses and amplitude and frequency and duration) then
-  io.stderr:write("usage: ashlar scripts/sliding_wall.lua BRICKS_A_COURSE COURSES A_IN_G F_HZ DURATION_S\n")
+  io.stderr:write("usage: ashlar scripts/sliding_wall.lua BRICKS_A_COURSE COURSES A_IN_G F_HZ DURATION_S [MAX_SWEEPS]\n")
   os.exit(1)
 end
 local mu, a, w = 0.6, amplitude * 9.81, 2 * math.pi * frequency
 local s = models.wall{ length = per_course * 0.4, height = courses * 0.2, thickness = 0.2, brick = { 0.4, 0.2 } }
 s:set_planar(false)
 local factor = ashlar.load_factor(s, { friction = mu, direction = { -1, 0, 0 } }).factor
-local sim = ashlar.simulate(s, { duration = duration, friction = mu,
+local sim = ashlar.simulate(s, { duration = duration, friction = mu, max_sweeps = max_sweeps,
   ground_acceleration = function(t) return a * math.sin(w * t), 0, 0 end })
 local lo, hi = math.huge, -math.huge
 for i = 1, #s do
