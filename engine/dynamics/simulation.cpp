@@ -38,11 +38,11 @@ constexpr int kParallelPoints = 4000;
 // steps and time: split within 2 tolerances down to a quarter, 72 in 47.8
 // s; within 100 down to a quarter, 12; within 100 down to a 64th, 2 in
 // 63.9 s; within 1,000 down to a 64th, 0 in 58.9 s. A split that stalls
-// again costs its solve twice over: a wall sliding on its base (106 blocks
-// shaken at 1.5 g, 50 steps, 23 of them unconverged at 1,919 sweeps a
-// step) took more than 17 times as long split so. A run therefore splits
+// again costs its solve twice over: a wall shaken past its load factor
+// (106 blocks at 1.5 g, 50 steps, 23 of them unconverged at 1,919 sweeps
+// a step) took more than 17 times as long split so. A run therefore splits
 // at most kFirstSplits + kSplitsPerStep times its steps so far: the arches
-// never reach that, the sliding wall left 19 steps unconverged at 2,548
+// never reach that, the shaken wall left 19 steps unconverged at 2,548
 // sweeps a step (a budget of half the steps: 15 at 4,387).
 constexpr int kStepSplits = 6;
 constexpr double kSplitWithin = 1000.0;
