@@ -66,13 +66,12 @@
 // thread: the sweeps in the caller's order and the factorisation whole
 // (sparse_cholesky.hpp's split over two cores is used only with more).
 //
-// Where the sweeps stall a few times above the tolerance (the load
-// cycling between the redundant corners of a face, or between points
-// sliding at their friction limit), a semismooth Newton method on the
-// step's whole problem (past 1,000 rows, on the rows that stall and the
-// others at their blocks: contact_newton.hpp) is taken every
-// newton_after_sweeps sweeps while the residual is within 100 tolerances;
-// the sweeps after it judge its answer by the same test.
+// Where the sweeps stall (the load cycling between the redundant corners
+// of a face, or between points sliding at their friction limit, or a
+// mechanism of many blocks sliding and rocking at once), an interior-point
+// method on the step's whole problem (contact_interior.hpp) is taken every
+// interior_after_sweeps sweeps; the sweeps after it judge its answer by
+// the same test.
 #pragma once
 
 #include <memory>
@@ -116,9 +115,9 @@ struct ContactSolverSettings {
   // Take global steps between the sweeps (see above); false: sweeps only.
   bool global_steps = true;
   // A solve that has not converged after this many sweeps (and after each
-  // as many more) takes semismooth Newton iterations on its rows
-  // (contact_newton.hpp) before sweeping on; 0: never.
-  int newton_after_sweeps = 100;
+  // as many more) takes the interior-point method on its rows
+  // (contact_interior.hpp) before sweeping on; 0: never.
+  int interior_after_sweeps = 100;
 };
 
 struct ContactSolverReport {
@@ -130,7 +129,7 @@ struct ContactSolverReport {
   int worst_row = -1;
   int global_steps = 0;     // global steps taken
   int factorizations = 0;   // numeric factorisations (one per global step)
-  int newton_iterations = 0;  // semismooth Newton iterations (one sparse LU each)
+  int interior_iterations = 0;  // interior-point iterations (one sparse Cholesky each)
 };
 
 // Solves rows of one step after another, keeping the global step's
@@ -161,8 +160,7 @@ private:
 
 // A row's constants, fixed within a step: its 3x3 Delassus block
 // W = J M^-1 J^T in the contact's frame (the change of the row's relative
-// velocity per unit impulse) and the step sizes the sweeps and Newton's
-// method (contact_newton.hpp) take on it.
+// velocity per unit impulse) and the step sizes the sweeps take on it.
 struct RowConstants {
   double normal_step = 0.0;      // rho_n = 1 / W_nn (N s per m/s)
   double tangent_step = 0.0;     // rho_t = 1 / the largest eigenvalue of W_tt (N s per m/s)
@@ -173,6 +171,13 @@ RowConstants row_constants(const ContactRow& row, const BodyVelocities& bodies);
 // The relative velocity (m/s) of b's material point at the contact against
 // a's, in the contact's frame (n, t1, t2).
 Vec3 relative_velocity(const ContactRow& row, const BodyVelocities& bodies);
+
+// How far (m/s) the relative velocity u (contact frame) of a row breaks the
+// contact laws at the row's impulse: the normal velocity off its target
+// where the contact presses, or below it where it does not; a sticking
+// contact's slip; a sliding one's slip off the direction opposite its
+// friction. Zero exactly when the row's laws hold.
+double row_residual(const ContactRow& row, const Vec3& u);
 
 // An orthonormal frame with n as its first row.
 Mat3 contact_frame(const Vec3& n);

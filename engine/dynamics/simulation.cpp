@@ -34,16 +34,15 @@ constexpr int kParallelPoints = 4000;
 // and so on, at most kStepSplits times over: down to a 64th of the step. A
 // shorter step changes the velocities less, and its solve starts nearer
 // its answer. Six collapsing arches (8,700 steps of 1 ms, mostly after
-// their first fall; tests/tools/convergence_runs.lua arches), unconverged
-// steps and time: split within 2 tolerances down to a quarter, 72 in 47.8
-// s; within 100 down to a quarter, 12; within 100 down to a 64th, 2 in
-// 63.9 s; within 1,000 down to a 64th, 0 in 58.9 s. A split that stalls
-// again costs its solve twice over: a wall shaken past its load factor
-// (106 blocks at 1.5 g, 50 steps, 23 of them unconverged at 1,919 sweeps
-// a step) took more than 17 times as long split so. A run therefore splits
-// at most kFirstSplits + kSplitsPerStep times its steps so far: the arches
-// never reach that, the shaken wall left 19 steps unconverged at 2,548
-// sweeps a step (a budget of half the steps: 15 at 4,387).
+// their first fall; tests/tools/convergence_runs.lua arches) leave 23
+// steps unconverged unsplit (up to 8e-5 m/s) and none split so (38 steps
+// split, 13.1 s against 11.7). Before the interior-point method finished
+// stalled solves, splits within 2 tolerances down to a quarter left 72,
+// within 1,000 down to a 64th none, and a split that stalled again cost
+// its solve twice over: a wall shaken past its load factor (106 blocks at
+// 1.5 g, 50 steps, 23 of them unconverged at 1,919 sweeps a step) took
+// more than 17 times as long split so. A run therefore splits at most
+// kFirstSplits + kSplitsPerStep times its steps so far.
 constexpr int kStepSplits = 6;
 constexpr double kSplitWithin = 1000.0;
 constexpr double kSplitsPerStep = 0.1;

@@ -110,12 +110,14 @@ struct SimulationOptions {
   // contact may break the contact laws, as a velocity (a fraction of 9.81
   // m/s^2 times the step, m/s), for a sweep to end the solve
   // (contact_solver.hpp). A block at rest then drifts by at most about
-  // tolerance x 9.81 h per second. A collapse's hard steps need up to a
-  // few thousand sweeps (Newton's method every 100 among them): six
-  // collapsing arches left 260 of 8,700 steps unconverged at 1,000 sweeps,
-  // 60 at 3,000 (42.6 s -> 57.6 s), 51 at 5,000 (81.5 s); a structure at
-  // rest or shaken takes a few sweeps a step and never comes near it.
-  int max_sweeps = 3000;
+  // tolerance x 9.81 h per second. A structure at rest or shaken below
+  // its load factor takes a few sweeps a step; a collapse's or a wall
+  // shaken past its load factor hard steps a few hundred, the
+  // interior-point method every 100 among them (contact_solver.hpp): six
+  // collapsing arches (8,700 steps) converge at every step with 300, 1,000
+  // or 3,000 sweeps at most (1 unconverged at 300), in 12.5, 13.2 and
+  // 16.5 s (a step stopped at the most is taken again in halves).
+  int max_sweeps = 1000;
   double tolerance = 1e-4;
   // Threads of the contact solve (contact_solver.hpp): 0, one per core (at
   // most 8); 1, one thread (the sweeps in the order of the load path, the

@@ -109,7 +109,7 @@ TEST(ContactSolver, AColumnCarriesItsWeightAndTheSidewaysForceToTheGroundInAFewS
   // The sweeps alone carry a change of load one joint a sweep: more than
   // ten times the sweeps (they stop at max_sweeps, 1,000, unsolved).
   settings.global_steps = false;
-  settings.newton_after_sweeps = 0;
+  settings.interior_after_sweeps = 0;
   Column alone = column(n, sideways, 0.6);
   const ContactSolverReport sweeps_only = ContactSolver().solve(alone.rows, alone.bodies, settings);
   std::printf("column of %d, sweeps only: %d sweeps, residual %.3g m/s\n", n, sweeps_only.sweeps, sweeps_only.residual);
