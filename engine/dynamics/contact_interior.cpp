@@ -120,7 +120,7 @@ Scaling nesterov_todd(const Vec3& x, const Vec3& z) {
 }  // namespace
 
 ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, BodyVelocities& bodies,
-                                             double tolerance, int max_fixed_point) {
+                                             double tolerance, int max_fixed_point, std::vector<double>& s) {
   ContactInteriorReport report;
   const int m = static_cast<int>(rows.size());
   if (m == 0) return report;
@@ -247,16 +247,17 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
   Eigen::VectorXd best_v;
 
   // Scaled variables: x = D P and z = D^-1 U in Q, D = diag(mu, 1, 1), so
-  // that P . U = x . z. The shift s = mu |u_t| starts at zero: the first
-  // program is the associated one (slip with dilatancy), whose answer is at
-  // rest where statics holds. Started from the sweeps' slips, the fixed
+  // that P . U = x . z. The shift s = mu |u_t| starts at zero on a step's
+  // first call: the first program is the associated one (slip with
+  // dilatancy), whose answer is at rest where statics holds. Started from the sweeps' slips, the fixed
   // point drifted on the 399-block vault's first step (standing) to a
   // sliding answer: 1.2 cm in 0.05 s where the sweeps' answer and this
   // one stand still.
   std::vector<Vec3> x(m), z(m), shift(m), dx(m), dz(m), r(m), r2(m), y(m);
   std::vector<Scaling> scaling(m);
 
-  std::vector<double> s(m, 0.0), impulse_scale(m);
+  if (s.size() != static_cast<size_t>(m)) s.assign(m, 0.0);
+  std::vector<double> impulse_scale(m);
   for (int k = 0; k < m; ++k) {
     impulse_scale[k] = constants[k].normal_step * (row_times(v, k) + fixed_u[k]).norm() * rows[k].friction;
   }

@@ -51,7 +51,10 @@ struct ContactInteriorReport {
 // below the start's, else as they came. An interior point's impulses are
 // never on their cones' boundary: the residuals count a row a sweep's pass
 // would open as open, and friction it would put on its limit as on it.
+// s: the fixed point's shift per row (m/s), in and out; one of another
+// size than the rows starts at zero. A caller that calls again on the
+// same step passes it back to go on with the fixed point.
 ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, BodyVelocities& bodies,
-                                             double tolerance, int max_fixed_point);
+                                             double tolerance, int max_fixed_point, std::vector<double>& s);
 
 }  // namespace ashlar

@@ -799,6 +799,12 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
   std::vector<double> part_largest(split.parts);
   std::vector<int> part_worst(split.parts);
 
+  // The interior-point method's shift, kept from call to call within the
+  // solve: a later call goes on with the fixed point where the last left
+  // it. The 106-block wall at 1.5 g for 0.2 s: 2 steps unconverged, 130 s,
+  // against 19 and 149 s starting every call from zero; the six arches
+  // 11.0 s against 13.1.
+  std::vector<double> shift;
   bool global_steps = settings.global_steps;
   double before_global_step = -1.0;  // the residual of the sweep before the last global step
   int worse = 0;                     // global steps that left a larger residual
@@ -878,7 +884,7 @@ ContactSolverReport ContactSolver::solve(std::vector<ContactRow>& rows, BodyVelo
     // method; the sweeps after it judge its answer by the same test.
     if (settings.interior_after_sweeps > 0 && report.sweeps % settings.interior_after_sweeps == 0) {
       const ContactInteriorReport interior =
-          solve_contact_interior(rows, bodies, settings.velocity_tolerance, kInteriorRounds);
+          solve_contact_interior(rows, bodies, settings.velocity_tolerance, kInteriorRounds, shift);
       report.interior_iterations += interior.iterations;
       if (interior.improved) std::fill(settled.begin(), settled.end(), 0);
     }

@@ -56,7 +56,8 @@ TEST(ContactInterior, ABoxOnAnInclineSlidesAtGTimesSinMinusMuCosAndSticksBelowTh
   for (const double friction : {0.3, 0.8}) {
     const double sideways = 0.5 * kGravity;  // an incline of slope 0.5 (26.6 degrees)
     Column c = column(1, sideways, friction);
-    const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, tolerance, 30);
+    std::vector<double> shift;
+    const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, tolerance, 30, shift);
     const bool slides = sideways > friction * kGravity;
     const Vec3 expected(slides ? kStep * (sideways - friction * kGravity) : 0.0, 0.0, 0.0);
     std::printf("box on a slope of 0.5, friction %.1f: %d iterations, residual %.3g m/s, velocity (%.9g, %.3g, %.3g) m/s "
@@ -90,7 +91,8 @@ TEST(ContactInterior, CarriesAColumnsWeightAndSidewaysForceToTheGroundThroughIts
   const double sideways = 0.05 * kGravity;
   const double tolerance = 1e-11;  // m/s
   Column c = column(n, sideways, 0.6);
-  const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, tolerance, 30);
+  std::vector<double> shift;
+  const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, tolerance, 30, shift);
   Vec3 impulse = Vec3::Zero();
   for (const ContactRow& row : c.rows) {
     if (row.a == 0) impulse += row.frame.transpose() * row.impulse;
@@ -126,7 +128,8 @@ TEST(ContactInterior, ABoxSlidingAcrossTheGroundSlowsAlongItsSlipByMuGH) {
   Column c = column(1, 0.2 * kGravity, friction);
   c.bodies.linear[1] += Vec3(0.3, 0.1, 0.0);
   const Eigen::Vector2d slip = c.bodies.linear[1].head<2>();
-  const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, tolerance, 30);
+  std::vector<double> shift;
+  const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, tolerance, 30, shift);
   const Eigen::Vector2d expected = slip * (1.0 - friction * kGravity * kStep / slip.norm());
   std::printf("box sliding: %d rounds, %d iterations, residual %.3g m/s, velocity (%.12g, %.12g, %.3g) m/s "
               "(closed form %.12g, %.12g)\n",
@@ -145,9 +148,10 @@ TEST(ContactInterior, ABoxSlidingAcrossTheGroundSlowsAlongItsSlipByMuGH) {
 TEST(ContactInterior, LeavesAStepThatKeepsTheLawsAsItCame) {
   Column c = column(3, 0.05 * kGravity, 0.6);
   const double tolerance = 1e-10;  // m/s
-  ASSERT_TRUE(solve_contact_interior(c.rows, c.bodies, tolerance, 30).improved);
+  std::vector<double> shift;
+  ASSERT_TRUE(solve_contact_interior(c.rows, c.bodies, tolerance, 30, shift).improved);
   const Column solved = c;
-  const ContactInteriorReport again = solve_contact_interior(c.rows, c.bodies, tolerance, 30);
+  const ContactInteriorReport again = solve_contact_interior(c.rows, c.bodies, tolerance, 30, shift);
   EXPECT_EQ(again.iterations, 0);
   EXPECT_FALSE(again.improved);
   EXPECT_LE(again.largest, tolerance);
@@ -159,7 +163,8 @@ TEST(ContactInterior, LeavesAStepWithAFrictionlessRowAsItCame) {
   Column c = column(1, 0.0, 0.6);
   c.rows[0].friction = 0.0;
   const Column before = c;
-  const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, 1e-10, 30);
+  std::vector<double> shift;
+  const ContactInteriorReport report = solve_contact_interior(c.rows, c.bodies, 1e-10, 30, shift);
   EXPECT_EQ(report.iterations, 0);
   EXPECT_FALSE(report.improved);
   EXPECT_TRUE(c.bodies.linear[1] == before.bodies.linear[1]);
