@@ -12,7 +12,6 @@
 #include "dynamics/body_blocks.hpp"
 #include "dynamics/contact_interior.hpp"
 
-
 namespace ashlar {
 namespace {
 
