@@ -67,6 +67,11 @@ Vec3 jordan_divide(const Vec3& lambda, const Vec3& b) {
 }
 double cone_margin(const Vec3& x) { return x.x() - x.tail<2>().norm(); }
 
+// D a and D^-1 a for D = diag(mu, 1, 1), the scaling that takes a row's
+// friction cone to Q (see solve_contact_interior).
+Vec3 scaled(const Vec3& a, double mu) { return Vec3(mu * a.x(), a.y(), a.z()); }
+Vec3 unscaled(const Vec3& a, double mu) { return Vec3(a.x() / mu, a.y(), a.z()); }
+
 // The largest a with x + a d in Q (x inside it): the least positive root
 // of (x_0 + a d_0)^2 - |x_t + a d_t|^2; infinity if there is none.
 double step_to_boundary(const Vec3& x, const Vec3& d) {
@@ -249,13 +254,12 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
   // Scaled variables: x = D P and z = D^-1 U in Q, D = diag(mu, 1, 1), so
   // that P . U = x . z. The shift s = mu |u_t| starts at zero on a step's
   // first call: the first program is the associated one (slip with
-  // dilatancy), whose answer is at rest where statics holds. Started from the sweeps' slips, the fixed
-  // point drifted on the 399-block vault's first step (standing) to a
-  // sliding answer: 1.2 cm in 0.05 s where the sweeps' answer and this
-  // one stand still.
+  // dilatancy), whose answer is at rest where statics holds. Started from
+  // the sweeps' slips, the fixed point drifted on the 399-block vault's
+  // first step (standing) to a sliding answer: 1.2 cm in 0.05 s where the
+  // sweeps' answer and this one stand still.
   std::vector<Vec3> x(m), z(m), shift(m), dx(m), dz(m), r(m), r2(m), y(m);
   std::vector<Scaling> scaling(m);
-
   if (s.size() != static_cast<size_t>(m)) s.assign(m, 0.0);
   std::vector<double> impulse_scale(m);
   for (int k = 0; k < m; ++k) {
@@ -269,9 +273,8 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
       const double mu = rows[k].friction;
       shift[k] = fixed_u[k];
       shift[k].x() += s[k] - rows[k].target_normal;
-      x[k] = Vec3(mu * impulse[k].x(), impulse[k].y(), impulse[k].z());
-      const Vec3 u = row_times(v, k) + shift[k];
-      z[k] = Vec3(u.x() / mu, u.y(), u.z());
+      x[k] = scaled(impulse[k], mu);
+      z[k] = unscaled(row_times(v, k) + shift[k], mu);
     }
     // Into the cones' interior: by 1.5 times the farthest outside, then
     // Mehrotra's shift of x by half x . z over the sum of z_0 and of z the
@@ -303,13 +306,12 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
     for (int iteration = 0; iteration <= kIterations; ++iteration) {
       // Residuals R1 = M v - J^T D^-1 x - q (as velocities, M^-1 R1) and
       // R2 = z - D^-1 (J v + e); the mean gap x . z.
-      for (int k = 0; k < m; ++k) y[k] = Vec3(x[k].x() / rows[k].friction, x[k].y(), x[k].z());
+      for (int k = 0; k < m; ++k) y[k] = unscaled(x[k], rows[k].friction);
       transpose_times(y, g);
       const Eigen::VectorXd r1 = mass_times(v) - g - q;
       double gap = 0.0, largest_xz = 0.0, largest_r2 = 0.0, p_scale = 0.0;
       for (int k = 0; k < m; ++k) {
-        const Vec3 u = row_times(v, k) + shift[k];
-        r2[k] = z[k] - Vec3(u.x() / rows[k].friction, u.y(), u.z());
+        r2[k] = z[k] - unscaled(row_times(v, k) + shift[k], rows[k].friction);
         gap += x[k].dot(z[k]);
         largest_xz = std::max(largest_xz, x[k].dot(z[k]));
         largest_r2 = std::max(largest_r2, r2[k].cwiseAbs().maxCoeff());
@@ -350,15 +352,14 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
         for (int k = 0; k < m; ++k) {
           const Mat3& wi = scaling[k].w_inverse;
           const Vec3 t = wi * (r[k] + wi * r2[k]);
-          y[k] = Vec3(t.x() / rows[k].friction, t.y(), t.z());
+          y[k] = unscaled(t, rows[k].friction);
         }
         transpose_times(y, g);
         rhs = g - r1;
         cholesky.solve(rhs, dv);
         double step = std::numeric_limits<double>::infinity();
         for (int k = 0; k < m; ++k) {
-          const Vec3 u = row_times(dv, k);
-          dz[k] = Vec3(u.x() / rows[k].friction, u.y(), u.z()) - r2[k];
+          dz[k] = unscaled(row_times(dv, k), rows[k].friction) - r2[k];
           const Mat3& wi = scaling[k].w_inverse;
           dx[k] = wi * (r[k] - wi * dz[k]);
           step = std::min({step, step_to_boundary(x[k], dx[k]), step_to_boundary(z[k], dz[k])});
@@ -387,7 +388,7 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
     if (!solved) break;
     // The program's impulses, the velocities they give, and the shift
     // they call for.
-    for (int k = 0; k < m; ++k) impulse[k] = Vec3(x[k].x() / rows[k].friction, x[k].y(), x[k].z());
+    for (int k = 0; k < m; ++k) impulse[k] = unscaled(x[k], rows[k].friction);
     v = velocities_of(impulse);
     double moved = 0.0;
     for (int k = 0; k < m; ++k) {
