@@ -175,24 +175,6 @@ void push_displacements(lua_State* L, const SimulationResult& r) {
   }
 }
 
-// A block (index or name) or a list of them at stack index idx; 0-based.
-std::vector<int> block_list(lua_State* L, const Structure& s, int idx, int arg, const char* what) {
-  std::vector<int> blocks;
-  if (lua_type(L, idx) != LUA_TTABLE) {
-    blocks.push_back(check_block_index(L, s, idx, arg, what));
-    return blocks;
-  }
-  const lua_Unsigned count = lua_rawlen(L, idx);
-  if (count == 0) throw ArgError(arg, std::string(what) + ": expected a block or a list of blocks, got an empty table");
-  for (lua_Unsigned k = 1; k <= count; ++k) {
-    lua_rawgeti(L, idx, static_cast<lua_Integer>(k));
-    const std::string item = std::string(what) + "[" + std::to_string(k) + "]";
-    blocks.push_back(check_block_index(L, s, lua_gettop(L), arg, item.c_str()));
-    lua_pop(L, 1);
-  }
-  return blocks;
-}
-
 void push_block_numbers(lua_State* L, const std::vector<double>& values) {
   lua_createtable(L, static_cast<int>(values.size()), 0);
   for (size_t i = 0; i < values.size(); ++i) {
@@ -240,7 +222,7 @@ int w_Simulation_summary(lua_State* L) {
 int w_Simulation_drift(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
-    const std::vector<int> blocks = block_list(L, record->structure, 2, 2, "blocks");
+    const std::vector<int> blocks = check_block_list(L, record->structure, 2, 2, "blocks");
     const Drift d = drift(record->structure, record->result, blocks);
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, 0, 5);
@@ -275,7 +257,7 @@ int w_Simulation_chart(lua_State* L) {
     }
     std::vector<int> blocks;
     if (options.push("blocks") != LUA_TNIL) {
-      blocks = block_list(L, s, lua_gettop(L), 2, "blocks");
+      blocks = check_block_list(L, s, -1, 2, "blocks");
     } else {
       for (int i = 0; i < static_cast<int>(s.size()); ++i) {
         if (!s.is_support(i)) blocks.push_back(i);

@@ -442,6 +442,27 @@ int check_block_index(lua_State* L, const Structure& s, int idx, int arg, const 
   return static_cast<int>(index - 1);
 }
 
+std::vector<int> check_block_list(lua_State* L, const Structure& s, int idx, int arg, const char* what,
+                                  bool allow_empty) {
+  idx = lua_absindex(L, idx);
+  std::vector<int> blocks;
+  if (lua_type(L, idx) != LUA_TTABLE) {
+    blocks.push_back(check_block_index(L, s, idx, arg, what));
+    return blocks;
+  }
+  const lua_Integer count = luaL_len(L, idx);
+  if (count == 0 && !allow_empty) {
+    throw ArgError(arg, std::string(what) + ": expected a block or a list of blocks, got an empty table");
+  }
+  for (lua_Integer k = 1; k <= count; ++k) {
+    lua_geti(L, idx, k);
+    const std::string item = std::string(what) + "[" + std::to_string(k) + "]";
+    blocks.push_back(check_block_index(L, s, -1, arg, item.c_str()));
+    lua_pop(L, 1);
+  }
+  return blocks;
+}
+
 std::shared_ptr<Structure> luax_checkStructure(lua_State* L, int idx) {
   return check_boxed<Structure>(L, idx, kStructureMeta, "Structure");
 }

@@ -27,4 +27,9 @@ ContactOptions contact_options(const OptionTable& options, const char* tolerance
 // Block index argument: an integer 1..#s or a block name; returns 0-based.
 int check_block_index(lua_State* L, const Structure& s, int idx, int arg, const char* what);
 
+// A block (index or name) or a list of them at stack index idx; 0-based. An
+// empty list is an error unless `allow_empty`.
+std::vector<int> check_block_list(lua_State* L, const Structure& s, int idx, int arg, const char* what,
+                                  bool allow_empty = false);
+
 }  // namespace ashlar::lua

@@ -212,22 +212,6 @@ void push_history(lua_State* L, const Progress& progress) {
   }
 }
 
-// A list of block references (indices or names) at the top of the stack.
-std::vector<int> block_list(lua_State* L, const Structure& s, int arg, const std::string& what) {
-  std::vector<int> blocks;
-  if (lua_type(L, -1) != LUA_TTABLE) {
-    throw ArgError(arg, what + ": expected a list of block indices or names, got " +
-                            type_name(L, -1));
-  }
-  const lua_Integer n = luaL_len(L, -1);
-  for (lua_Integer k = 1; k <= n; ++k) {
-    lua_geti(L, -1, k);
-    blocks.push_back(check_block_index(L, s, -1, arg, (what + "[" + std::to_string(k) + "]").c_str()));
-    lua_pop(L, 1);
-  }
-  return blocks;
-}
-
 // {block = i or name, vertex = k} at the top of the stack.
 PositionRef vertex_ref(lua_State* L, const Structure& s, int arg, const std::string& what) {
   if (lua_type(L, -1) != LUA_TTABLE) {
@@ -256,7 +240,7 @@ DesignConstraints design_constraints(lua_State* L, const Structure& s, const Opt
     if (s.is_support(i)) c.fixed_blocks.push_back(i);
   }
   if (options.push("fixed") != LUA_TNIL) {
-    for (int block : block_list(L, s, arg, "fixed")) c.fixed_blocks.push_back(block);
+    for (int block : check_block_list(L, s, -1, arg, "fixed", /*allow_empty=*/true)) c.fixed_blocks.push_back(block);
   }
   lua_pop(L, 1);
   if (const std::optional<std::string> pattern = options.string("fixed_names")) {
