@@ -5,9 +5,11 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "analysis/load_capacity.hpp"
 #include "analysis/weight_analysis.hpp"
+#include "core/error.hpp"
 #include "luax.hpp"
 #include "progress_line.hpp"
 #include "wrap_Result.hpp"
@@ -26,15 +28,23 @@ void set_list(lua_State* L, const std::vector<double>& values) {
 }
 
 // The options of the per-block analyses (load_capacity, important_weights)
-// into their settings: `threads` (0 for one per core) and `symmetry`
-// (solve one block per orbit of the problem's symmetries).
+// into their settings: `threads` (0 for one per core), `symmetry` (solve
+// one block per orbit of the problem's symmetries) and `blocks` (the blocks
+// asked, else every block).
 template <class Settings>
-Settings per_block_settings(const OptionTable& options) {
+Settings per_block_settings(lua_State* L, const Structure& s, const OptionTable& options) {
   Settings settings;
   settings.analysis = analysis_settings(options);
   settings.threads = static_cast<int>(
       options.whole("threads", 0, 1024, "a whole number from 0 (one per core) to 1024").value_or(settings.threads));
   settings.use_symmetry = options.boolean("symmetry").value_or(settings.use_symmetry);
+  if (options.push("blocks") != LUA_TNIL) settings.blocks = check_block_list(L, s, -1, options.arg(), "blocks");
+  lua_pop(L, 1);
+  try {
+    asked_blocks(s, settings.blocks, "");  // a block listed twice, named as an argument error
+  } catch (const InvalidArgument& e) {
+    throw ArgError(options.arg(), e.what());
+  }
   return settings;
 }
 
@@ -74,14 +84,16 @@ int w_load_capacity(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry"});
-    const LoadCapacitySettings settings = per_block_settings<LoadCapacitySettings>(options);
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry", "blocks"});
+    const LoadCapacitySettings settings = per_block_settings<LoadCapacitySettings>(L, s, options);
     ProgressLine line(options, "load_capacity", std::to_string(s.size()) + " blocks", "block");
     const LoadCapacity capacity = load_capacity(s, settings, line.callback());
     line.finish(kMarginStatusNames.name(capacity.status));
+    const std::vector<char> asked = asked_blocks(s, settings.blocks, "load capacity");
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, s.size(), 5);
       for (int i = 0; i < s.size(); ++i) {
+        if (!asked[i]) continue;  // nil: not asked
         if (std::isnan(capacity.max[i])) {
           lua_pushboolean(L, false);
         } else {
@@ -126,8 +138,8 @@ int w_important_weights(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
     const Structure& s = *structure;
-    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry"});
-    const ImportantWeightsSettings settings = per_block_settings<ImportantWeightsSettings>(options);
+    const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry", "blocks"});
+    const ImportantWeightsSettings settings = per_block_settings<ImportantWeightsSettings>(L, s, options);
     ProgressLine line(options, "important_weights", std::to_string(s.size()) + " blocks", "block");
     const ImportantWeights important = important_weights(s, settings, line.callback());
     const char* status = kImportantWeightsStatusNames.name(important.status);

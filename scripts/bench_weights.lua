@@ -19,6 +19,13 @@
 --   ashlar scripts/bench_weights.lua margins [dome|imperfect|vault]
 -- With `friction`, friction_demand alone on ten structures (below), run
 -- from the repository's root.
+-- With `blocks`, load_capacity and important_weights of the blocks asked
+-- (option `blocks`) without the symmetries: one block, then a whole course
+-- (the middle one of the 1,008-voussoir vault, 32 blocks; course 9 of the
+-- imperfect dome, 16), with wall and CPU time per block asked; with
+-- `blocks check`, also every block's load capacity (minutes on the vault)
+-- and the largest relative difference of the course's bounds against it:
+--   ashlar scripts/bench_weights.lua blocks [check]
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 
@@ -76,6 +83,51 @@ if arg[1] == "friction" then
     local d = ashlar.friction_demand(s, options)
     print(("%-50s %.10g [%.10g] %s, %d programs, %d iterations, %.2f s wall, %.2f s CPU"):format(name, d.friction,
       d.lower, d.status, d.programs, d.iterations, ashlar.clock() - wall, cpu_seconds() - cpu))
+  end
+  return
+end
+
+if arg[1] == "blocks" then
+  local perturbed, perturbed_contact = imperfect(1e-3)
+  local vault = models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5, bond = "running" }
+  local cases = {
+    { "barrel vault, running bond, 32 x 31", vault, {}, "voussoir %d course 16", 32 },
+    { "dome 16 x 18, every vertex moved by up to 0.1 %", perturbed, perturbed_contact, "course 9 block %d", 16 },
+  }
+  for _, case in ipairs(cases) do
+    local name, s, contact, pattern, count = case[1], case[2], case[3], case[4], case[5]
+    local course = {}
+    for k = 1, count do course[k] = assert(s:find(pattern:format(k))) end
+    local function options(extra)
+      local o = { progress = false, symmetry = false }
+      for k, v in pairs(contact) do o[k] = v end
+      for k, v in pairs(extra) do o[k] = v end
+      return o
+    end
+    print(name)
+    local answers = {}
+    for _, asked in ipairs{ { course[1] }, course } do
+      for _, run in ipairs{ { "load_capacity", ashlar.load_capacity }, { "important_weights", ashlar.important_weights } } do
+        local wall, cpu = ashlar.clock(), cpu_seconds()
+        answers[run[1]] = run[2](s, options{ blocks = asked })
+        wall, cpu = ashlar.clock() - wall, cpu_seconds() - cpu
+        print(("  %-18s %2d blocks asked %8.2f s wall %8.2f s CPU, %.3f s wall a block"):format(run[1], #asked, wall,
+          cpu, wall / #asked))
+      end
+    end
+    if arg[2] == "check" then
+      local wall = ashlar.clock()
+      local every = ashlar.load_capacity(s, options{})
+      local worst = 0
+      for _, i in ipairs(course) do
+        for _, bound in ipairs{ "min", "max" } do
+          local a, b = answers.load_capacity[i][bound], every[i][bound]
+          if a ~= b then worst = math.max(worst, math.abs(a - b) / math.abs(b)) end
+        end
+      end
+      print(("  every block's load_capacity %.2f s wall; the blocks asked within %.3g relative"):format(
+        ashlar.clock() - wall, worst))
+    end
   end
   return
 end

@@ -60,6 +60,22 @@ void check_analysed_block(const EquilibriumProblem& problem, const Structure& st
   }
 }
 
+std::vector<char> asked_blocks(const Structure& structure, const std::vector<int>& blocks, const std::string& caller) {
+  std::vector<char> asked(structure.size(), blocks.empty() ? 1 : 0);
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const int block = blocks[k];
+    const std::string entry = message_prefix(caller) + "blocks[" + std::to_string(k + 1) + "]: block " +
+                              std::to_string(block + 1);
+    if (block < 0 || block >= structure.size()) {
+      throw InvalidArgument(entry + " is out of range (the structure has " + std::to_string(structure.size()) +
+                            " blocks)");
+    }
+    if (asked[block]) throw InvalidArgument(entry + " is listed twice");
+    asked[block] = 1;
+  }
+  return asked;
+}
+
 namespace {
 
 EquilibriumResult analyze_by_method(const Structure& structure, const AnalysisSettings& settings,

@@ -218,6 +218,12 @@ void check_free_block(const Structure& structure, int block, const std::string& 
 void check_analysed_block(const EquilibriumProblem& problem, const Structure& structure, int block,
                           const std::string& caller);
 
+// The blocks a per-block analysis is asked about (load capacity, important
+// weights), as a mask over the structure's blocks: `blocks` (0-based), or
+// every block when it is empty. Throws InvalidArgument, naming `caller` and
+// the entry, for a block out of range or listed twice.
+std::vector<char> asked_blocks(const Structure& structure, const std::vector<int>& blocks, const std::string& caller);
+
 // The line of thrust as polylines (m) to draw: a segment joins the centres
 // of pressure of every two compressed interfaces of one free block, and
 // segments are joined end to end through blocks with two such interfaces.

@@ -541,6 +541,7 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   const int threads = capacity_settings.threads;
   const bool use_symmetry = capacity_settings.use_symmetry;
   check_analysis_settings(settings);  // planar or 3D, as the analyses of 3D structures do
+  const std::vector<char> asked = asked_blocks(structure, capacity_settings.blocks, "load capacity");
   const EquilibriumProblem problem = build_equilibrium_problem(structure, settings.problem);
   // A block's bounds are optimal values: its images under the problem's
   // symmetries have the same, and only one block of each orbit is solved.
@@ -556,16 +557,20 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   const CoinPackedMatrix matrix = *capacity.matrix();
   const ClpSimplex rays = recession_program(matrix, program);
 
-  std::vector<int> blocks;  // the blocks solved: one per orbit
-  std::vector<int> solved_as(structure.size(), -1);  // per block, its orbit's index in `blocks`
+  // The blocks solved: one per orbit with a block asked, in block order.
+  std::vector<int> blocks;
+  std::vector<int> slot(structure.size(), -1);  // per block solved, its index in `blocks`
   for (int j = 0; j < structure.size(); ++j) {
-    if (multiplier_column[j] < 0) continue;
-    if (symmetry.representative[j] == j) {
-      solved_as[j] = static_cast<int>(blocks.size());
-      blocks.push_back(j);
-    } else {
-      solved_as[j] = solved_as[symmetry.representative[j]];
-    }
+    if (multiplier_column[j] >= 0 && asked[j]) slot[symmetry.representative[j]] = 0;
+  }
+  for (int j = 0; j < structure.size(); ++j) {
+    if (slot[j] < 0) continue;
+    slot[j] = static_cast<int>(blocks.size());
+    blocks.push_back(j);
+  }
+  std::vector<int> solved_as(structure.size(), -1);  // per block asked, its orbit's index in `blocks`
+  for (int j = 0; j < structure.size(); ++j) {
+    if (multiplier_column[j] >= 0 && asked[j]) solved_as[j] = slot[symmetry.representative[j]];
   }
   std::vector<BlockBounds> bounds(blocks.size());
   // The copies are made here, one thread reading the models at a time.

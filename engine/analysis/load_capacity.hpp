@@ -46,6 +46,9 @@ struct LoadCapacitySettings {
   // Solve one block per orbit of the problem's symmetries (false: every
   // block, for checking them).
   bool use_symmetry = true;
+  // The blocks whose bounds are wanted (0-based), or every block when
+  // empty: on a model without symmetry the cost is per block asked.
+  std::vector<int> blocks;
 };
 
 struct LoadCapacity {
@@ -53,8 +56,9 @@ struct LoadCapacity {
   // structure stands for every multiple in [min, max] (a feasible set is an
   // interval). max is +infinity when no weight is too much (e.g. a block
   // resting on a support). Both NaN for supports, floating blocks, blocks
-  // without weight, and blocks whose program is infeasible at every
-  // multiple (the rest cannot stand whatever this block weighs).
+  // without weight, blocks whose program is infeasible at every multiple
+  // (the rest cannot stand whatever this block weighs), and blocks not
+  // asked (LoadCapacitySettings::blocks).
   std::vector<double> min, max;
   // The structure stands as it is (every multiple 1): the as-built
   // analysis's certified verdict (3D, Coulomb friction), else the
@@ -75,7 +79,8 @@ struct LoadCapacity {
   double seconds = 0.0;
 };
 
-// Throws InvalidArgument for bad analysis options (as analyze_equilibrium).
+// Throws InvalidArgument for bad analysis options (as analyze_equilibrium)
+// and for blocks asked out of range or twice.
 // progress: blocks solved (core/progress.hpp; none when empty).
 LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySettings& settings,
                            const ProgressCount& progress = {});

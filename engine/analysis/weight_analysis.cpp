@@ -210,6 +210,7 @@ ImportantWeights important_weights(const Structure& structure, const ImportantWe
   const int threads = weights_settings.threads;
   const bool use_symmetry = weights_settings.use_symmetry;
   check_analysis_settings(settings);
+  const std::vector<char> asked = asked_blocks(structure, weights_settings.blocks, "important weights");
   // Each problem's solver on one core when the workers may be several.
   const SolverCores cores =
       worker_count(threads, std::numeric_limits<int>::max()) > 1 ? SolverCores::one : SolverCores::all;
@@ -220,13 +221,15 @@ ImportantWeights important_weights(const Structure& structure, const ImportantWe
   // necessary weights for a block's image under a symmetry of the problem
   // are the image of the block's own: one block of each orbit is solved.
   const ProblemSymmetry symmetry = find_problem_symmetry(structure, first_problem->problem(), use_symmetry);
-  std::vector<std::vector<int>> orbit_of(structure.size());  // per block solved: its orbit's symmetries
+  // Per block solved: the symmetries that map it to the blocks asked in its orbit.
+  std::vector<std::vector<int>> orbit_of(structure.size());
+  for (int i = 0; i < structure.size(); ++i) {
+    if (first_problem->problem().row_of_block[i] < 0 || !asked[i]) continue;
+    orbit_of[symmetry.representative[i]].push_back(symmetry.symmetry_of[i]);
+  }
   std::vector<int> blocks;  // the free blocks solved, in block order
   for (int i = 0; i < structure.size(); ++i) {
-    if (first_problem->problem().row_of_block[i] < 0) continue;
-    const int solved = symmetry.representative[i];
-    if (solved == i) blocks.push_back(i);
-    orbit_of[solved].push_back(symmetry.symmetry_of[i]);
+    if (!orbit_of[i].empty()) blocks.push_back(i);
   }
   // Each worker takes a contiguous share of the blocks, in order, on a
   // problem and solver of its own, each solve warm from its own last one:

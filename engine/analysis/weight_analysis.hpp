@@ -63,6 +63,10 @@ struct ImportantWeightsSettings {
   // Solve one block per orbit of the problem's symmetries and map its
   // weights to the others (false: every block, for checking them).
   bool use_symmetry = true;
+  // The free blocks i whose necessary weights are summed (0-based), or
+  // every free block when empty: on a model without symmetry the cost is
+  // per block asked.
+  std::vector<int> blocks;
 };
 
 // Whether every free block's problem was solved.
@@ -74,9 +78,10 @@ inline constexpr EnumNames<ImportantWeightsStatus, 2> kImportantWeightsStatusNam
     {{{ImportantWeightsStatus::done, "done"}, {ImportantWeightsStatus::interrupted, "interrupted"}}}};
 
 struct ImportantWeights {
-  // N/m^3 per block: the sum over every free block i of block j's necessary
-  // weight for i (i's own weight excluded), over block j's volume; 0 for
-  // supports and floating blocks (figure 9).
+  // N/m^3 per block: the sum over every free block i (every one asked,
+  // ImportantWeightsSettings::blocks) of block j's necessary weight for i
+  // (i's own weight excluded), over block j's volume; 0 for supports and
+  // floating blocks (figure 9).
   std::vector<double> per_volume;
   // Free blocks whose necessary-weights problem has no compression-only
   // solution (0-based); they add what they found all the same.
@@ -92,8 +97,9 @@ struct ImportantWeights {
   double seconds = 0.0;
 };
 
-// One necessary-weights problem per free block, on one factorisation
-// pattern, each warm-started from the last. progress: as load_capacity's
+// One necessary-weights problem per free block asked, on one
+// factorisation pattern, each warm-started from the last. Throws
+// InvalidArgument as load_capacity. progress: as load_capacity's
 // (analysis/load_capacity.hpp).
 ImportantWeights important_weights(const Structure& structure, const ImportantWeightsSettings& settings,
                                    const ProgressCount& progress = {});

@@ -20,7 +20,7 @@
 local ashlar = require "ashlar"
 local models = require "ashlar.models"
 local support = require "spec_support"
-local near = support.near
+local expect_error, near = support.expect_error, support.near
 
 local EXACT = 1e-6  -- relative, for the linear programs' answers
 
@@ -136,6 +136,68 @@ describe("a dome of 8 x 4 blocks (3D references)", function()
     check(ashlar.important_weights(s, { progress = false, tolerance = 1e-12 }), function(expected)
       return 2e-5 * expected
     end)
+  end)
+
+  it("blocks: the bounds of the blocks asked alone, and the weights they need", function()
+    -- A block of course 2, one of course 3 and the keystone, with and
+    -- without the symmetries: three blocks solved either way, each as the
+    -- whole run solves it (the as-built program, then per block whether it
+    -- could be weightless and its largest multiple: 1 + 3 * 2 = 7 programs
+    -- on one worker), against the same references; the blocks not asked
+    -- have no entry, a support asked has false.
+    local key = s:find("keystone")
+    local ground = 1
+    while not s:is_support(ground) do ground = ground + 1 end
+    local asked = { course(s, 2)[3], course(s, 3)[6], key, ground }
+    local maxima = { [asked[1]] = 113.68038980083335, [asked[2]] = 44.299029123382546, [key] = 7.1362696460316482 }
+    for _, symmetry in ipairs{ true, false } do
+      local cap = ashlar.load_capacity(s, { progress = false, symmetry = symmetry, threads = 1, blocks = asked })
+      assert.are.equal("optimal", cap.status)
+      assert.are.equal(7, cap.programs)
+      for i = 1, #s do
+        if maxima[i] then
+          assert.are.equal(0, cap[i].min)
+          near(cap[i].max, maxima[i], EXACT * maxima[i], s:name(i))
+        elseif i == asked[4] then
+          assert.are.equal(false, cap[i])
+        else
+          assert.is_nil(cap[i], s:name(i))
+        end
+      end
+    end
+    -- The weights one block needs are its necessary weights (solved on
+    -- their own, cold) over each block's volume; the sums over two sets of
+    -- blocks that split the free blocks add up to the whole sum's
+    -- references, within the warm starts' effect (1e-4 of the largest).
+    local one = course(s, 2)[3]
+    local v = ashlar.important_weights(s, { progress = false, blocks = { one } })
+    assert.are.equal(1, v.solves)
+    local needed = ashlar.necessary_weights(s, one)
+    local largest = 0
+    for j = 1, #s do largest = math.max(largest, needed[j]) end
+    for j = 1, #s do
+      local expected = (j == one or s:is_support(j)) and 0 or needed[j] / s:block(j):volume()
+      near(v[j], expected, 1e-9 * largest / s:block(one):volume(), s:name(j))
+    end
+    local lower, upper = {}, {}
+    for c = 1, 4 do
+      for _, i in ipairs(course(s, c)) do table.insert(c <= 2 and lower or upper, i) end
+    end
+    upper[#upper + 1] = key
+    local a = ashlar.important_weights(s, { progress = false, symmetry = false, blocks = lower })
+    local b = ashlar.important_weights(s, { progress = false, symmetry = false, blocks = upper })
+    assert.are.equal(33, a.solves + b.solves)
+    local per_course = { 12905.957818, 23367.913306, 21675.427986, 6356.689865 }
+    for c, expected in ipairs(per_course) do
+      for _, i in ipairs(course(s, c)) do near(a[i] + b[i], expected, 1e-4 * per_course[2], s:name(i)) end
+    end
+    near(a[key] + b[key], 2399.015405, 1e-4 * per_course[2], "keystone")
+    expect_error({ "bad argument #2", "blocks[2]: block 3 is listed twice" }, ashlar.load_capacity, s,
+      { blocks = { 3, 3 } })
+    expect_error({ "blocks[2]: index 99 is out of range (the structure has 41 blocks)" }, ashlar.important_weights, s,
+      { blocks = { 3, 99 } })
+    expect_error({ "blocks: expected a block or a list of blocks, got an empty table" }, ashlar.load_capacity, s,
+      { blocks = {} })
   end)
 end)
 

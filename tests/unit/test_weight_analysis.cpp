@@ -166,3 +166,27 @@ TEST(ImportantWeights, WorkersShareTheBlocksAndAgreeWithOne) {
   ASSERT_GT(largest, 0.0);
   for (int j = 0; j < s.size(); ++j) EXPECT_NEAR(two.per_volume[j], one.per_volume[j], 1e-4 * largest) << j;
 }
+
+TEST(ImportantWeights, SummedOverTheBlocksAskedTheyAreTheirNecessaryWeights) {
+  // Two voussoirs asked: two solves, and per block the sum of the two
+  // blocks' necessary weights (each solved on its own, cold) over its
+  // volume, within what the warm start of the second leaves open.
+  const Structure s = semicircular_arch(15, 0.8);
+  AnalysisSettings settings;
+  settings.problem.friction = std::numeric_limits<double>::infinity();
+  const ImportantWeights some = important_weights(s, {settings, 1, /*use_symmetry=*/false, {4, 9}});
+  ASSERT_EQ(some.solves, 2);
+  const NecessaryWeights four = necessary_weights(s, 4, settings);
+  const NecessaryWeights nine = necessary_weights(s, 9, settings);
+  std::vector<double> expected(s.size(), 0.0);
+  double largest = 0.0;
+  for (int j = 0; j < s.size(); ++j) {
+    if (s.is_support(j)) continue;
+    const double sum = (j == 4 ? 0.0 : four.weights[j]) + (j == 9 ? 0.0 : nine.weights[j]);
+    expected[j] = sum / s.block(j).volume();
+    largest = std::max(largest, expected[j]);
+  }
+  ASSERT_GT(largest, 0.0);
+  for (int j = 0; j < s.size(); ++j) EXPECT_NEAR(some.per_volume[j], expected[j], 1e-5 * largest) << j;
+  EXPECT_THROW(important_weights(s, {settings, 1, false, {4, 4}}), InvalidArgument);
+}
