@@ -529,8 +529,16 @@ private:
 // on warm from its own last, the 16 x 18 dome's bounds changed between
 // 2-thread runs (a block's largest multiple 20546.2 in one run and
 // unbounded in another; the planar arches' in the last digits). A dome's
-// course has 16-32 blocks: a chunk holds most of a run of unbounded ones.
-constexpr size_t kChunkBlocks = 16;
+// course has 16-32 blocks: a chunk of 16 holds most of a run of unbounded
+// ones. Fewer than 32 blocks solved (a few blocks asked, a symmetric
+// model's orbits) are split in two halves, of at least 4, so that two
+// workers share them: in chunks of 16 the 16 blocks of a course asked ran
+// on one core. The chunks depend on the number of blocks solved, never on
+// the threads.
+size_t chunk_blocks(size_t solved) {
+  constexpr size_t kChunkBlocks = 16, kLeastChunk = 4;
+  return std::min(kChunkBlocks, std::max(kLeastChunk, (solved + 1) / 2));
+}
 
 }  // namespace
 
@@ -575,7 +583,8 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   std::vector<BlockBounds> bounds(blocks.size());
   // The copies are made here, one thread reading the models at a time.
   std::vector<BlockPrograms> programs;
-  const size_t chunks = (blocks.size() + kChunkBlocks - 1) / kChunkBlocks;
+  const size_t chunk_size = chunk_blocks(blocks.size());
+  const size_t chunks = (blocks.size() + chunk_size - 1) / chunk_size;
   const int workers = worker_count(threads, static_cast<int>(chunks));
   programs.reserve(workers);
   // The as-built forces for the equilibrium solver's warm starts; none
@@ -621,8 +630,8 @@ LoadCapacity load_capacity(const Structure& structure, const LoadCapacitySetting
   auto work = [&](BlockPrograms& mine, bool tells) {
     for (size_t chunk = next++; chunk < chunks && !stop_requested(); chunk = next++) {
       mine.restart();
-      const size_t end = std::min(blocks.size(), (chunk + 1) * kChunkBlocks);
-      for (size_t k = chunk * kChunkBlocks; k < end && !stop_requested(); ++k) {
+      const size_t end = std::min(blocks.size(), (chunk + 1) * chunk_size);
+      for (size_t k = chunk * chunk_size; k < end && !stop_requested(); ++k) {
         const int j = blocks[k];
         bounds[k] = mine.solve(multiplier_column[j], problem.row_of_block[j],
                                structure.block(j).mass() * kGravity / problem.weight_unit);
