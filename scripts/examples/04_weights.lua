@@ -20,6 +20,10 @@ ashlar.draw(arch, out .. "/04_arch_capacity.svg",
             { color = { values = shown, map = "viridis", range = { 0, 5 } }, title = "load capacity (x own weight, 5 and more yellow)" })
 ashlar.legend(out .. "/04_capacity_legend.svg", { map = "viridis", range = { 0, 5 }, label = "x own weight" })
 
+-- The blocks asked alone (option blocks): the same bounds, no entry for the others.
+local asked = ashlar.load_capacity(arch, { friction = math.huge, blocks = { crown - 1, crown, crown + 1 } })
+print(string.format("asked alone: crown %.2f, voussoir 1 %s", asked[crown].max, tostring(asked[1])))
+
 -- Necessary weights: three stacked blocks, the middle one overhanging
 -- its support by 0.1 m and keeping its weight.
 local stack = ashlar.structure()
@@ -37,6 +41,10 @@ print(string.format("beam weight to the two posts: %.3f / %.3f, lost %d", left, 
 
 assert(unbounded == 6, "three voussoirs by each support are unbounded")
 assert(math.abs(cap[crown].max - 2.28) < 0.01 and math.abs(cap[crown - 1].max - 2.18) < 0.01, "crown 2.28, neighbours 2.18")
+for _, i in ipairs{ crown - 1, crown, crown + 1 } do
+  assert(math.abs(asked[i].max - cap[i].max) <= 1e-9 * cap[i].max, "the blocks asked have the whole run's bounds")
+end
+assert(asked[1] == nil, "a block not asked has no entry")
 assert(w.stable and w[4] / w[3] >= 1 / 3 * (1 - 1e-6) and w[4] / w[3] < 0.34, "the top holds the middle down: >= 1/3")
 assert(w[2] / w[3] < 1e-6, "the bottom needs no weight")
 assert(#flow.shares == 2 and math.abs(left - 0.495) < 1e-9 and math.abs(right - 0.505) < 1e-9, "the beam splits its weight equally")
