@@ -48,6 +48,13 @@ Settings per_block_settings(lua_State* L, const Structure& s, const OptionTable&
   return settings;
 }
 
+// What a per-block analysis works on, for its progress line: "1010 blocks",
+// or "32 of 1010 blocks" asked.
+std::string blocks_label(const Structure& s, const std::vector<int>& asked) {
+  const std::string all = std::to_string(s.size()) + " blocks";
+  return asked.empty() ? all : std::to_string(asked.size()) + " of " + all;
+}
+
 int w_weight_sensitivity(lua_State* L) {
   return guard(L, [&] {
     const std::shared_ptr<Structure> structure = luax_checkStructure(L, 1);
@@ -86,7 +93,7 @@ int w_load_capacity(lua_State* L) {
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry", "blocks"});
     const LoadCapacitySettings settings = per_block_settings<LoadCapacitySettings>(L, s, options);
-    ProgressLine line(options, "load_capacity", std::to_string(s.size()) + " blocks", "block");
+    ProgressLine line(options, "load_capacity", blocks_label(s, settings.blocks), "block");
     const LoadCapacity capacity = load_capacity(s, settings, line.callback());
     line.finish(kMarginStatusNames.name(capacity.status));
     const std::vector<char> asked = asked_blocks(s, settings.blocks, "load capacity");
@@ -140,7 +147,7 @@ int w_important_weights(lua_State* L) {
     const Structure& s = *structure;
     const OptionTable options(L, 2, {ASHLAR_ANALYSIS_OPTIONS, "threads", "progress", "symmetry", "blocks"});
     const ImportantWeightsSettings settings = per_block_settings<ImportantWeightsSettings>(L, s, options);
-    ProgressLine line(options, "important_weights", std::to_string(s.size()) + " blocks", "block");
+    ProgressLine line(options, "important_weights", blocks_label(s, settings.blocks), "block");
     const ImportantWeights important = important_weights(s, settings, line.callback());
     const char* status = kImportantWeightsStatusNames.name(important.status);
     line.finish(status);

@@ -192,6 +192,13 @@ describe("a dome of 8 x 4 blocks (3D references)", function()
       for _, i in ipairs(course(s, c)) do near(a[i] + b[i], expected, 1e-4 * per_course[2], s:name(i)) end
     end
     near(a[key] + b[key], 2399.015405, 1e-4 * per_course[2], "keystone")
+    -- The progress line says how many blocks were asked: two blocks of one
+    -- orbit, one solved.
+    local output, code = support.run(support.quote(assert(os.getenv("ASHLAR_BIN"))) .. " -e " .. support.quote(
+      'local s = require("ashlar.models").dome{ meridians = 8, parallels = 4 } ' ..
+      'require("ashlar").load_capacity(s, { progress = true, blocks = { "course 2 block 1", "course 2 block 2" } })'))
+    assert.are.equal(0, code, output)
+    assert.is_truthy(output:find("load_capacity 2 of 41 blocks: 1 block in", 1, true), output)
     expect_error({ "bad argument #2", "blocks[2]: block 3 is listed twice" }, ashlar.load_capacity, s,
       { blocks = { 3, 3 } })
     expect_error({ "blocks[2]: index 99 is out of range (the structure has 41 blocks)" }, ashlar.important_weights, s,
