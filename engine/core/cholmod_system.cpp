@@ -239,10 +239,21 @@ struct CholmodSystem::Impl {
           dgemm_("N", "T", &rest, &in_columns, &d_columns, &one, d_top + in_columns, &d_height, d_top,
                  &d_height, &zero, update_.data() + in_columns, &reach, 1, 1);
         }
+        // C's rows among s's, ascending: where the rows from j on are
+        // consecutive in s (last minus j-th equals their count less one),
+        // column j is one straight run. The indexed loop alone was 6 % of
+        // the 100,052-block vault's analysis (perf).
+        int* relative = relative_.data();
+        for (int i = 0; i < reach; ++i) relative[i] = local_row_[row_of[top + i]];
         for (int j = 0; j < in_columns; ++j) {
-          double* column = block + static_cast<ptrdiff_t>(local_row_[row_of[top + j]]) * height;
+          double* column = block + static_cast<ptrdiff_t>(relative[j]) * height;
           const double* c = update_.data() + static_cast<ptrdiff_t>(j) * reach;
-          for (int i = j; i < reach; ++i) column[local_row_[row_of[top + i]]] -= c[i];
+          if (relative[reach - 1] - relative[j] == reach - 1 - j) {
+            double* run = column + relative[j] - j;
+            for (int i = j; i < reach; ++i) run[i] -= c[i];
+          } else {
+            for (int i = j; i < reach; ++i) column[relative[i]] -= c[i];
+          }
         }
         row_position_[d] = below - pi[d];
         if (below < pi[d + 1]) append(d, supernode_of_[row_of[below]]);
@@ -333,6 +344,9 @@ struct CholmodSystem::Impl {
     next_.assign(supernodes, -1);
     row_position_.assign(supernodes, 0);
     update_.resize(std::max<size_t>(f.maxcsize, 1));
+    int tallest = 1;
+    for (int s = 0; s < supernodes; ++s) tallest = std::max(tallest, pi[s + 1] - pi[s]);
+    relative_.resize(tallest);
   }
   static int stype(Triangle stored) { return stored == Triangle::upper ? 1 : -1; }
   // Puts supernode d on the list of the supernode its next rows update.
@@ -345,6 +359,7 @@ struct CholmodSystem::Impl {
   cholmod_sparse* matrix_ = nullptr;
   cholmod_factor* factor_ = nullptr;
   std::vector<int> supernode_of_, local_row_, head_, next_, row_position_;
+  std::vector<int> relative_;  // an update's rows in the supernode it updates
   std::vector<double> update_;
   cholmod_dense* solution_ = nullptr;
   cholmod_dense* workspace_y_ = nullptr;
