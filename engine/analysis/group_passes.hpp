@@ -45,6 +45,23 @@ public:
     for (int part = 1; part < parts; ++part) rows += row_parts_[part - 1];
   }
 
+  // each_into's pass with per_group(k, rows_of_part) returning a size:
+  // the largest of them (0 with no groups).
+  template <typename PerGroup>
+  double largest_into(Eigen::VectorXd& rows, const PerGroup& per_group) {
+    const int parts = loop_.parts_for(groups_);
+    std::vector<double> part_largest(parts, 0.0);
+    loop_.run(groups_, [&](int begin, int end, int part) {
+      Eigen::VectorXd& target = part == 0 ? rows : row_parts_[part - 1];
+      if (part > 0) target.setZero(rows_);
+      double most = 0.0;
+      for (int k = begin; k < end; ++k) most = std::max(most, per_group(k, target));
+      part_largest[part] = most;
+    });
+    for (int part = 1; part < parts; ++part) rows += row_parts_[part - 1];
+    return *std::max_element(part_largest.begin(), part_largest.end());
+  }
+
   // The largest of per_group(k) over every group k (0 with no groups).
   template <typename PerGroup>
   double largest(const PerGroup& per_group) {

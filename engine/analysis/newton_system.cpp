@@ -15,8 +15,7 @@ NewtonSystem<D>::NewtonSystem(const EquilibriumProblem& problem, const Inequalit
       passes_(passes),
       iterate_(iterate),
       phi_factors_(problem.groups.size()),
-      rhs_(normal.rows()),
-      error_(NewtonVectors::sized(static_cast<int>(problem.groups.size()), normal.rows(), 0)) {}
+      rhs_(normal.rows()) {}
 
 template <int D>
 void NewtonSystem<D>::assemble() {
@@ -68,18 +67,21 @@ void NewtonSystem<D>::solve(NewtonVectors& v, const Complementarity* complementa
 // y parts: `dir`'s dw and dz are computed from its dx row by row (solve()),
 // so the last two equations hold to the rounding of one row's product.
 template <int D>
-void NewtonSystem<D>::residual(const NewtonVectors& e, const NewtonVectors& dir, NewtonVectors& out) {
+double NewtonSystem<D>::residual(const NewtonVectors& e, const NewtonVectors& dir, NewtonVectors& out,
+                                 bool store_x) {
   const InequalityRows& ineq = inequality_;
   out.y = e.y;
-  passes_.each_into(out.y, [&](int k, Eigen::VectorXd& rows) {
+  const double x_largest = passes_.largest_into(out.y, [&](int k, Eigen::VectorXd& rows) {
     const ForceGroup& v = problem_.groups[k];
     const GroupRules& rules = problem_.rules_of(v);
     const Eigen::Vector4d dxk = dir.x.template segment<4>(4 * k);
     add_group_effect<D>(v, dxk, rows);
-    out.x.template segment<4>(4 * k) = e.x.template segment<4>(4 * k) +
-                                       twins_.count(k) * rules.hessian.cwiseProduct(dxk) -
-                                       group_reaction<D>(v, dir.y) - rules.rows.transpose() * ineq.of(dir.z, k);
+    const Eigen::Vector4d rx = e.x.template segment<4>(4 * k) + twins_.count(k) * rules.hessian.cwiseProduct(dxk) -
+                               group_reaction<D>(v, dir.y) - rules.rows.transpose() * ineq.of(dir.z, k);
+    if (store_x) out.x.template segment<4>(4 * k) = rx;
+    return rx.template lpNorm<Eigen::Infinity>();
   });
+  return std::max(x_largest, out.y.size() ? out.y.template lpNorm<Eigen::Infinity>() : 0.0);
 }
 
 // Iterative refinement: near the optimum z / w spreads over twenty orders
@@ -99,9 +101,15 @@ void NewtonSystem<D>::direction(const NewtonVectors& e, Complementarity compleme
   const double target = std::max(1e-14 * e.largest(), 1e-2 * iterate_error);
   double previous = std::numeric_limits<double>::infinity();
   for (int refinement = 0; refinement < kRefinements && iterate_error <= kRefineBelow; ++refinement) {
-    residual(e, out, error_);
-    const double size = error_.largest();
+    // Most checks end here, the residual already small: its x part is kept
+    // only once a correction has been solved for.
+    const bool stored = error_.x.size() == e.x.size();
+    const double size = residual(e, out, error_, stored);
     if (size <= target || size >= 0.5 * previous) break;
+    if (!stored) {
+      error_.x.resize(e.x.size());
+      residual(e, out, error_, true);
+    }
     previous = size;
     solve(error_, nullptr);  // now the correction's dx and dy; its dw = G dx and dz = -Z dw / W
     out.x += error_.x;
