@@ -36,16 +36,13 @@ public:
   // into the rows vector of its part; `rows` then holds the sum.
   template <typename PerGroup>
   void each_into(Eigen::VectorXd& rows, const PerGroup& per_group) {
-    const int parts = loop_.parts_for(groups_);
-    loop_.run(groups_, [&](int begin, int end, int part) {
-      Eigen::VectorXd& target = part == 0 ? rows : row_parts_[part - 1];
-      if (part > 0) target.setZero(rows_);
-      for (int k = begin; k < end; ++k) per_group(k, target);
+    largest_into(rows, [&](int k, Eigen::VectorXd& rows_of_part) {
+      per_group(k, rows_of_part);
+      return 0.0;
     });
-    for (int part = 1; part < parts; ++part) rows += row_parts_[part - 1];
   }
 
-  // each_into's pass with per_group(k, rows_of_part) returning a size:
+  // each_into's pass with per_group(k, rows_of_part) also returning a size:
   // the largest of them (0 with no groups).
   template <typename PerGroup>
   double largest_into(Eigen::VectorXd& rows, const PerGroup& per_group) {
