@@ -9,14 +9,15 @@
 -- and important_weights on models.dome{} (305 blocks), on an imperfect copy
 -- of it (every vertex moved by up to 0.1 % of its block's size, as models
 -- from the field come: no symmetry) and on a running-bond barrel vault of
--- 1,008 voussoirs (32 around, 31 courses of 0.5 m), with their answers and
+-- 1,008 voussoirs (32 around, 31 courses of 0.5 m) and on a dome of 16 x 24
+-- blocks (friction 0.7; dome24), with their answers and
 -- wall and CPU times (the process's, so on 2 cores CPU may be twice wall).
 -- load_capacity and important_weights run twice: one block per orbit of
 -- the problem's symmetries (the default), and every block
 -- (`symmetry = false`). The counts (programs, solves, interior-point and
 -- simplex iterations) do not depend on the machine's load. A third
--- argument, dome, imperfect or vault, runs that structure alone:
---   ashlar scripts/bench_weights.lua margins [dome|imperfect|vault]
+-- argument, dome, imperfect, vault or dome24, runs that structure alone:
+--   ashlar scripts/bench_weights.lua margins [dome|imperfect|vault|dome24]
 -- With `friction`, friction_demand alone on ten structures (below), run
 -- from the repository's root.
 -- With `blocks`, load_capacity and important_weights of the blocks asked
@@ -139,10 +140,11 @@ if arg[1] == "margins" then
     { "imperfect", "dome 16 x 18, every vertex moved by up to 0.1 %", perturbed, perturbed_contact },
     { "vault", "barrel vault, running bond, 32 x 31",
       models.barrel_vault{ voussoirs = 32, courses = 31, length = 15.5, bond = "running" }, {} },
+    { "dome24", "dome 16 x 24", models.dome{ meridians = 16, parallels = 24 }, {} },
   }
   local only = arg[2]
-  if only and only ~= "dome" and only ~= "imperfect" and only ~= "vault" then
-    error(("structure: expected dome, imperfect or vault, got %s"):format(only))
+  if only and only ~= "dome" and only ~= "imperfect" and only ~= "vault" and only ~= "dome24" then
+    error(("structure: expected dome, imperfect, vault or dome24, got %s"):format(only))
   end
   for _, case in ipairs(structures) do
     local key, name, s, contact = case[1], case[2], case[3], case[4]
