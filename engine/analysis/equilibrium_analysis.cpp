@@ -54,11 +54,12 @@ double fill_result_forces(const Structure& structure, const std::vector<Interfac
     through.normal_force += normal;
     through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
     pressure_weight[v.source] += normal;
-    pressure_moment[v.source] += normal * v.position;
+    const Vec3& position = contact.vertices[v.component];
+    pressure_moment[v.source] += normal * position;
     result.block_tension[v.block_a] += forces(1);
     result.block_tension[v.block_b] += forces(1);
     result.vertex_forces.push_back(forces);
-    result.vertex_positions.push_back(v.position);
+    result.vertex_positions.push_back(position);
     result.vertex_interface.push_back(v.source);
   }
   for (size_t i = 0; i < interfaces.size(); ++i) {

@@ -406,20 +406,22 @@ EquilibriumProblem build_equilibrium_problem(const Structure& structure,
   size_t group_count = cables.size() * (1 + 2 * d) + (given_strength ? static_cast<size_t>(n) * d : 0);
   for (const Interface& contact : interfaces) group_count += contact.vertices.size();
   problem.groups.reserve(group_count);
+  problem.interfaces = interfaces_list;
   for (size_t k = 0; k < interfaces.size(); ++k) {
     const Interface& contact = interfaces[k];
     const int row_a = problem.row_of_block[contact.a], row_b = problem.row_of_block[contact.b];
     if (row_a < 0 && row_b < 0) continue;  // between supports, or floating
     const Vec3& centroid_a = structure.block(contact.a).centroid();
     const Vec3& centroid_b = structure.block(contact.b).centroid();
-    for (const Vec3& p : contact.vertices) {
+    for (size_t corner = 0; corner < contact.vertices.size(); ++corner) {
+      const Vec3& p = contact.vertices[corner];
       ForceGroup vertex;
       vertex.source = static_cast<int>(k);
+      vertex.component = static_cast<int>(corner);
       vertex.block_a = contact.a;
       vertex.block_b = contact.b;
       vertex.row_a = row_a;
       vertex.row_b = row_b;
-      vertex.position = p;
       vertex.on_b = contact_vertex_effect(contact, p, centroid_b, lu, rows);
       vertex.lever = (centroid_a - centroid_b) / lu;  // (p - centroid_b) - (p - centroid_a)
       if (given_strength) vertex.on_b.col(1).setZero();  // joints without tension: its unknown only pays for excess friction

@@ -76,7 +76,7 @@ public:
     for (int j = 0; j < structure.size(); ++j) {
       if (problem.row_of_block[j] >= 0) blocks_.insert(structure.block(j).centroid(), j);
     }
-    for (int k = 0; k < static_cast<int>(problem.groups.size()); ++k) vertices_.insert(problem.groups[k].position, k);
+    for (int k = 0; k < static_cast<int>(problem.groups.size()); ++k) vertices_.insert(position(problem.groups[k]), k);
   }
 
   // The block map of the motion p -> axis + Q (p - axis), or empty when
@@ -109,10 +109,10 @@ public:
     }
     std::vector<char> used(problem_.groups.size(), 0);
     for (const ForceGroup& group : problem_.groups) {
-      const Vec3 image = axis + q * (group.position - axis);
+      const Vec3 image = axis + q * (position(group) - axis);
       int found = -1;
       vertices_.for_each_near(image, tolerance_, [&](int k) {
-        if (found < 0 && !used[k] && (problem_.groups[k].position - image).norm() <= tolerance_ &&
+        if (found < 0 && !used[k] && (position(problem_.groups[k]) - image).norm() <= tolerance_ &&
             maps_to(group, problem_.groups[k], map, t)) {
           found = k;
         }
@@ -124,6 +124,12 @@ public:
   }
 
 private:
+  // Where a group acts: a contact vertex's position, a weight's block's
+  // centroid (searchable() admits no other groups).
+  const Vec3& position(const ForceGroup& group) const {
+    return group.kind == GroupKind::contact_vertex ? problem_.vertex_position(group)
+                                                   : structure_.block(group.source).centroid();
+  }
   // Whether `group`'s image under the motion (block map `map`, 6 x 6
   // action t) is `image`, through one of its kind's permutations.
   bool maps_to(const ForceGroup& group, const ForceGroup& image, const std::vector<int>& map,

@@ -79,7 +79,6 @@ public:
       weight.source = j;
       weight.block_a = j;
       weight.row_a = row;
-      weight.position = structure.block(j).centroid();
       weight.set_alone_on_a(vertical_, 0, -1.0);  // the weight joins the loads the contacts carry
       group_of_block_[j] = static_cast<int>(problem.groups.size());
       problem.groups.push_back(weight);

@@ -29,7 +29,7 @@ ProblemData data_of(const Structure& s, const EquilibriumProblem& p) {
   for (int k = 0; k < p.contact_vertex_count; ++k) {
     const ForceGroup& v = p.groups[k];
     const Interface& c = (*s.interfaces())[v.source];
-    d.positions.push_back(v.position);
+    d.positions.push_back(c.vertices[v.component]);
     d.frames.push_back({c.normal, c.u, c.v});
   }
   for (int i = 0; i < s.size(); ++i) {
@@ -50,8 +50,7 @@ EquilibriumProblem with_data(const Structure& s, EquilibriumProblem p, const Pro
     contact.normal = d.frames[k][0];
     contact.u = d.frames[k][1];
     contact.v = d.frames[k][2];
-    v.position = d.positions[k];
-    v.on_b = contact_vertex_effect(contact, v.position, d.centroids[v.block_b], d.length_unit, rows);
+    v.on_b = contact_vertex_effect(contact, d.positions[k], d.centroids[v.block_b], d.length_unit, rows);
     v.lever = (d.centroids[v.block_a] - d.centroids[v.block_b]) / d.length_unit;
   }
   for (int i = 0; i < s.size(); ++i) {
