@@ -54,7 +54,7 @@ double fill_result_forces(const Structure& structure, const std::vector<Interfac
     through.normal_force += normal;
     through.resultant += normal * contact.normal + forces(2) * contact.u + forces(3) * contact.v;
     pressure_weight[v.source] += normal;
-    const Vec3& position = contact.vertices[v.component];
+    const Vec3& position = problem.vertex_position(v);
     pressure_moment[v.source] += normal * position;
     result.block_tension[v.block_a] += forces(1);
     result.block_tension[v.block_b] += forces(1);

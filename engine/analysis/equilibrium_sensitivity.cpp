@@ -59,7 +59,7 @@ EquilibriumSensitivity equilibrium_sensitivity(const Structure& structure,
     for (const auto& side : sides) {
       if (side.row < 0) continue;
       const BodyMultipliers& m = multipliers[side.block];
-      const Vec3 arm = (contact.vertices[v.component] - structure.block(side.block).centroid()) / lu;
+      const Vec3 arm = (problem.vertex_position(v) - structure.block(side.block).centroid()) / lu;
       // y_F . F + y_M . (arm x F), with arm x F's dependence on position,
       // centroid and the unit of length.
       const Vec3 lever = force.cross(m.moment) / lu;
