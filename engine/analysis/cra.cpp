@@ -533,13 +533,11 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     }
   }
 
-  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure.interfaces(options.contact);
-
-  const std::vector<Interface>& interfaces = *interfaces_list;
+  const std::vector<Interface>& interfaces = *problem.interfaces;
   const bool answer = !has_no_answer(result.status) && result.status != SolverStatus::infeasible &&
                       result.status != SolverStatus::max_iterations;
   if (answer) {
-    fill_result_forces(structure, interfaces, problem, forces, result);
+    fill_result_forces(structure, problem, forces, result);
     // The displacements: q's translations are in L, rotations in radians,
     // in the balance rows' order.
     const std::array<int, 6>& rows = balance_rows(problem.block_rows == 3);

@@ -11,8 +11,9 @@
 
 namespace ashlar {
 
-double fill_result_forces(const Structure& structure, const std::vector<Interface>& interfaces,
-                          const EquilibriumProblem& problem, const Eigen::VectorXd& x, EquilibriumResult& result) {
+double fill_result_forces(const Structure& structure, const EquilibriumProblem& problem, const Eigen::VectorXd& x,
+                          EquilibriumResult& result) {
+  const std::vector<Interface>& interfaces = *problem.interfaces;
   result.interfaces.resize(interfaces.size());
   for (size_t i = 0; i < interfaces.size(); ++i) {
     result.interfaces[i].a = interfaces[i].a;
@@ -217,11 +218,9 @@ EquilibriumResult EquilibriumAnalysis::solve(bool warm_start) {
   result.floating_blocks = problem_.floating_blocks;
   result.floating_gaps = floating_gaps_;
 
-  const std::shared_ptr<const std::vector<Interface>> interfaces_list = structure_->interfaces(settings_.problem.contact);
-
-  const std::vector<Interface>& interfaces = *interfaces_list;
+  const std::vector<Interface>& interfaces = *problem_.interfaces;
   const Eigen::VectorXd& x = solution_.x;
-  const double penalised = fill_result_forces(*structure_, interfaces, problem_, x, result);
+  const double penalised = fill_result_forces(*structure_, problem_, x, result);
   result.imbalance_without_tension = compression_only_imbalance(problem_, x);
   // Stability is a question of feasibility: forces that balance every block
   // without tension prove it, converged or not. Without such forces only a

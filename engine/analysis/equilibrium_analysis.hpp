@@ -25,14 +25,14 @@
 namespace ashlar {
 
 // The forces of the scaled unknowns x (4 per group of `problem`, as the
-// solver's) into `result`: interfaces (parallel to `interfaces`, the
-// structure's under the problem's contact options), vertex forces and
+// solver's) into `result`: interfaces (parallel to the problem's, the
+// structure's under its contact options), vertex forces and
 // positions, block tension, cable forces and virtual torques, in N and m.
 // Returns the penalised unknowns' linear cost (scaled), the infeasibility
 // before division by the body count. Every method that ends in forces of
 // this QP's groups reports them through this one function.
-double fill_result_forces(const Structure& structure, const std::vector<Interface>& interfaces,
-                          const EquilibriumProblem& problem, const Eigen::VectorXd& x, EquilibriumResult& result);
+double fill_result_forces(const Structure& structure, const EquilibriumProblem& problem, const Eigen::VectorXd& x,
+                          EquilibriumResult& result);
 
 class EquilibriumAnalysis {
 public:
