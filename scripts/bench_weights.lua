@@ -143,8 +143,13 @@ if arg[1] == "margins" then
     { "dome24", "dome 16 x 24", models.dome{ meridians = 16, parallels = 24 }, {} },
   }
   local only = arg[2]
-  if only and only ~= "dome" and only ~= "imperfect" and only ~= "vault" and only ~= "dome24" then
-    error(("structure: expected dome, imperfect, vault or dome24, got %s"):format(only))
+  local keys, known = {}, {}
+  for _, case in ipairs(structures) do
+    keys[#keys + 1] = case[1]
+    known[case[1]] = true
+  end
+  if only and not known[only] then
+    error(("structure: expected one of %s, got %s"):format(table.concat(keys, ", "), only))
   end
   for _, case in ipairs(structures) do
     local key, name, s, contact = case[1], case[2], case[3], case[4]
