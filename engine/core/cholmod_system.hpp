@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -29,8 +30,11 @@ public:
   };
 
   // The pattern (copied); no values: factorize() takes them from the
-  // caller.
-  CholmodSystem(int n, const int* column_starts, const int* row_indices, Triangle stored);
+  // caller. widest_supernode: the factor's supernodes are cut into panels
+  // of at most this many columns (memory: cholmod_system.cpp), 0 for the
+  // default, 96 columns from 20,000 rows and none cut below.
+  CholmodSystem(int n, const int* column_starts, const int* row_indices, Triangle stored,
+                int widest_supernode = 0);
   ~CholmodSystem();
   CholmodSystem(const CholmodSystem&) = delete;
   CholmodSystem& operator=(const CholmodSystem&) = delete;
@@ -47,6 +51,10 @@ public:
 
   int rows() const;
   double factor_nonzeros() const;
+  // Values the factor stores once factorisable (analyze_as_ordered): its
+  // nonzeros and, in each supernode's dense diagonal block, the unused
+  // ones above the diagonal.
+  size_t stored_values() const;
 
   // Numeric factorisation of the lower triangle in factor order (a system
   // analysed with analyze_as_ordered), whose k-th value in pattern order is

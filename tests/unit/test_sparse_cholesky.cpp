@@ -2,7 +2,9 @@
 // separator solves the same systems as a dense Cholesky factorisation (the
 // independent reference), on block patterns like the solver's; patterns
 // that cannot be split are factored whole; a matrix that is not positive
-// definite is reported, split or not.
+// definite is reported, split or not. CholmodSystem: supernodes cut into
+// narrower panels solve as Eigen's sparse Cholesky factorisation does,
+// and store fewer values.
 #include <gtest/gtest.h>
 
 #include <pthread.h>
@@ -10,9 +12,12 @@
 #include <unistd.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <memory>
 #include <random>
 #include <thread>
 #include <vector>
@@ -87,6 +92,63 @@ Eigen::VectorXd random_vector(int n, unsigned seed) {
   Eigen::VectorXd v(n);
   for (int i = 0; i < n; ++i) v[i] = uniform(random);
   return v;
+}
+
+// The lower triangle of a grid matrix's pattern with its values (sparse,
+// for sizes whose dense copy would not fit), rows in the grid's order: a
+// banded factor, whose supernodes are as wide as the band. The same
+// couplings as grid_matrix.
+struct LowerGrid {
+  int n = 0;
+  std::vector<int> column_starts, row_indices, sources;
+  std::vector<double> values;
+  Eigen::SparseMatrix<double> matrix;  // the whole symmetric matrix
+};
+
+LowerGrid lower_grid(int rows, int columns, int d, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  LowerGrid m;
+  m.n = rows * columns * d;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < m.n; ++i) entries.emplace_back(i, i, 0.1);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) {
+      const int a = r * columns + c;
+      for (int dr = 0; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if ((dr == 0 && dc <= 0) || r + dr >= rows || c + dc < 0 || c + dc >= columns) continue;
+          const int b = (r + dr) * columns + c + dc;
+          Eigen::MatrixXd coupling(2 * d, 3);
+          for (int i = 0; i < coupling.size(); ++i) coupling.data()[i] = uniform(random);
+          const Eigen::MatrixXd term = coupling * coupling.transpose();
+          for (int i = 0; i < 2 * d; ++i) {
+            for (int j = 0; j < 2 * d; ++j) {
+              entries.emplace_back((i < d ? a : b) * d + i % d, (j < d ? a : b) * d + j % d, term(i, j));
+            }
+          }
+        }
+      }
+    }
+  }
+  m.matrix.resize(m.n, m.n);
+  m.matrix.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SparseMatrix<double> lower = m.matrix.triangularView<Eigen::Lower>();
+  m.column_starts.assign(lower.outerIndexPtr(), lower.outerIndexPtr() + m.n + 1);
+  m.row_indices.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
+  m.values.assign(lower.valuePtr(), lower.valuePtr() + lower.nonZeros());
+  m.sources.resize(m.values.size());
+  for (size_t k = 0; k < m.sources.size(); ++k) m.sources[k] = static_cast<int>(k);
+  return m;
+}
+
+// A lower-triangle system analysed in its own order, `widest` as
+// CholmodSystem takes it.
+std::unique_ptr<ashlar::CholmodSystem> analysed(const LowerGrid& m, int widest) {
+  auto system = std::make_unique<ashlar::CholmodSystem>(m.n, m.column_starts.data(), m.row_indices.data(),
+                                                        ashlar::CholmodSystem::Triangle::lower, widest);
+  system->analyze_as_ordered();
+  return system;
 }
 
 SparseCholeskyOptions always_split() {
@@ -192,6 +254,52 @@ TEST(SparseCholesky, SplitOrderingLeavesTheProcessSignalHandlersAsTheyWere) {
 }
 
 namespace {
+
+TEST(CholmodSystem, SupernodesCutIntoPanelsSolveAsEigensSparseCholesky) {
+  // 20 x 30 bodies of 6 rows in the grid's order: a band of about 190
+  // rows, so supernodes about as wide, cut into panels of 16 columns.
+  const LowerGrid m = lower_grid(20, 30, 6, 7);
+  const auto panels = analysed(m, 16);
+  const auto whole = analysed(m, m.n);
+  EXPECT_EQ(panels->factor_nonzeros(), whole->factor_nonzeros());
+  // The diagonal blocks' unused upper triangles: at most 16 x 15 / 2 per
+  // panel, against about 190 x 189 / 2 per supernode.
+  EXPECT_LT(panels->stored_values(), 0.97 * whole->stored_values());
+  ASSERT_TRUE(panels->factorize(m.values.data(), m.sources.data()));
+  ASSERT_TRUE(whole->factorize(m.values.data(), m.sources.data()));
+  // The reference: Eigen's simplicial factorisation in the same order (L
+  // of a positive definite matrix is unique).
+  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> reference(
+      m.matrix);
+  ASSERT_EQ(reference.info(), Eigen::Success);
+  using Solve = ashlar::CholmodSystem::Solve;
+  for (unsigned seed : {8u, 9u}) {
+    const Eigen::VectorXd rhs = random_vector(m.n, seed);
+    const Eigen::VectorXd expected = reference.solve(rhs);
+    const Eigen::VectorXd forward = reference.matrixL().solve(rhs);
+    const Eigen::VectorXd backward = reference.matrixU().solve(rhs);
+    for (ashlar::CholmodSystem* system : {panels.get(), whole.get()}) {
+      const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(system->solve(Solve::whole, rhs.data()), m.n);
+      EXPECT_LE((x - expected).norm(), 1e-10 * expected.norm());
+      EXPECT_LE((m.matrix * x - rhs).norm(), 1e-12 * m.matrix.norm() * x.norm());
+      const Eigen::VectorXd l = Eigen::Map<const Eigen::VectorXd>(system->solve(Solve::forward, rhs.data()), m.n);
+      EXPECT_LE((l - forward).norm(), 1e-10 * forward.norm());
+      const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(system->solve(Solve::backward, rhs.data()), m.n);
+      EXPECT_LE((u - backward).norm(), 1e-10 * backward.norm());
+    }
+  }
+}
+
+TEST(CholmodSystem, SystemsFromTwentyThousandRowsAreCutIntoPanelsOf96Columns) {
+  // 60 x 60 bodies of 6 rows (21,600): supernodes up to about 370 columns wide.
+  const LowerGrid large = lower_grid(60, 60, 6, 10);
+  const auto by_default = analysed(large, 0);
+  EXPECT_EQ(by_default->stored_values(), analysed(large, 96)->stored_values());
+  EXPECT_LT(by_default->stored_values(), analysed(large, large.n)->stored_values());
+  // Below 20,000 rows none is cut: 55 x 60 bodies, 19,800 rows.
+  const LowerGrid smaller = lower_grid(55, 60, 6, 11);
+  EXPECT_EQ(analysed(smaller, 0)->stored_values(), analysed(smaller, smaller.n)->stored_values());
+}
 
 // The METIS orderings of a 30 x 30 grid: its bisection and the order that
 // puts the last 90 rows last.
