@@ -48,7 +48,7 @@ struct LoadCapacitySettings {
   bool use_symmetry = true;
   // The blocks whose bounds are wanted (0-based), or every block when
   // empty: on a model without symmetry the cost is per block asked.
-  std::vector<int> blocks;
+  std::vector<int> blocks{};
 };
 
 struct LoadCapacity {

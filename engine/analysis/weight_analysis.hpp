@@ -66,7 +66,7 @@ struct ImportantWeightsSettings {
   // The free blocks i whose necessary weights are summed (0-based), or
   // every free block when empty: on a model without symmetry the cost is
   // per block asked.
-  std::vector<int> blocks;
+  std::vector<int> blocks{};
 };
 
 // Whether every free block's problem was solved.
