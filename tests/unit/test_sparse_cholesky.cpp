@@ -40,15 +40,14 @@ struct GridMatrix {
   Eigen::MatrixXd dense;
 };
 
-GridMatrix grid_matrix(int rows, int columns, int d, unsigned seed) {
+// The couplings of bodies on a rows x columns grid, each to its 8
+// neighbours, by dense d x d blocks: per coupling a random term C C^T
+// (positive semidefinite, entries of mixed signs) over the two bodies'
+// rows, each entry given to add(row, column, value).
+template <typename Add>
+void add_grid_couplings(int rows, int columns, int d, unsigned seed, Add&& add) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  const int bodies = rows * columns;
-  GridMatrix m;
-  m.n = bodies * d;
-  m.dense = Eigen::MatrixXd::Zero(m.n, m.n);
-  // Sum of per-coupling terms C C^T (positive semidefinite) plus a
-  // diagonal: positive definite with entries of mixed signs.
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < columns; ++c) {
       const int a = r * columns + c;
@@ -58,17 +57,22 @@ GridMatrix grid_matrix(int rows, int columns, int d, unsigned seed) {
           const int b = (r + dr) * columns + c + dc;
           Eigen::MatrixXd coupling(2 * d, 3);
           for (int i = 0; i < coupling.size(); ++i) coupling.data()[i] = uniform(random);
-          Eigen::MatrixXd term = coupling * coupling.transpose();
+          const Eigen::MatrixXd term = coupling * coupling.transpose();
           for (int i = 0; i < 2 * d; ++i) {
-            for (int j = 0; j < 2 * d; ++j) {
-              const int gi = (i < d ? a : b) * d + i % d, gj = (j < d ? a : b) * d + j % d;
-              m.dense(gi, gj) += term(i, j);
-            }
+            for (int j = 0; j < 2 * d; ++j) add((i < d ? a : b) * d + i % d, (j < d ? a : b) * d + j % d, term(i, j));
           }
         }
       }
     }
   }
+}
+
+// The couplings plus a diagonal: positive definite.
+GridMatrix grid_matrix(int rows, int columns, int d, unsigned seed) {
+  GridMatrix m;
+  m.n = rows * columns * d;
+  m.dense = Eigen::MatrixXd::Zero(m.n, m.n);
+  add_grid_couplings(rows, columns, d, seed, [&](int i, int j, double value) { m.dense(i, j) += value; });
   m.dense.diagonal().array() += 0.1;
   m.column_starts.push_back(0);
   for (int j = 0; j < m.n; ++j) {
@@ -96,8 +100,7 @@ Eigen::VectorXd random_vector(int n, unsigned seed) {
 
 // The lower triangle of a grid matrix's pattern with its values (sparse,
 // for sizes whose dense copy would not fit), rows in the grid's order: a
-// banded factor, whose supernodes are as wide as the band. The same
-// couplings as grid_matrix.
+// banded factor, whose supernodes are as wide as the band.
 struct LowerGrid {
   int n = 0;
   std::vector<int> column_starts, row_indices, sources;
@@ -106,31 +109,11 @@ struct LowerGrid {
 };
 
 LowerGrid lower_grid(int rows, int columns, int d, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   LowerGrid m;
   m.n = rows * columns * d;
   std::vector<Eigen::Triplet<double>> entries;
   for (int i = 0; i < m.n; ++i) entries.emplace_back(i, i, 0.1);
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < columns; ++c) {
-      const int a = r * columns + c;
-      for (int dr = 0; dr <= 1; ++dr) {
-        for (int dc = -1; dc <= 1; ++dc) {
-          if ((dr == 0 && dc <= 0) || r + dr >= rows || c + dc < 0 || c + dc >= columns) continue;
-          const int b = (r + dr) * columns + c + dc;
-          Eigen::MatrixXd coupling(2 * d, 3);
-          for (int i = 0; i < coupling.size(); ++i) coupling.data()[i] = uniform(random);
-          const Eigen::MatrixXd term = coupling * coupling.transpose();
-          for (int i = 0; i < 2 * d; ++i) {
-            for (int j = 0; j < 2 * d; ++j) {
-              entries.emplace_back((i < d ? a : b) * d + i % d, (j < d ? a : b) * d + j % d, term(i, j));
-            }
-          }
-        }
-      }
-    }
-  }
+  add_grid_couplings(rows, columns, d, seed, [&](int i, int j, double value) { entries.emplace_back(i, j, value); });
   m.matrix.resize(m.n, m.n);
   m.matrix.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SparseMatrix<double> lower = m.matrix.triangularView<Eigen::Lower>();
