@@ -5,7 +5,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <set>
 
 #include "core/error.hpp"
@@ -16,17 +15,12 @@
 #include "study/study_progress.hpp"
 #include "study/study_runner.hpp"
 #include "study/study_store.hpp"
+#include "test_support.hpp"
 
 using namespace ashlar;
 using namespace ashlar::study;
 
 namespace {
-
-std::string temp_db(const std::string& name) {
-  const auto path = std::filesystem::temp_directory_path() / ("ashlar_test_" + name + "_" + std::to_string(::getpid()) + ".sqlite");
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path.string() + suffix);
-  return path.string();
-}
 
 // Computes t * n for parameter columns (n, t), failing when t > 0.5.
 class ProductWorker : public RowWorker {
@@ -166,7 +160,8 @@ TEST(StudyValue, MessagesRoundTrip) {
 }
 
 TEST(StudyStore, ResumesWithoutLosingOrDuplicatingRows) {
-  const std::string db = temp_db("resume");
+  const TempDir folder;
+  const std::string db = folder.file("resume.sqlite");
   const ParameterRows rows = small_grid();
   std::vector<Outcome> first_half;
   {
@@ -223,7 +218,8 @@ TEST(StudyStore, RerunErrorsForgetsFailedRuns) {
 }
 
 TEST(StudyRunner, ThreadsRunEveryRowOnceAndRecordErrors) {
-  const std::string db = temp_db("threads");
+  const TempDir folder;
+  const std::string db = folder.file("threads.sqlite");
   StudyStore store(db);
   const ParameterRows rows = small_grid();
   const StudyTable table = store.open_study("products", rows);
@@ -321,7 +317,8 @@ public:
 TEST(StudyJob, OneWorkerRunsOnTheCallingThreadAndResumesFromTheStore) {
   StudyJob job;
   job.name = "single";
-  job.db = temp_db("single");
+  const TempDir folder;
+  job.db = folder.file("single.sqlite");
   job.rows = small_grid();
   job.workers = 1;
   job.progress = false;
@@ -396,7 +393,8 @@ private:
 TEST(StudyJob, AnInterruptedStudyKeepsItsFinishedRows) {
   StudyJob job;
   job.name = "stopped";
-  job.db = temp_db("stopped");
+  const TempDir folder;
+  job.db = folder.file("stopped.sqlite");
   job.rows = small_grid();
   job.workers = 1;
   job.progress = false;

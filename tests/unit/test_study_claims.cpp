@@ -6,7 +6,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <filesystem>
 #include <set>
 #include <sys/wait.h>
 #include <thread>
@@ -18,18 +17,12 @@
 #include "study/process_identity.hpp"
 #include "study/study_runner.hpp"
 #include "study/study_store.hpp"
+#include "test_support.hpp"
 
 using namespace ashlar;
 using namespace ashlar::study;
 
 namespace {
-
-std::string claims_db(const std::string& name) {
-  const auto path =
-      std::filesystem::temp_directory_path() / ("ashlar_claims_" + name + "_" + std::to_string(::getpid()) + ".sqlite");
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path.string() + suffix);
-  return path.string();
-}
 
 ParameterRows numbers(int count) {
   std::vector<Value> i;
@@ -55,7 +48,8 @@ Outcome squared(const Task& task) {
 }  // namespace
 
 TEST(StudyClaims, TwoConnectionsClaimDisjointRowsAndReleaseThem) {
-  const std::string db = claims_db("disjoint");
+  const TempDir folder;
+  const std::string db = folder.file("disjoint.sqlite");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(10));
   ASSERT_EQ(b.open_study("s", numbers(10)).rows.size(), 10u);  // the same rows, not added twice
@@ -88,7 +82,8 @@ TEST(StudyClaims, TwoConnectionsClaimDisjointRowsAndReleaseThem) {
 }
 
 TEST(StudyClaims, AClaimOfARunWhoseHeartbeatIsOlderThanTheLeaseIsTaken) {
-  const std::string db = claims_db("lease");
+  const TempDir folder;
+  const std::string db = folder.file("lease.sqlite");
   StudyStore a(db), b(db);
   const std::vector<std::int64_t> ids = ids_of(a.open_study("s", numbers(4)));
   const double lease = 0.3;
@@ -118,7 +113,8 @@ TEST(StudyClaims, AClaimOfARunWhoseHeartbeatIsOlderThanTheLeaseIsTaken) {
 }
 
 TEST(StudyClaims, AFieldColumnAnotherConnectionAddedIsNotAddedTwice) {
-  const std::string db = claims_db("columns");
+  const TempDir folder;
+  const std::string db = folder.file("columns.sqlite");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(3));
   b.open_study("s", numbers(3));  // B has read the columns: none yet
@@ -135,7 +131,8 @@ TEST(StudyClaims, AFieldColumnAnotherConnectionAddedIsNotAddedTwice) {
 }
 
 TEST(StudyClaims, OpeningANewStudyFromManyConnectionsAtOnceMakesOneTable) {
-  const std::string db = claims_db("open");
+  const TempDir folder;
+  const std::string db = folder.file("open.sqlite");
   std::vector<std::thread> threads;
   std::atomic<int> failures{0};
   for (int t = 0; t < 6; ++t)
@@ -173,7 +170,8 @@ private:
 }  // namespace
 
 TEST(StudyClaims, TwoRunnersOnOneDatabaseRunEveryRowOnce) {
-  const std::string db = claims_db("runners");
+  const TempDir folder;
+  const std::string db = folder.file("runners.sqlite");
   const int count = 200;
   std::vector<std::atomic<int>> runs(count + 1);
   StudyRunInfo infos[2];
@@ -203,7 +201,8 @@ TEST(StudyClaims, TwoRunnersOnOneDatabaseRunEveryRowOnce) {
 }
 
 TEST(StudyClaims, ClaimedRowsWaitForRowsHeldElsewhereAndTakeThemWhenStale) {
-  const std::string db = claims_db("wait");
+  const TempDir folder;
+  const std::string db = folder.file("wait.sqlite");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(3));
   ClaimTimes times;
@@ -234,7 +233,8 @@ TEST(StudyClaims, ClaimedRowsWaitForRowsHeldElsewhereAndTakeThemWhenStale) {
 // asleep) is told so by its next beat, and claims its unstarted rows again:
 // those another run took meanwhile it leaves to that run.
 TEST(StudyClaims, ARunThatLostItsLeaseClaimsItsUnstartedRowsAgain) {
-  const std::string db = claims_db("lost");
+  const TempDir folder;
+  const std::string db = folder.file("lost.sqlite");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(4));
   std::vector<Task> tasks;
@@ -277,7 +277,8 @@ public:
 // A row longer than the lease, run on the calling thread: the heartbeat
 // thread keeps the claim.
 TEST(StudyClaims, ARowLongerThanTheLeaseKeepsItsClaim) {
-  const std::string db = claims_db("long");
+  const TempDir folder;
+  const std::string db = folder.file("long.sqlite");
   StudyStore a(db), b(db);
   const StudyTable table = a.open_study("s", numbers(2));
   StudySettings settings;
