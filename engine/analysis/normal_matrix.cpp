@@ -17,8 +17,10 @@ NormalMatrix::NormalMatrix(const EquilibriumProblem& problem, ParallelLoop& loop
   column_starts_ = upper.column_starts;
   pattern_.find_slots(problem, pattern_slots_);
   if (problem.row_count > 0) {
+    SparseCholeskyOptions by_bodies = factorisation;
+    by_bodies.block_rows = problem.block_rows;
     cholesky_ = std::make_unique<SparseCholesky>(problem.row_count, std::move(upper.column_starts),
-                                                 std::move(upper.row_indices), factorisation);
+                                                 std::move(upper.row_indices), by_bodies);
   }
   partition();
 }

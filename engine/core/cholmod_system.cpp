@@ -122,7 +122,8 @@ constexpr int kPanelColumns = 96;
 
 struct CholmodSystem::Impl {
   Impl(int n, const int* column_starts, const int* row_indices, Triangle stored, int widest_supernode)
-      : widest_supernode_(widest_supernode > 0 ? widest_supernode
+      : rows_(n),
+        widest_supernode_(widest_supernode > 0 ? widest_supernode
                           : n >= kDefaultMergeFromRows ? kPanelColumns
                                                        : n) {
     cholmod_start(&common_);
@@ -153,8 +154,9 @@ struct CholmodSystem::Impl {
       std::fill(std::begin(common_.zrelax), std::end(common_.zrelax), 0.0);
     }
     const size_t nonzeros = static_cast<size_t>(column_starts[n]);
-    // The pattern alone: factorize() takes the values from the caller's
-    // array (a large model's normal matrix is 100 MB of values: one copy).
+    // The pattern alone, for the analysis: factorize() takes the values
+    // from the caller's array (a large model's normal matrix is 100 MB of
+    // values: one copy).
     matrix_ = cholmod_allocate_sparse(n, n, nonzeros, /*sorted=*/1, /*packed=*/1, stype(stored), CHOLMOD_PATTERN,
                                       &common_);
     if (!matrix_) {
@@ -169,7 +171,7 @@ struct CholmodSystem::Impl {
       if (*dense) cholmod_free_dense(dense, &common_);
     }
     if (factor_) cholmod_free_factor(&factor_, &common_);
-    cholmod_free_sparse(&matrix_, &common_);
+    if (matrix_) cholmod_free_sparse(&matrix_, &common_);
     cholmod_finish(&common_);
   }
   // CHOLMOD's default methods try METIS where AMD's ordering fills much.
@@ -187,12 +189,13 @@ struct CholmodSystem::Impl {
     factor_ = cholmod_analyze(matrix_, &common_);
     check_analysed();
     prepare_numeric();
+    cholmod_free_sparse(&matrix_, &common_);
   }
   void check_analysed() const {
     if (!factor_) throw Error("CHOLMOD could not analyse the normal-equation pattern");
   }
 
-  int rows() const { return static_cast<int>(matrix_->nrow); }
+  int rows() const { return rows_; }
   const cholmod_factor& factor() const { return *factor_; }
   size_t stored_values() const { return factor_->xsize; }
   double factor_nonzeros() const { return common_.lnz; }
@@ -210,7 +213,7 @@ struct CholmodSystem::Impl {
   // and freed at every call. Here the workspace is set up once: important
   // weights on that dome 7.2 s -> 6.0 s on 2 cores; the 10,051-block wall's
   // factorisations unchanged (1.33 s against 1.37 s).
-  bool factorize(const double* values, const int* sources) {
+  bool factorize(const Columns& matrix) {
     const cholmod_factor& f = *factor_;
     const int* super = static_cast<const int*>(f.super);
     const int* pi = static_cast<const int*>(f.pi);
@@ -218,8 +221,6 @@ struct CholmodSystem::Impl {
     const int* row_of = static_cast<const int*>(f.s);
     double* lx = static_cast<double*>(f.x);
     const int supernodes = static_cast<int>(f.nsuper);
-    const int* column_starts = static_cast<const int*>(matrix_->p);
-    const int* row_indices = static_cast<const int*>(matrix_->i);
     // Left-looking: supernode s takes its columns of the matrix, then the
     // updates of the supernodes below it whose rows reach its columns (the
     // list head_[s], each descendant's next row at row_position_), then
@@ -233,8 +234,7 @@ struct CholmodSystem::Impl {
       for (int r = 0; r < height; ++r) local_row_[row_of[pi[s] + r]] = r;
       std::fill(block, lx + px[s + 1], 0.0);
       for (int j = first; j < last; ++j) {
-        double* column = block + static_cast<ptrdiff_t>(j - first) * height;
-        for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) column[local_row_[row_indices[e]]] = values[sources[e]];
+        matrix.fill(j, local_row_.data(), block + static_cast<ptrdiff_t>(j - first) * height);
       }
       for (int d = head_[s]; d != -1;) {
         const int next_d = next_[d];
@@ -428,6 +428,7 @@ struct CholmodSystem::Impl {
     head_[target] = d;
   }
 
+  const int rows_;
   const int widest_supernode_;
   cholmod_common common_;
   cholmod_sparse* matrix_ = nullptr;
@@ -458,9 +459,7 @@ double CholmodSystem::factor_nonzeros() const { return impl_->factor_nonzeros();
 
 size_t CholmodSystem::stored_values() const { return impl_->stored_values(); }
 
-bool CholmodSystem::factorize(const double* values, const int* sources) {
-  return impl_->factorize(values, sources);
-}
+bool CholmodSystem::factorize(const Columns& columns) { return impl_->factorize(columns); }
 
 const double* CholmodSystem::solve(Solve system, const double* rhs) {
   const int kind = system == Solve::whole ? CHOLMOD_A : system == Solve::forward ? CHOLMOD_L : CHOLMOD_Lt;

@@ -29,10 +29,21 @@ public:
     backward,  // L^T x = b
   };
 
-  // The pattern (copied); no values: factorize() takes them from the
-  // caller. widest_supernode: the factor's supernodes are cut into panels
-  // of at most this many columns (memory: cholmod_system.cpp), 0 for the
-  // default, 96 columns from 20,000 rows and none cut below.
+  // The matrix to factorise, a column at a time in factor order:
+  // fill(j, slot, column) writes column j's entry at each row i >= j of its
+  // pattern to column[slot[i]]. The values stay where the caller keeps
+  // them; they are read, never copied as a whole.
+  class Columns {
+  public:
+    virtual ~Columns() = default;
+    virtual void fill(int j, const int* slot, double* column) const = 0;
+  };
+
+  // The pattern (copied, until the analysis no longer needs it); no
+  // values: factorize() takes them from the caller. widest_supernode: the
+  // factor's supernodes are cut into panels of at most this many columns
+  // (memory: cholmod_system.cpp), 0 for the default, 96 columns from
+  // 20,000 rows and none cut below.
   CholmodSystem(int n, const int* column_starts, const int* row_indices, Triangle stored,
                 int widest_supernode = 0);
   ~CholmodSystem();
@@ -45,7 +56,7 @@ public:
   // The rows' own order (the caller has permuted them), kept as given: no
   // postordering. Only a system analysed so, a lower triangle, can be
   // factorised (factorize()): its columns then go straight into the
-  // factor's.
+  // factor's. The pattern is freed.
   void analyze_as_ordered();
   const int* permutation() const;
 
@@ -57,11 +68,10 @@ public:
   size_t stored_values() const;
 
   // Numeric factorisation of the lower triangle in factor order (a system
-  // analysed with analyze_as_ordered), whose k-th value in pattern order is
-  // values[sources[k]], into CHOLMOD's supernodal factor, which solve()
-  // then uses; false when the matrix is not positive definite. The values
-  // are read where the caller keeps them, never copied.
-  bool factorize(const double* values, const int* sources);
+  // analysed with analyze_as_ordered, `columns` on its pattern) into
+  // CHOLMOD's supernodal factor, which solve() then uses; false when the
+  // matrix is not positive definite.
+  bool factorize(const Columns& columns);
   // Solves `system` for the right-hand side rhs[0 .. rows()); the solution
   // stays valid until the next solve, which reuses its storage.
   const double* solve(Solve system, const double* rhs);

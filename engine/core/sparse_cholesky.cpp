@@ -6,24 +6,27 @@
 
 #include "core/blas.hpp"
 #include "core/cholmod_system.hpp"
-#include "core/sourced_pattern.hpp"
+#include "core/sparse_pattern.hpp"
 #include "core/split_cholesky.hpp"
 
 namespace ashlar {
 
 struct SparseCholesky::Impl {
-  // The caller's values (pattern order), whole or split.
+  Impl(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices, int block_rows)
+      : pattern(n, column_starts, row_indices, block_rows) {}
+
+  // The caller's values (pattern order), whole or split, and where each
+  // entry's is.
   std::vector<double> values;
-  int nonzeros = 0;
+  const BlockPattern pattern;
   // When split: the two sides and their separator.
   std::unique_ptr<SplitCholesky> split;
   // When not split: the lower triangle in CHOLMOD's own fill-reducing
   // order (the form CholmodSystem::factorize takes), its values read from
-  // the caller's through whole_sources.
+  // the caller's.
   std::unique_ptr<CholmodSystem> whole;
-  std::vector<int> whole_sources;  // the caller's value behind each of whole's values
-  std::vector<int> whole_order;    // the caller's row at factor row k
-  Eigen::VectorXd permuted;        // solve buffer, factor order
+  FactorRows whole_rows;
+  Eigen::VectorXd permuted;         // solve buffer, factor order
 
   void analyse_whole(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices);
 };
@@ -33,19 +36,17 @@ void SparseCholesky::Impl::analyse_whole(int n, const std::vector<int>& column_s
   CholmodSystem upper(n, column_starts.data(), row_indices.data(), CholmodSystem::Triangle::upper);
   upper.analyze();
   const int* perm = upper.permutation();
-  whole_order.assign(perm, perm + n);  // postordered with it
-  std::vector<int> position(n);
-  for (int k = 0; k < n; ++k) position[whole_order[k]] = k;
-  std::vector<std::array<int, 3>> entries;  // {column, row, value index}, lower triangle in factor order
+  whole_rows = FactorRows(n, std::vector<int>(perm, perm + n), pattern.block_rows());  // postordered with it
+  const std::vector<int>& position = whole_rows.factor_row;
+  std::vector<std::array<int, 2>> entries;  // {column, row}, lower triangle in factor order
   entries.reserve(row_indices.size());
   for (int j = 0; j < n; ++j) {
     for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) {
       const int a = position[row_indices[e]], b = position[j];
-      entries.push_back({std::min(a, b), std::max(a, b), e});
+      entries.push_back({std::min(a, b), std::max(a, b)});
     }
   }
-  const SourcedPattern lower = compress_columns(n, entries);
-  whole_sources = lower.sources;
+  const ColumnPattern lower = compress_columns(n, entries);
   whole = std::make_unique<CholmodSystem>(n, lower.column_starts.data(), lower.row_indices.data(),
                                           CholmodSystem::Triangle::lower);
   whole->analyze_as_ordered();
@@ -53,11 +54,11 @@ void SparseCholesky::Impl::analyse_whole(int n, const std::vector<int>& column_s
 
 SparseCholesky::SparseCholesky(int n, std::vector<int> column_starts, std::vector<int> row_indices,
                                const SparseCholeskyOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->nonzeros = static_cast<int>(row_indices.size());
+    : impl_(std::make_unique<Impl>(n, column_starts, row_indices, options.block_rows)) {
   const bool two_cores = std::thread::hardware_concurrency() >= 2;
   if (n >= options.split_from_rows && (two_cores || options.split_from_rows == 0)) {
-    impl_->split = SplitCholesky::analyse(n, column_starts, row_indices, options.max_separator_rows);
+    impl_->split = SplitCholesky::analyse(n, column_starts, row_indices, options.block_rows,
+                                          options.max_separator_rows);
   }
   if (!impl_->split) impl_->analyse_whole(n, column_starts, row_indices);
   impl_->values.assign(row_indices.size(), 0.0);
@@ -67,7 +68,7 @@ SparseCholesky::~SparseCholesky() = default;
 
 double* SparseCholesky::values() { return impl_->values.data(); }
 
-int SparseCholesky::nonzeros() const { return impl_->nonzeros; }
+int SparseCholesky::nonzeros() const { return static_cast<int>(impl_->values.size()); }
 
 int SparseCholesky::separator_rows() const { return impl_->split ? impl_->split->separator_rows() : 0; }
 
@@ -82,8 +83,8 @@ bool SparseCholesky::factorize() {
   set_up_blas_in_whole_process();
   ++factorizations_;
   Impl& m = *impl_;
-  if (m.split) return m.split->factorize(m.values.data());
-  return m.whole->factorize(m.values.data(), m.whole_sources.data());
+  if (m.split) return m.split->factorize(m.pattern, m.values.data());
+  return m.whole->factorize(PatternColumns(m.pattern, m.values.data(), m.whole_rows));
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
@@ -100,10 +101,10 @@ void SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out) con
   }
   const int n = static_cast<int>(rhs.size());
   m.permuted.resize(n);
-  for (int k = 0; k < n; ++k) m.permuted[k] = rhs[m.whole_order[k]];
+  for (int k = 0; k < n; ++k) m.permuted[k] = rhs[m.whole_rows.caller_row[k]];
   const double* x = m.whole->solve(CholmodSystem::Solve::whole, m.permuted.data());
   out.resize(n);
-  for (int k = 0; k < n; ++k) out[m.whole_order[k]] = x[k];
+  for (int k = 0; k < n; ++k) out[m.whole_rows.caller_row[k]] = x[k];
 }
 
 }  // namespace ashlar

@@ -29,13 +29,20 @@ struct SparseCholeskyOptions {
   // of 10,000-100,000 blocks are cut by 300-600 rows; compact 3D meshes
   // (FEA) may not be, and stay whole.
   int max_separator_rows = 2500;
+  // The pattern's rows come in runs of this many (a body's unknowns) and
+  // its entries are whole blocks of as many rows and columns (the diagonal
+  // ones' upper triangles): the factorisations then find each value by its
+  // block, with no map per entry (core/sparse_pattern.hpp). 1 takes any
+  // pattern, at 12 bytes per entry off the diagonal.
+  int block_rows = 1;
 };
 
 class SparseCholesky {
 public:
   // The n x n pattern's upper triangle in compressed columns: rows of column
   // j are row_indices[column_starts[j] .. column_starts[j+1]), ascending.
-  // Every diagonal entry must be present.
+  // Every diagonal entry must be present. Throws Error when the pattern is
+  // not made of options.block_rows blocks.
   SparseCholesky(int n, std::vector<int> column_starts, std::vector<int> row_indices,
                  const SparseCholeskyOptions& options = {});
   ~SparseCholesky();

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <utility>
 
 #include "core/blas.hpp"
 #include "core/cholmod_system.hpp"
-#include "core/sourced_pattern.hpp"
+#include "core/sparse_pattern.hpp"
 
 namespace ashlar {
 
@@ -14,10 +15,8 @@ namespace ashlar {
 // separator's, factored with the separator last.
 struct SplitCholesky::Side {
   std::unique_ptr<CholmodSystem> system;
-  int own = 0;                      // rows of this part; separator rows follow
-  std::vector<int> own_rows;        // the whole matrix's row of each own row
-  std::vector<int> sources;         // the whole matrix's value behind each of system's values
-  std::vector<int> order;           // local row (own rows, then separator) at factor row k
+  int own = 0;                      // rows of this part, its factor's first; separator rows follow
+  FactorRows rows;                  // the whole matrix's rows it holds, own rows first
   std::vector<int> separator_slot;  // separator position of the factor's trailing row own + k
   // L_SS reversed, U = J L_SS J (J: the reversal), which is upper
   // triangular: LAPACK forms U U^T (a third of a general product's flops)
@@ -31,10 +30,10 @@ struct SplitCholesky::Side {
 
   int separator_rows() const { return static_cast<int>(separator_slot.size()); }
 
-  // Factors this side (its values read from the whole matrix's through
-  // sources) and forms its Schur share T.
-  bool factorize(const double* whole_values) {
-    if (!system->factorize(whole_values, sources.data())) return false;
+  // Factors this side (its values read from the whole matrix's) and forms
+  // its Schur share T.
+  bool factorize(const BlockPattern& pattern, const double* whole_values) {
+    if (!system->factorize(PatternColumns(pattern, whole_values, rows))) return false;
     system->trailing_block_reversed(own, reversed_trailing);  // L_SS
     product = reversed_trailing;
     const int s = separator_rows();
@@ -61,7 +60,7 @@ struct SplitCholesky::Side {
   void forward(const Eigen::VectorXd& rhs) {
     const int n = system->rows(), s = separator_rows();
     permuted.resize(n);
-    for (int k = 0; k < n; ++k) permuted[k] = order[k] < own ? rhs[own_rows[order[k]]] : 0.0;
+    for (int k = 0; k < n; ++k) permuted[k] = k < own ? rhs[rows.caller_row[k]] : 0.0;
     const double* y = system->solve(CholmodSystem::Solve::forward, permuted.data());
     std::copy(y, y + n, permuted.data());
     // L_SS y_S = J U J y_S.
@@ -81,7 +80,7 @@ struct SplitCholesky::Side {
     for (int k = 0; k < s; ++k) separator_work[s - 1 - k] = separator_solution[separator_slot[k]];
     back.tail(s).reverse() = reversed_trailing.triangularView<Eigen::Upper>().transpose() * separator_work;
     const double* u = system->solve(CholmodSystem::Solve::backward, back.data());
-    for (int k = 0; k < own; ++k) out[own_rows[order[k]]] = u[k];
+    for (int k = 0; k < own; ++k) out[rows.caller_row[k]] = u[k];
   }
 };
 
@@ -90,15 +89,15 @@ SplitCholesky::SplitCholesky() : sides_{std::make_unique<Side>(), std::make_uniq
 SplitCholesky::~SplitCholesky() = default;
 
 std::unique_ptr<SplitCholesky> SplitCholesky::analyse(int n, const std::vector<int>& column_starts,
-                                                      const std::vector<int>& row_indices,
+                                                      const std::vector<int>& row_indices, int block_rows,
                                                       int max_separator_rows) {
   std::unique_ptr<SplitCholesky> out(new SplitCholesky());
-  if (!out->split(n, column_starts, row_indices, max_separator_rows)) out.reset();
+  if (!out->split(n, column_starts, row_indices, block_rows, max_separator_rows)) out.reset();
   return out;
 }
 
 bool SplitCholesky::split(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices,
-                          int max_separator_rows) {
+                          int block_rows, int max_separator_rows) {
   const std::vector<int> part = bisect(n, column_starts, row_indices);
   if (part.empty()) return false;
   // Local numbering per side: own rows first, then the separator's.
@@ -111,15 +110,15 @@ bool SplitCholesky::split(int n, const std::vector<int>& column_starts, const st
   for (int i = 0; i < n; ++i) {
     if (part[i] == 2) separator_.push_back(i);
   }
-  // Each side's entries in its local numbering, upper triangle:
-  // {column, row, value index in the whole pattern}.
-  std::vector<std::array<int, 3>> entries[2];
+  // Each side's entries in its local numbering (own rows, then the
+  // separator's), upper triangle: {column, row}.
+  std::vector<std::array<int, 2>> entries[2];
+  std::vector<int> own_rows[2];  // the whole matrix's row of each own row
   for (int p = 0; p < 2; ++p) {
-    Side& side = *sides_[p];
-    side.own = counts[p];
-    side.own_rows.reserve(side.own);
+    sides_[p]->own = counts[p];
+    own_rows[p].reserve(counts[p]);
     for (int i = 0; i < n; ++i) {
-      if (part[i] == p) side.own_rows.push_back(i);
+      if (part[i] == p) own_rows[p].push_back(i);
     }
   }
   auto local_index = [&](int i, int p) { return part[i] == 2 ? sides_[p]->own + local[i] : local[i]; };
@@ -130,7 +129,7 @@ bool SplitCholesky::split(int n, const std::vector<int>& column_starts, const st
       for (int p = 0; p < 2; ++p) {
         if ((part[i] == 2 || part[i] == p) && (part[j] == 2 || part[j] == p)) {
           const int a = local_index(i, p), b = local_index(j, p);
-          entries[p].push_back({std::max(a, b), std::min(a, b), e});
+          entries[p].push_back({std::max(a, b), std::min(a, b)});
         }
       }
       if (part[i] == 2 && part[j] == 2) {
@@ -144,26 +143,31 @@ bool SplitCholesky::split(int n, const std::vector<int>& column_starts, const st
   loop_.run_parts(2, [&](int p) {
     Side& side = *sides_[p];
     const int rows = side.own + s;
-    const SourcedPattern upper = compress_columns(rows, entries[p]);
-    side.order = order_with_last_rows(rows, upper.column_starts, upper.row_indices, side.own);
-    if (side.order.empty()) return;
+    const ColumnPattern upper = compress_columns(rows, entries[p]);
+    const std::vector<int> order = order_with_last_rows(rows, upper.column_starts, upper.row_indices, side.own);
+    if (order.empty()) return;  // local row at factor row k
     std::vector<int> position(rows);
-    for (int k = 0; k < rows; ++k) position[side.order[k]] = k;
+    for (int k = 0; k < rows; ++k) position[order[k]] = k;
     // The side's lower triangle in factor order, which CHOLMOD factors in
     // place.
-    for (auto& [column, row, source] : entries[p]) {
+    for (auto& [column, row] : entries[p]) {
       const int a = position[row], b = position[column];
       column = std::min(a, b);
       row = std::max(a, b);
     }
-    const SourcedPattern lower = compress_columns(rows, entries[p]);
-    std::vector<std::array<int, 3>>().swap(entries[p]);
-    side.sources = lower.sources;
+    const ColumnPattern lower = compress_columns(rows, entries[p]);
+    std::vector<std::array<int, 2>>().swap(entries[p]);
+    std::vector<int> caller_rows(rows);
+    for (int k = 0; k < rows; ++k) {
+      const int local_row = order[k];
+      caller_rows[k] = local_row < side.own ? own_rows[p][local_row] : separator_[local_row - side.own];
+    }
+    side.rows = FactorRows(n, std::move(caller_rows), block_rows);
     side.system = std::make_unique<CholmodSystem>(rows, lower.column_starts.data(), lower.row_indices.data(),
                                                   CholmodSystem::Triangle::lower);
     side.system->analyze_as_ordered();
     side.separator_slot.resize(s);
-    for (int k = 0; k < s; ++k) side.separator_slot[k] = side.order[side.own + k] - side.own;
+    for (int k = 0; k < s; ++k) side.separator_slot[k] = order[side.own + k] - side.own;
     ordered[p] = true;
   });
   return ordered[0] && ordered[1];
@@ -176,9 +180,9 @@ double SplitCholesky::factor_nonzeros() const {
   return sides_[0]->system->factor_nonzeros() + sides_[1]->system->factor_nonzeros() - s * (s + 1) / 2;
 }
 
-bool SplitCholesky::factorize(const double* values) {
+bool SplitCholesky::factorize(const BlockPattern& pattern, const double* values) {
   bool factored[2] = {false, false};
-  loop_.run_parts(2, [&](int p) { factored[p] = sides_[p]->factorize(values); });
+  loop_.run_parts(2, [&](int p) { factored[p] = sides_[p]->factorize(pattern, values); });
   if (!factored[0] || !factored[1]) return false;
   // Schur complement of M onto S: T_A + T_B - M_SS (lower triangle).
   const int s = separator_rows();

@@ -27,21 +27,26 @@
 
 namespace ashlar {
 
+class BlockPattern;
+
 class SplitCholesky {
 public:
-  // The split of the pattern, its two sides ordered and analysed (each on
-  // its own core); null when the pattern has no usable separator (none,
+  // The split of the pattern (in bodies of block_rows rows, as
+  // SparseCholeskyOptions::block_rows), its two sides ordered and analysed
+  // (each on its own core); null when the pattern has no usable separator (none,
   // more than max_separator_rows rows, or a side of fewer than n / 8 rows)
   // or CHOLMOD cannot order it.
   static std::unique_ptr<SplitCholesky> analyse(int n, const std::vector<int>& column_starts,
-                                                const std::vector<int>& row_indices, int max_separator_rows);
+                                                const std::vector<int>& row_indices, int block_rows,
+                                                int max_separator_rows);
   ~SplitCholesky();
   SplitCholesky(const SplitCholesky&) = delete;
   SplitCholesky& operator=(const SplitCholesky&) = delete;
 
-  // Numeric factorisation of `values` (the whole pattern's); false when
-  // the matrix is not (numerically) positive definite.
-  bool factorize(const double* values);
+  // Numeric factorisation of `values` (the whole pattern's, as analysed,
+  // its entries found through `pattern`); false when the matrix is not
+  // (numerically) positive definite.
+  bool factorize(const BlockPattern& pattern, const double* values);
   // Solves with the last factorisation into `out` (n), reusing buffers
   // (one solve at a time).
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& out);
@@ -52,7 +57,7 @@ public:
 private:
   struct Side;
   SplitCholesky();
-  bool split(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices,
+  bool split(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices, int block_rows,
              int max_separator_rows);
 
   std::unique_ptr<Side> sides_[2];

@@ -168,6 +168,7 @@ ContactInteriorReport solve_contact_interior(std::vector<ContactRow>& rows, Body
   std::vector<int> pattern_rows = blocks.set(free_bodies, links);
   SparseCholeskyOptions whole;
   whole.split_from_rows = std::numeric_limits<int>::max();
+  whole.block_rows = 6;  // BodyBlocks' 6 x 6 blocks
   SparseCholesky cholesky(unknowns, blocks.column_starts(), std::move(pattern_rows), whole);
   std::vector<Mat6> mass(free_bodies, Mat6::Zero());
   std::vector<Eigen::LDLT<Mat6>> mass_factor(free_bodies);

@@ -312,6 +312,7 @@ struct ContactSolver::Factor {
   void set_pattern(int free_bodies, std::vector<std::pair<int, int>> linked) {
     links = std::move(linked);
     std::vector<int> rows = blocks.set(free_bodies, links);
+    options.block_rows = 6;  // BodyBlocks' 6 x 6 blocks
     cholesky = std::make_unique<SparseCholesky>(6 * free_bodies, blocks.column_starts(), std::move(rows), options);
   }
 };

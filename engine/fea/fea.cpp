@@ -256,7 +256,9 @@ public:
     });
     std::vector<int> starts(m.outerIndexPtr(), m.outerIndexPtr() + dofs + 1);
     std::vector<int> rows(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
-    cholesky_ = std::make_unique<SparseCholesky>(dofs, std::move(starts), std::move(rows));
+    SparseCholeskyOptions by_nodes;
+    by_nodes.block_rows = 3;  // a node's displacements: the elements' and ties' entries come in 3 x 3 blocks
+    cholesky_ = std::make_unique<SparseCholesky>(dofs, std::move(starts), std::move(rows), by_nodes);
   }
 
   double rho() const { return rho_; }

@@ -2,9 +2,10 @@
 // separator solves the same systems as a dense Cholesky factorisation (the
 // independent reference), on block patterns like the solver's; patterns
 // that cannot be split are factored whole; a matrix that is not positive
-// definite is reported, split or not. CholmodSystem: supernodes cut into
-// narrower panels solve as Eigen's sparse Cholesky factorisation does,
-// and store fewer values.
+// definite is reported, split or not. BlockPattern finds every entry of a
+// block pattern's columns. CholmodSystem: supernodes cut into narrower
+// panels solve as Eigen's sparse Cholesky factorisation does, and store
+// fewer values.
 #include <gtest/gtest.h>
 
 #include <pthread.h>
@@ -23,7 +24,9 @@
 #include <vector>
 
 #include "core/cholmod_system.hpp"
+#include "core/error.hpp"
 #include "core/sparse_cholesky.hpp"
+#include "core/sparse_pattern.hpp"
 
 using ashlar::SparseCholesky;
 using ashlar::SparseCholeskyOptions;
@@ -103,7 +106,7 @@ Eigen::VectorXd random_vector(int n, unsigned seed) {
 // banded factor, whose supernodes are as wide as the band.
 struct LowerGrid {
   int n = 0;
-  std::vector<int> column_starts, row_indices, sources;
+  std::vector<int> column_starts, row_indices;
   std::vector<double> values;
   Eigen::SparseMatrix<double> matrix;  // the whole symmetric matrix
 };
@@ -120,10 +123,20 @@ LowerGrid lower_grid(int rows, int columns, int d, unsigned seed) {
   m.column_starts.assign(lower.outerIndexPtr(), lower.outerIndexPtr() + m.n + 1);
   m.row_indices.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
   m.values.assign(lower.valuePtr(), lower.valuePtr() + lower.nonZeros());
-  m.sources.resize(m.values.size());
-  for (size_t k = 0; k < m.sources.size(); ++k) m.sources[k] = static_cast<int>(k);
   return m;
 }
+
+// A lower grid's columns as CholmodSystem::factorize takes them.
+class LowerColumns final : public ashlar::CholmodSystem::Columns {
+public:
+  explicit LowerColumns(const LowerGrid& m) : m_(m) {}
+  void fill(int j, const int* slot, double* column) const override {
+    for (int e = m_.column_starts[j]; e < m_.column_starts[j + 1]; ++e) column[slot[m_.row_indices[e]]] = m_.values[e];
+  }
+
+private:
+  const LowerGrid& m_;
+};
 
 // A lower-triangle system analysed in its own order, `widest` as
 // CholmodSystem takes it.
@@ -134,17 +147,23 @@ std::unique_ptr<ashlar::CholmodSystem> analysed(const LowerGrid& m, int widest) 
   return system;
 }
 
-SparseCholeskyOptions always_split() {
+SparseCholeskyOptions always_split(int block_rows = 1) {
   SparseCholeskyOptions options;
   options.split_from_rows = 0;
+  options.block_rows = block_rows;
   return options;
 }
 
 }  // namespace
 
-TEST(SparseCholesky, SplitFactorisationSolvesLikeDenseCholesky) {
+class SplitFactorisation : public testing::TestWithParam<int> {};
+
+// The pattern read entry by entry (1) and by its 6 x 6 blocks.
+INSTANTIATE_TEST_SUITE_P(BlockRows, SplitFactorisation, testing::Values(1, 6));
+
+TEST_P(SplitFactorisation, SolvesLikeDenseCholesky) {
   const GridMatrix m = grid_matrix(12, 20, 6, 1);
-  SparseCholesky split(m.n, m.column_starts, m.row_indices, always_split());
+  SparseCholesky split(m.n, m.column_starts, m.row_indices, always_split(GetParam()));
   // A 12 x 20 grid is cut across its shorter side: 12 bodies (72 rows)
   // separate it, give or take METIS's choice.
   EXPECT_GT(split.separator_rows(), 0);
@@ -171,8 +190,8 @@ TEST(SparseCholesky, SplitFactorisationSolvesLikeDenseCholesky) {
 
 TEST(SparseCholesky, SplitAndWholeFactorsHoldAboutAsManyNonzeros) {
   const GridMatrix m = grid_matrix(30, 30, 3, 5);
-  SparseCholesky split(m.n, m.column_starts, m.row_indices, always_split());
-  SparseCholeskyOptions never;
+  SparseCholesky split(m.n, m.column_starts, m.row_indices, always_split(3));
+  SparseCholeskyOptions never = always_split(3);
   never.split_from_rows = m.n + 1;
   SparseCholesky whole(m.n, m.column_starts, m.row_indices, never);
   ASSERT_GT(split.separator_rows(), 0);
@@ -185,8 +204,53 @@ TEST(SparseCholesky, SplitAndWholeFactorsHoldAboutAsManyNonzeros) {
   ASSERT_TRUE(split.factorize());
   ASSERT_TRUE(whole.factorize());
   const Eigen::VectorXd rhs = random_vector(m.n, 6);
-  const Eigen::VectorXd expected = whole.solve(rhs);
+  const Eigen::VectorXd expected = Eigen::LLT<Eigen::MatrixXd>(m.dense).solve(rhs);
+  EXPECT_LE((whole.solve(rhs) - expected).norm(), 1e-10 * expected.norm());
   EXPECT_LE((split.solve(rhs) - expected).norm(), 1e-10 * expected.norm());
+}
+
+TEST(BlockPattern, VisitsEveryEntryOfEachColumnOnceWithItsValue) {
+  // 4 x 5 bodies of 6 rows, read by blocks of 6, of 3 (a body's halves:
+  // its blocks are whole blocks of 3 too) and entry by entry.
+  const GridMatrix m = grid_matrix(4, 5, 6, 12);
+  for (int d : {6, 3, 1}) {
+    const ashlar::BlockPattern pattern(m.n, m.column_starts, m.row_indices, d);
+    Eigen::MatrixXd found = Eigen::MatrixXd::Zero(m.n, m.n);
+    Eigen::MatrixXi visits = Eigen::MatrixXi::Zero(m.n, m.n);
+    for (int j = 0; j < m.n; ++j) {
+      pattern.for_each_block_in_column(j, [&](int body, auto value) {
+        for (int r = 0; r < d; ++r) {
+          found(d * body + r, j) = m.values[value(r)];
+          ++visits(d * body + r, j);
+        }
+      });
+    }
+    EXPECT_EQ((found - m.dense).cwiseAbs().maxCoeff(), 0.0) << "blocks of " << d;
+    EXPECT_EQ(visits.maxCoeff(), 1) << "blocks of " << d;
+    // Every entry of the pattern, both triangles: 20 bodies' diagonal
+    // blocks, and 2 x 6 x 6 entries per coupled pair (4 x 4 along the
+    // rows, 3 x 5 across them, 2 x 3 x 4 diagonally).
+    EXPECT_EQ(visits.sum(), 20 * 36 + (16 + 15 + 24) * 72) << "blocks of " << d;
+  }
+}
+
+TEST(BlockPattern, APatternNotMadeOfWholeBlocksIsRefused) {
+  const GridMatrix m = grid_matrix(4, 5, 6, 13);
+  // Blocks of 4 rows straddle the bodies' 6.
+  EXPECT_THROW(ashlar::BlockPattern(m.n, m.column_starts, m.row_indices, 4), ashlar::Error);
+  // 7 does not divide 120 rows.
+  EXPECT_THROW(ashlar::BlockPattern(m.n, m.column_starts, m.row_indices, 7), ashlar::Error);
+  // One entry above the diagonal missing in the last column.
+  std::vector<int> starts = m.column_starts, rows = m.row_indices;
+  rows.erase(rows.begin() + starts[m.n - 1]);
+  --starts[m.n];
+  try {
+    ashlar::BlockPattern(m.n, starts, rows, 6);
+    ADD_FAILURE() << "accepted";
+  } catch (const ashlar::Error& error) {
+    EXPECT_STREQ(error.what(), "the pattern's columns 114 to 119 are not made of whole blocks of 6 rows");
+  }
+  EXPECT_NO_THROW(ashlar::BlockPattern(m.n, starts, rows, 1));
 }
 
 TEST(SparseCholesky, APatternWithoutASeparatorIsFactoredWhole) {
@@ -248,8 +312,8 @@ TEST(CholmodSystem, SupernodesCutIntoPanelsSolveAsEigensSparseCholesky) {
   // The diagonal blocks' unused upper triangles: at most 16 x 15 / 2 per
   // panel, against about 190 x 189 / 2 per supernode.
   EXPECT_LT(panels->stored_values(), 0.97 * whole->stored_values());
-  ASSERT_TRUE(panels->factorize(m.values.data(), m.sources.data()));
-  ASSERT_TRUE(whole->factorize(m.values.data(), m.sources.data()));
+  ASSERT_TRUE(panels->factorize(LowerColumns(m)));
+  ASSERT_TRUE(whole->factorize(LowerColumns(m)));
   // The reference: Eigen's simplicial factorisation in the same order (L
   // of a positive definite matrix is unique).
   const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> reference(
