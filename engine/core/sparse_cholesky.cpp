@@ -17,8 +17,8 @@ struct SparseCholesky::Impl {
   Impl(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices, int block_rows)
       : pattern(n, column_starts, row_indices, block_rows) {}
 
-  // The caller's values (pattern order), whole or split, and where each
-  // entry's is.
+  // The caller's values (pattern order), whole or split, and the pattern
+  // by its blocks, which finds each entry's value.
   std::vector<double> values;
   const BlockPattern pattern;
   // When split: the two sides and their separator.
@@ -27,8 +27,8 @@ struct SparseCholesky::Impl {
   // order (the form CholmodSystem::factorize takes), its values read from
   // the caller's.
   std::unique_ptr<CholmodSystem> whole;
-  FactorRows whole_rows;
-  Eigen::VectorXd permuted;         // solve buffer, factor order
+  FactorRows whole_rows;     // the caller's row at each factor row, and back
+  Eigen::VectorXd permuted;  // solve buffer, factor order
 
   void analyse_whole(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices);
 };
