@@ -14,7 +14,6 @@ NormalMatrix::NormalMatrix(const EquilibriumProblem& problem, ParallelLoop& loop
                            const SparseCholeskyOptions& factorisation)
     : loop_(loop), pattern_(problem) {
   UpperPattern upper = pattern_.upper_triangle();
-  column_starts_ = upper.column_starts;
   pattern_.find_slots(problem, pattern_slots_);
   if (problem.row_count > 0) {
     SparseCholeskyOptions by_bodies = factorisation;
@@ -88,17 +87,18 @@ void NormalMatrix::assemble(const EquilibriumProblem& problem, const std::vector
   // Each part adds only into its own range of block columns (so no entry
   // has two writers), taking the groups that add there.
   double* values = cholesky_->values();
+  const std::vector<int>& column_starts = cholesky_->column_starts();
   const int parts = static_cast<int>(parts_.groups.size());
   loop_.run_parts(parts, [&](int part) {
     const int first = parts_.first_column[part], last = parts_.first_column[part + 1];
-    std::fill(values + column_starts_[D * first], values + column_starts_[D * last], 0.0);
+    std::fill(values + column_starts[D * first], values + column_starts[D * last], 0.0);
     auto owned = [&](int column) { return column >= first && column < last; };
     // Adds left right^T (D x D) to block column col_block at its rank-th
     // block row; on the diagonal only its upper triangle, the one stored.
     auto add_product = [&](int col_block, int rank, const BlockByVertexD& left, const BlockByVertexD& right,
                            bool diagonal) {
       for (int cj = 0; cj < D; ++cj) {
-        double* column = values + column_starts_[D * col_block + cj] + D * rank;
+        double* column = values + column_starts[D * col_block + cj] + D * rank;
         const int rows = diagonal ? cj + 1 : D;
         for (int ri = 0; ri < rows; ++ri) column[ri] += left.row(ri).dot(right.row(cj));
       }
@@ -163,14 +163,15 @@ bool NormalMatrix::factorize_shifted() {
   // next iterations correct the slightly perturbed step.
   if (cholesky_->factorize()) return true;
   double* values = cholesky_->values();
+  const std::vector<int>& column_starts = cholesky_->column_starts();
   std::vector<double> unshifted(values, values + cholesky_->nonzeros());
   double largest = 0.0;
   for (int col = 0; col < rows(); ++col) {
-    largest = std::max(largest, std::abs(values[column_starts_[col + 1] - 1]));
+    largest = std::max(largest, std::abs(values[column_starts[col + 1] - 1]));
   }
   for (double shift = 1e-14; shift <= 1e-8; shift *= 100.0) {
     std::copy(unshifted.begin(), unshifted.end(), values);
-    for (int col = 0; col < rows(); ++col) values[column_starts_[col + 1] - 1] += shift * largest;
+    for (int col = 0; col < rows(); ++col) values[column_starts[col + 1] - 1] += shift * largest;
     if (cholesky_->factorize()) return true;
   }
   return false;

@@ -73,7 +73,6 @@ private:
 
   ParallelLoop& loop_;
   NormalPattern pattern_;
-  std::vector<int> column_starts_;
   std::vector<GroupSlots> pattern_slots_;  // per group of the problem analysed (fits())
   std::vector<GroupSlots> merged_slots_;   // per twin class, when twins merged
   AssemblyParts parts_;

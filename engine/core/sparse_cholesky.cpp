@@ -78,6 +78,8 @@ SparseCholesky::~SparseCholesky() = default;
 
 double* SparseCholesky::values() { return impl_->values.data(); }
 
+const std::vector<int>& SparseCholesky::column_starts() const { return impl_->pattern.column_starts(); }
+
 int SparseCholesky::nonzeros() const { return static_cast<int>(impl_->values.size()); }
 
 int SparseCholesky::separator_rows() const { return impl_->split ? impl_->split->separator_rows() : 0; }

@@ -52,6 +52,9 @@ public:
   // The values array (pattern order) to fill before factorize().
   double* values();
   int nonzeros() const;
+  // The pattern's column starts as given: column j's values are
+  // values()[column_starts()[j] .. column_starts()[j + 1]).
+  const std::vector<int>& column_starts() const;
   // Numeric factorisation of the current values; false when the matrix is
   // not (numerically) positive definite. The first call in the process
   // sets OpenBLAS to one thread, and to its kernels for the CPU, for the

@@ -65,6 +65,7 @@ public:
     }
   }
   int block_rows() const { return block_rows_; }
+  const std::vector<int>& column_starts() const { return column_starts_; }
 
 private:
   int block_rows_ = 1;
