@@ -175,11 +175,17 @@ private:
                                 [](const ForceGroup& group) { return group.kind != GroupKind::contact_vertex; }),
                  groups.end());
     for (ForceGroup& group : groups) group.on_b.col(1).setZero();  // tension acts on no block
-    // Rows c >= 0 and the friction rows, without s >= 0.
+    // The friction rows alone: with 0 < mu < infinity they imply c >= 0
+    // (the pyramid's sides, or the box's, sum to a positive multiple of
+    // c), so that row, and s >= 0, go. A fifth fewer rows for the solver's
+    // passes over the vertices, and the apex of each cone no longer where
+    // five rows meet in three unknowns: the imperfect 16 x 18 dome's every
+    // block 8,377 -> 7,964 iterations, 11.4 s -> 10.3 s on 2 cores; the
+    // 1,008-voussoir vault's middle course 1,107 -> 1,111 iterations,
+    // 10.5 s -> 9.4 s. The bounds within 8.3e-9 and 2.3e-9 (relative) of
+    // the program with the row.
     GroupRules& contact = program_.rules[static_cast<int>(GroupKind::contact_vertex)];
-    const Eigen::Matrix<double, Eigen::Dynamic, 4> rows = contact.rows;
-    contact.rows.resize(rows.rows() - 1, 4);
-    contact.rows << rows.topRows(1), rows.bottomRows(rows.rows() - 2);
+    contact.rows = contact.rows.bottomRows(contact.rows.rows() - 2).eval();
     contact.bound_coefficients.resize(0);
     contact.hessian << 0.0, 1.0, 0.0, 0.0;
     contact.linear.setZero();
