@@ -178,8 +178,8 @@ private:
     // The friction rows alone: with 0 < mu < infinity they imply c >= 0
     // (the pyramid's sides, or the box's, sum to a positive multiple of
     // c), so that row, and s >= 0, go. A fifth fewer rows for the solver's
-    // passes over the vertices, and the apex of each cone no longer where
-    // five rows meet in three unknowns: the imperfect 16 x 18 dome's every
+    // passes over the vertices, and four rows, not five, meeting in three
+    // unknowns at each cone's apex: the imperfect 16 x 18 dome's every
     // block 8,377 -> 7,964 iterations, 11.4 s -> 10.3 s on 2 cores; the
     // 1,008-voussoir vault's middle course 1,107 -> 1,111 iterations,
     // 10.5 s -> 9.4 s. The bounds within 8.3e-9 and 2.3e-9 (relative) of
