@@ -500,7 +500,7 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
     // The ordering of MUMPS's indefinite factorisations. "cra": approximate
     // minimum degree, with which the Armadillo vault's iterates are the
-    // same run after run (231 iterations, 113-119 s every run): with
+    // same run after run (231 iterations every run): with
     // METIS (5) or AMF (2) its iterates parted in the eighth digit after
     // about 20 iterations, and runs took 226-393 iterations and 98-530 s;
     // MUMPS's default (QAMD) gave fronts whose dense factorisation took
@@ -511,6 +511,7 @@ EquilibriumResult analyze_cra(const Structure& structure, const AnalysisSettings
     // also converges, would bypass core/cholmod_system's guard (one call at
     // a time, SIGTERM kept).
     app->Options()->SetIntegerValue("mumps_pivot_order", penalty ? 4 : 0);
+    app->Options()->SetIntegerValue("mumps_mem_percent", kMumpsWorkspacePercent);  // why: core/blas.hpp
     // No options file: an ipopt.opt in the working directory would change the answer unseen.
     if (app->Initialize("") != Ipopt::Solve_Succeeded) {
       throw std::runtime_error("IPOPT failed to initialise");

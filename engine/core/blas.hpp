@@ -74,4 +74,16 @@ namespace ashlar {
 // Set here so that a user never needs OPENBLAS_* variables for speed.
 void set_up_blas_in_whole_process();
 
+// The workspace of MUMPS, IPOPT's sparse factorisation on these kernels,
+// as a percentage above MUMPS's own estimate: IPOPT's mumps_mem_percent in
+// both IPOPT programs (analysis/cra.cpp, fea/contact_program.cpp), in place
+// of IPOPT's 1000. MUMPS clears its whole workspace at every factorisation:
+// on the Armadillo vault (CRA, 231 iterations) eleven times the estimate
+// took 108 s, 23 s of them system time for 3.2 million page faults, and
+// 30 % takes 66 s (0.5 s, 41,000 faults) with the same iterates to the
+// last digit; 50 % 74 s; 20 % 86 s, MUMPS short of room and compressing
+// its stack. A factorisation that needs more is retried by IPOPT with
+// twice the room.
+inline constexpr int kMumpsWorkspacePercent = 30;
+
 }  // namespace ashlar

@@ -170,6 +170,7 @@ ContactProgramResult solve_contact_program(const SparseMatrix& stiffness, const 
   // without METIS, whose calls must pass core/cholmod_system's guard (one
   // at a time, SIGTERM kept) and MUMPS's would not.
   app->Options()->SetIntegerValue("mumps_pivot_order", 4);
+  app->Options()->SetIntegerValue("mumps_mem_percent", kMumpsWorkspacePercent);  // why: core/blas.hpp
   // No options file: an ipopt.opt in the working directory would change the answer unseen.
   if (app->Initialize("") != Ipopt::Solve_Succeeded) throw std::runtime_error("IPOPT failed to initialise");
   const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(program);

@@ -3,7 +3,7 @@
 -- compas_cra's samples), 399 voussoirs, 33 supports, on the contacts ashlar
 -- detects. The exact program (complementarity = 0) makes no progress on it
 -- (see docs/api.md); with the complementarity relaxed to kappa = 0.1 IPOPT
--- converges. Slow: 113-117 s in a Release build on 2 shared cores (231
+-- converges. Slow: 66 s in a Release build on 2 cores (231
 -- IPOPT iterations; the equilibrium method takes 0.23 s), so it has a spec
 -- file of its own and a COST in tests/CMakeLists.txt that starts it first.
 local ashlar = require "ashlar"
