@@ -1,3 +1,3 @@
--- expect: sandbox: time limit of 1 s exceeded
--- options: --time 1
+-- expect: sandbox: time limit of 0.25 s exceeded
+-- options: --time 0.25
 while true do end

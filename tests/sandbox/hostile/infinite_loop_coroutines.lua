@@ -1,5 +1,5 @@
--- expect: sandbox: time limit of 1 s exceeded
--- options: --time 1
+-- expect: sandbox: time limit of 0.25 s exceeded
+-- options: --time 0.25
 local spinners = {}
 for i = 1, 10 do
   spinners[i] = coroutine.wrap(function() while true do pcall(coroutine.yield) end end)
