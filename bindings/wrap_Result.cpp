@@ -156,7 +156,7 @@ AnalysisSettings settings_from(lua_State* L, int arg) {
   return analysis_settings(OptionTable(L, arg, {ASHLAR_ANALYSIS_OPTIONS, "warm_start"}));
 }
 
-std::shared_ptr<AnalysisRecord> check_record(lua_State* L, int idx) {
+std::shared_ptr<AnalysisRecord> check_analysis_record(lua_State* L, int idx) {
   return check_boxed<AnalysisRecord>(L, idx, kResultMeta, "Result");
 }
 
@@ -443,7 +443,7 @@ void push_cables(lua_State* L, const EquilibriumResult& result) {
 // Tables built on first access and kept in the userdata's user value.
 int w_Result_thrust_line(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const std::shared_ptr<AnalysisRecord> record = check_analysis_record(L, 1);
     return call_protected(L, 0, [&](lua_State* L) {
       push_points(L, record->thrust);
       return 1;
@@ -453,7 +453,7 @@ int w_Result_thrust_line(lua_State* L) {
 
 int w_Result_thrust_lines(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const std::shared_ptr<AnalysisRecord> record = check_analysis_record(L, 1);
     const std::vector<std::vector<Vec3>>& branches = record->thrust_branches;
     return call_protected(L, 0, [&](lua_State* L) {
       lua_createtable(L, static_cast<int>(branches.size()), 0);
@@ -468,7 +468,7 @@ int w_Result_thrust_lines(lua_State* L) {
 
 int w_Result_index(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const std::shared_ptr<AnalysisRecord> record = check_analysis_record(L, 1);
     const EquilibriumResult& r = record->result;
     // Not lua_tostring: it would turn a number key into a string, which allocates.
     const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : nullptr;
@@ -540,7 +540,7 @@ int w_Result_index(lua_State* L) {
 int w_Result_tostring(lua_State* L) {
   if (push_if_closed<AnalysisRecord>(L, kResultMeta, "Result")) return 1;
   return guard(L, [&] {
-    const std::shared_ptr<AnalysisRecord> record = check_record(L, 1);
+    const std::shared_ptr<AnalysisRecord> record = check_analysis_record(L, 1);
     const EquilibriumResult& r = record->result;
     std::ostringstream text;
     if (r.status == SolverStatus::interrupted) {

@@ -40,7 +40,7 @@ std::shared_ptr<GroundMotion> check_ground_motion(lua_State* L, int idx) {
   return check_boxed<GroundMotion>(L, idx, kGroundMotionMeta, "GroundMotion");
 }
 
-std::shared_ptr<SimulationRecord> check_record(lua_State* L, int idx) {
+std::shared_ptr<SimulationRecord> check_simulation_record(lua_State* L, int idx) {
   return check_boxed<SimulationRecord>(L, idx, kSimulationMeta, "Simulation");
 }
 
@@ -68,7 +68,7 @@ Vec3 call_time_function(lua_State* L, int function, int arg, double t, const cha
 
 int w_Simulation_trajectory(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const int i = check_block_index(L, record->structure, 2, 2, "block");
     const SimulationResult& r = record->result;
     const int frames = static_cast<int>(r.times.size());
@@ -99,7 +99,7 @@ int w_Simulation_trajectory(lua_State* L) {
 
 int w_Simulation_export(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {ASHLAR_EXPORT_OPTIONS, "frame", "fps", "autoplay"});
     const SimulationResult& r = record->result;
@@ -154,7 +154,7 @@ int w_Simulation_export(lua_State* L) {
 
 int w_Simulation_structure(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const SimulationResult& r = record->result;
     const int frames = static_cast<int>(r.times.size());
     const lua_Integer frame = check_integer(L, 2, "frame");
@@ -185,7 +185,7 @@ void push_block_numbers(lua_State* L, const std::vector<double>& values) {
 
 int w_Simulation_summary(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const OptionTable options(L, 2, {"moved_fraction", "fall_fraction", "fall_level"});
     SummaryOptions o;
     o.moved_fraction = options.positive("moved_fraction", record->moved_fraction);
@@ -221,7 +221,7 @@ int w_Simulation_summary(lua_State* L) {
 
 int w_Simulation_drift(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const std::vector<int> blocks = check_block_list(L, record->structure, 2, 2, "blocks");
     const Drift d = drift(record->structure, record->result, blocks);
     return call_protected(L, 0, [&](lua_State* L) {
@@ -244,7 +244,7 @@ constexpr std::size_t kChartedBlocks = 5;
 
 int w_Simulation_chart(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const Structure& s = record->structure;
     const SimulationResult& r = record->result;
     const OptionTable options(L, 2, {"path", "blocks", "quantity", "title", "width", "height"});
@@ -309,7 +309,7 @@ int w_Simulation_chart(lua_State* L) {
 
 int w_Simulation_index(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<SimulationRecord> record = check_record(L, 1);
+    const std::shared_ptr<SimulationRecord> record = check_simulation_record(L, 1);
     const SimulationResult& r = record->result;
     // Not lua_tostring: it would turn a number key into a string, which allocates.
     const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : nullptr;
@@ -368,7 +368,7 @@ int w_Simulation_index(lua_State* L) {
 int w_Simulation_tostring(lua_State* L) {
   if (push_if_closed<SimulationRecord>(L, kSimulationMeta, "Simulation")) return 1;
   return guard(L, [&] {
-    const SimulationResult& r = check_record(L, 1)->result;
+    const SimulationResult& r = check_simulation_record(L, 1)->result;
     std::ostringstream text;
     text << "Simulation (" << kSimulationStatusNames.name(r.status) << ", " << r.steps << " steps to t = " << r.time
          << " s";

@@ -26,7 +26,7 @@ struct FeaRecord {
   FeaResult result;
 };
 
-std::shared_ptr<FeaRecord> check_record(lua_State* L, int idx) {
+std::shared_ptr<FeaRecord> check_fea_record(lua_State* L, int idx) {
   return check_boxed<FeaRecord>(L, idx, kFeaMeta, "FeaResult");
 }
 
@@ -185,7 +185,7 @@ void push_stresses(lua_State* L, const FeaRecord& r) {
 
 int w_FeaResult_export(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<FeaRecord> record = check_record(L, 1);
+    const std::shared_ptr<FeaRecord> record = check_fea_record(L, 1);
     const FeaRecord& r = *record;
     const std::string path = sandbox::checked_path(L, 2, "path", sandbox::Access::write);
     const OptionTable options(L, 3, {"scale", "color", "map", "undeformed", "contacts", "format"});
@@ -221,7 +221,7 @@ int push_measure(lua_State* L, double value) {
 
 int w_FeaResult_index(lua_State* L) {
   return guard(L, [&] {
-    const std::shared_ptr<FeaRecord> kept = check_record(L, 1);
+    const std::shared_ptr<FeaRecord> kept = check_fea_record(L, 1);
     const FeaRecord& record = *kept;
     const FeaResult& r = record.result;
     // Not lua_tostring: it would turn a number key into a string, which allocates.
@@ -263,7 +263,7 @@ int w_FeaResult_index(lua_State* L) {
 int w_FeaResult_tostring(lua_State* L) {
   if (push_if_closed<FeaRecord>(L, kFeaMeta, "FeaResult")) return 1;
   return guard(L, [&] {
-    const std::shared_ptr<FeaRecord> record = check_record(L, 1);
+    const std::shared_ptr<FeaRecord> record = check_fea_record(L, 1);
     const FeaResult& r = record->result;
     return call_protected(L, 0, [&](lua_State* L) {
       if (std::isnan(r.max_displacement)) {
