@@ -194,14 +194,12 @@ Eigen::Vector4d group_reaction(const ForceGroup& v, const Eigen::VectorXd& multi
   return out;
 }
 
-struct EquilibriumProblem {
-  // Contact vertices first (in interface order), then cables, then slacks.
-  std::vector<ForceGroup> groups;
-  int contact_vertex_count = 0;
+// An equilibrium problem but for its force groups: the bodies and their
+// balance rows, the loads, the groups' rules and the units. Apart, so that
+// a problem with other groups (TwinGroups::merge) copies this alone.
+struct ProblemFrame {
   // The interfaces the contact vertices stand on (ForceGroup::source).
   std::shared_ptr<const std::vector<Interface>> interfaces;
-  // Where contact vertex `v` stands, m.
-  const Vec3& vertex_position(const ForceGroup& v) const { return (*interfaces)[v.source].vertices[v.component]; }
   std::vector<int> row_of_block;        // first balance row per block, -1 if none
   std::vector<Vec3> junctions;          // m: where cable ends meet away from blocks
   std::vector<int> row_of_junction;     // first balance row per junction, -1 if none
@@ -215,7 +213,15 @@ struct EquilibriumProblem {
   double length_unit = 1.0;          // m: one scaled length unit
   double total_weight = 0.0;         // N: weight carried by the analysed bodies
   int body_count = 0;                // analysed blocks and junctions
+};
 
+struct EquilibriumProblem : ProblemFrame {
+  // Contact vertices first (in interface order), then cables, then slacks.
+  std::vector<ForceGroup> groups;
+  int contact_vertex_count = 0;
+
+  // Where contact vertex `v` stands, m.
+  const Vec3& vertex_position(const ForceGroup& v) const { return (*interfaces)[v.source].vertices[v.component]; }
   const GroupRules& rules_of(const ForceGroup& group) const {
     return rules[static_cast<int>(group.kind)];
   }

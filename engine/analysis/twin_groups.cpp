@@ -60,18 +60,19 @@ bool TwinGroups::find(const EquilibriumProblem& problem, int block_rows, bool me
 }
 
 EquilibriumProblem TwinGroups::merge(const EquilibriumProblem& problem) const {
-  EquilibriumProblem merged = problem;
-  // In place: a class's first member is never before its own index.
+  // The classes' groups alone are made: copying the problem's groups and
+  // compacting them was a seventh of the 10,051-block planar wall's
+  // analysis (0.13 s: 45 MB of fresh memory, written once each).
+  EquilibriumProblem merged;
+  static_cast<ProblemFrame&>(merged) = problem;
   const int n = classes();
-  merged.contact_vertex_count = 0;
+  merged.groups.reserve(n);
   for (int j = 0; j < n; ++j) {
-    ForceGroup& group = merged.groups[j];
-    group = merged.groups[first_member_[j]];
+    merged.groups.push_back(problem.groups[first_member_[j]]);
+    ForceGroup& group = merged.groups.back();
     group.on_b *= count_[j];  // and so on_a()
     if (group.kind == GroupKind::contact_vertex) ++merged.contact_vertex_count;
   }
-  merged.groups.resize(n);
-  merged.groups.shrink_to_fit();
   return merged;
 }
 
