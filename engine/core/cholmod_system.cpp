@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <csignal>
 #include <cstddef>
-#include <iterator>
 #include <mutex>
 
 #include "core/blas.hpp"
@@ -142,16 +141,16 @@ struct CholmodSystem::Impl {
     // kDefaultMergeFromRows the merge stays the one its reference was
     // computed with. Above, the explicit zeros of the freer merge are memory
     // and flops for nothing: the 100,052-block vault's peak 121 MB less
-    // with the default, and 22-27 MiB less again with none at all (zrelax
-    // 0: only supernodes of fewer than 4 columns merge; the default lets
-    // 5-80 % of a merged one be zeros), its factors 141.5 -> 138.1 million
-    // values, the factorisations as fast.
+    // with the default. Merging none at all (zrelax 0: only supernodes of
+    // fewer than 4 columns; the default lets 5-80 % of a merged one be
+    // zeros) saves 1 % more (its peak 2,315 -> 2,292 MB, factors 141.5 ->
+    // 138.1 million values) but costs time in the factorisation's many
+    // small BLAS calls: that vault's 24 factorisations 34.0, 33.7 s ->
+    // 37.0, 37.4 s, the 10,051-block 3D wall's 11 1.16-1.30 s -> 1.33-1.54 s.
     if (n < kDefaultMergeFromRows) {
       common_.nrelax[0] = 16;
       common_.nrelax[1] = 48;
       common_.nrelax[2] = 96;
-    } else {
-      std::fill(std::begin(common_.zrelax), std::end(common_.zrelax), 0.0);
     }
     const size_t nonzeros = static_cast<size_t>(column_starts[n]);
     // The pattern alone, for the analysis: factorize() takes the values
@@ -371,7 +370,7 @@ struct CholmodSystem::Impl {
   // (121 MB). Cut into panels of at most `widest` columns, each a
   // supernode of its own (a panel's rows: its supernode's from the panel's
   // first column on), they leave 8.2 million with 96 columns: the peak
-  // 2,534 -> 2,450 MiB with zrelax 0 (above), for factorisations 2-5 %
+  // 2,534 -> 2,450 MiB (measured with zrelax 0, above), for factorisations 2-5 %
   // slower (30.6, 30.7 s -> 31.4, 32.3 s in alternating runs; narrower
   // panels cost more: see the commit). Done on the symbolic factor, before
   // its values are allocated; the factorisation (factorize) and CHOLMOD's
