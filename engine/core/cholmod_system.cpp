@@ -12,6 +12,7 @@
 
 #include "core/blas.hpp"
 #include "core/error.hpp"
+#include "core/sparse_pattern.hpp"
 
 namespace ashlar {
 
@@ -530,8 +531,53 @@ std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std:
 // of a dissection one level up). Neither wins everywhere; flops per half,
 // CAMD against METIS: 10,051-block wall 2.1e9 / 1.8e9, 10,027-block vault
 // 1.3e9 / 1.4e9, 100,052-block vault 3.5e10 / 3.4e10.
+namespace {
+
+// The pattern (upper triangle) with each run of `block` rows as one row:
+// its graph's node J stands for rows J block .. (J + 1) block - 1.
+ColumnPattern compress_blocks(int n, const std::vector<int>& column_starts,
+                                      const std::vector<int>& row_indices, int block) {
+  const int blocks = n / block;
+  ColumnPattern out;
+  out.column_starts.assign(blocks + 1, 0);
+  std::vector<int> seen(blocks, -1);
+  for (int column = 0; column < blocks; ++column) {
+    for (int j = column * block; j < (column + 1) * block; ++j) {
+      for (int e = column_starts[j]; e < column_starts[j + 1]; ++e) {
+        const int row = row_indices[e] / block;
+        if (row <= column && seen[row] != column) {
+          seen[row] = column;
+          out.row_indices.push_back(row);
+        }
+      }
+    }
+    std::sort(out.row_indices.begin() + out.column_starts[column], out.row_indices.end());
+    out.column_starts[column + 1] = static_cast<int>(out.row_indices.size());
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_starts,
-                                      const std::vector<int>& row_indices, int first_last) {
+                                      const std::vector<int>& row_indices, int first_last, int block) {
+  if (block > 1 && n % block == 0 && first_last % block == 0) {
+    // Ordered as the graph of the runs, each run's rows kept together in
+    // their order: a 3D model's graph has a sixth of the rows and a 36th
+    // of the entries to order. The sides of the 100,052-block vault's split
+    // 1.56 and 2.20 s -> 0.25 and 0.40 s (the second waits for the first's
+    // METIS), their factors 61.67 and 61.53 million values against 61.51
+    // and 61.53; the 10,051-block walls' and vault's set-up 0.06 s less.
+    const ColumnPattern blocks = compress_blocks(n, column_starts, row_indices, block);
+    const std::vector<int> block_order = order_with_last_rows(n / block, blocks.column_starts, blocks.row_indices,
+                                                              first_last / block, 1);
+    if (block_order.empty()) return {};
+    std::vector<int> order(n);
+    for (size_t k = 0; k < block_order.size(); ++k) {
+      for (int r = 0; r < block; ++r) order[k * block + r] = block_order[k] * block + r;
+    }
+    return order;
+  }
   std::vector<int> constrained(n), dissected(n);
   std::vector<int> constraint(n);
   for (int i = 0; i < n; ++i) constraint[i] = i < first_last ? 0 : 1;

@@ -92,8 +92,10 @@ std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std:
 
 // A fill-reducing order of the pattern's rows (upper triangle; order[k]:
 // the row placed k-th) that places the rows from `first_last` on after all
-// others. Empty if CHOLMOD fails.
+// others. Where the rows come in runs of `block` (a body's unknowns, with
+// one pattern) and n and first_last are multiples of it, the runs are
+// ordered as one row each and kept together. Empty if CHOLMOD fails.
 std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_starts,
-                                      const std::vector<int>& row_indices, int first_last);
+                                      const std::vector<int>& row_indices, int first_last, int block);
 
 }  // namespace ashlar

@@ -144,7 +144,8 @@ bool SplitCholesky::split(int n, const std::vector<int>& column_starts, const st
     Side& side = *sides_[p];
     const int rows = side.own + s;
     const ColumnPattern upper = compress_columns(rows, entries[p]);
-    const std::vector<int> order = order_with_last_rows(rows, upper.column_starts, upper.row_indices, side.own);
+    const std::vector<int> order =
+        order_with_last_rows(rows, upper.column_starts, upper.row_indices, side.own, block_rows);
     if (order.empty()) return;  // local row at factor row k
     std::vector<int> position(rows);
     for (int k = 0; k < rows; ++k) position[order[k]] = k;

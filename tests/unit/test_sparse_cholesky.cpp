@@ -15,6 +15,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -357,7 +358,24 @@ struct Orderings {
 
 Orderings metis_orderings(const GridMatrix& m) {
   return {ashlar::bisect(m.n, m.column_starts, m.row_indices),
-          ashlar::order_with_last_rows(m.n, m.column_starts, m.row_indices, m.n - 90)};
+          ashlar::order_with_last_rows(m.n, m.column_starts, m.row_indices, m.n - 90, 1)};
+}
+
+// The nonzeros of m's factor with its rows in `order` (order[k]: the row
+// placed k-th), by CHOLMOD's symbolic analysis.
+double factor_nonzeros_in(const GridMatrix& m, const std::vector<int>& order) {
+  const Eigen::Map<const Eigen::SparseMatrix<double>> upper(m.n, m.n, static_cast<int>(m.values.size()),
+                                                            m.column_starts.data(), m.row_indices.data(),
+                                                            m.values.data());
+  Eigen::PermutationMatrix<Eigen::Dynamic> placed(m.n);
+  for (int k = 0; k < m.n; ++k) placed.indices()[order[k]] = k;
+  Eigen::SparseMatrix<double> permuted;
+  permuted = upper.selfadjointView<Eigen::Upper>().twistedBy(placed);
+  const Eigen::SparseMatrix<double> lower = permuted.triangularView<Eigen::Lower>();
+  ashlar::CholmodSystem system(m.n, lower.outerIndexPtr(), lower.innerIndexPtr(),
+                               ashlar::CholmodSystem::Triangle::lower);
+  system.analyze_as_ordered();
+  return system.factor_nonzeros();
 }
 
 void on_test_signal(int) {}
@@ -366,6 +384,28 @@ std::atomic<int> g_sigterms_taken{0};
 void count_sigterm(int) { ++g_sigterms_taken; }
 
 }  // namespace
+
+TEST(MetisOrderings, RowsInRunsOfABodyAreOrderedAsOneAndKeptTogether) {
+  const GridMatrix m = grid_matrix(30, 30, 3, 11);  // 900 bodies of 3 rows
+  const int first_last = m.n - 90;
+  const std::vector<int> by_bodies = ashlar::order_with_last_rows(m.n, m.column_starts, m.row_indices, first_last, 3);
+  const std::vector<int> by_rows = ashlar::order_with_last_rows(m.n, m.column_starts, m.row_indices, first_last, 1);
+  ASSERT_EQ(static_cast<int>(by_bodies.size()), m.n);
+  std::vector<int> placed(m.n, 0);
+  for (int k = 0; k < m.n; ++k) {
+    ++placed[by_bodies[k]];
+    EXPECT_EQ(k >= first_last, by_bodies[k] >= first_last) << "row " << by_bodies[k] << " placed " << k;
+    if (k % 3 == 0) EXPECT_EQ(by_bodies[k] % 3, 0);
+    else EXPECT_EQ(by_bodies[k], by_bodies[k - 1] + 1);
+  }
+  EXPECT_EQ(std::count(placed.begin(), placed.end(), 1), m.n);
+  // As good an ordering as the rows' own (measured: the same 163,296 nonzeros).
+  const double bodies_fill = factor_nonzeros_in(m, by_bodies), rows_fill = factor_nonzeros_in(m, by_rows);
+  EXPECT_LE(bodies_fill, 1.03 * rows_fill);
+  EXPECT_GT(bodies_fill, 0.0);
+  // Rows that are not runs of 7 (2,700 = 385 x 7 + 5) are ordered one by one.
+  EXPECT_EQ(ashlar::order_with_last_rows(m.n, m.column_starts, m.row_indices, first_last, 7), by_rows);
+}
 
 TEST(MetisOrderings, FromTwoThreadsAtOnceAreThoseOfASerialRun) {
   // METIS's random number generator is one for the process, reseeded at
