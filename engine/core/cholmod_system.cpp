@@ -147,7 +147,8 @@ struct CholmodSystem::Impl {
     // zeros) saves 1 % more (its peak 2,315 -> 2,292 MB, factors 141.5 ->
     // 138.1 million values) but costs time in the factorisation's many
     // small BLAS calls: that vault's 24 factorisations 34.0, 33.7 s ->
-    // 37.0, 37.4 s, the 10,051-block 3D wall's 11 1.16-1.30 s -> 1.33-1.54 s.
+    // 37.0, 37.4 s, the 10,051-block 3D wall's 11 factorisations 1.16-1.30 s
+    // -> 1.33-1.54 s.
     if (n < kDefaultMergeFromRows) {
       common_.nrelax[0] = 16;
       common_.nrelax[1] = 48;
@@ -511,32 +512,10 @@ bool with_cholmod_pattern(int n, const int* column_starts, const int* row_indice
   return ok;
 }
 
-}  // namespace
-
-std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices) {
-  std::vector<int> part(n);
-  const bool ok = with_cholmod_pattern(n, column_starts.data(), row_indices.data(),
-                                       [&](cholmod_sparse* pattern, cholmod_common* common) {
-    // compress: rows of one body share their pattern and stay together.
-    const MetisCall metis;
-    return cholmod_bisect(pattern, nullptr, 0, /*compress=*/1, part.data(), common) >= 0;
-  });
-  if (!ok) part.clear();
-  return part;
-}
-
-// Two candidates, and the one CHOLMOD's symbolic analysis finds the fewer
-// flops for: minimum degree under that constraint (CAMD), and METIS's nested
-// dissection of the leading rows with the last rows appended (the separator
-// of a dissection one level up). Neither wins everywhere; flops per half,
-// CAMD against METIS: 10,051-block wall 2.1e9 / 1.8e9, 10,027-block vault
-// 1.3e9 / 1.4e9, 100,052-block vault 3.5e10 / 3.4e10.
-namespace {
-
 // The pattern (upper triangle) with each run of `block` rows as one row:
 // its graph's node J stands for rows J block .. (J + 1) block - 1.
-ColumnPattern compress_blocks(int n, const std::vector<int>& column_starts,
-                                      const std::vector<int>& row_indices, int block) {
+ColumnPattern compress_blocks(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices,
+                              int block) {
   const int blocks = n / block;
   ColumnPattern out;
   out.column_starts.assign(blocks + 1, 0);
@@ -559,6 +538,24 @@ ColumnPattern compress_blocks(int n, const std::vector<int>& column_starts,
 
 }  // namespace
 
+std::vector<int> bisect(int n, const std::vector<int>& column_starts, const std::vector<int>& row_indices) {
+  std::vector<int> part(n);
+  const bool ok = with_cholmod_pattern(n, column_starts.data(), row_indices.data(),
+                                       [&](cholmod_sparse* pattern, cholmod_common* common) {
+    // compress: rows of one body share their pattern and stay together.
+    const MetisCall metis;
+    return cholmod_bisect(pattern, nullptr, 0, /*compress=*/1, part.data(), common) >= 0;
+  });
+  if (!ok) part.clear();
+  return part;
+}
+
+// Two candidates, and the one CHOLMOD's symbolic analysis finds the fewer
+// flops for: minimum degree under that constraint (CAMD), and METIS's nested
+// dissection of the leading rows with the last rows appended (the separator
+// of a dissection one level up). Neither wins everywhere; flops per half,
+// CAMD against METIS: 10,051-block wall 2.1e9 / 1.8e9, 10,027-block vault
+// 1.3e9 / 1.4e9, 100,052-block vault 3.5e10 / 3.4e10.
 std::vector<int> order_with_last_rows(int n, const std::vector<int>& column_starts,
                                       const std::vector<int>& row_indices, int first_last, int block) {
   if (block > 1 && n % block == 0 && first_last % block == 0) {
