@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
+
+#include <fcntl.h>
 
 #include <unistd.h>
 
@@ -46,6 +49,98 @@ struct CommandLine {
   bool sandbox_option_given = false;  // --read, --memory, ... (they need --sandbox)
   std::string error;  // set when the options are wrong
 };
+
+// glibc's malloc backs its heap and its large blocks with the kernel's
+// transparent huge pages (2 MiB, where the kernel gives them on request)
+// only with the tunable glibc.malloc.hugetlb=1, which it reads from
+// GLIBC_TUNABLES once, as the process starts. A large analysis spends much
+// of its time in page faults otherwise, each a trap out of the virtual
+// machine on hosts like ours: the 10,051-block 3D wall's run 78,600 ->
+// 15,000 faults, 3.38 -> 2.85 s; the 100,052-block vault's 815,000 ->
+// 45,000, analysis 62.2 -> 58.5 s (docs/performance.md). So the host,
+// started without the tunable, executes itself again with it added to
+// GLIBC_TUNABLES: the same arguments in the same process. It does so from
+// the executable's pre-initialisation array, before any library's
+// initialisation (OpenBLAS starts its threads there), using only the
+// arguments and the environment it is handed and system calls; the first
+// start then costs about the dynamic loader's time. The user's environment
+// is put back in main (restore_environment_after_huge_pages): programs a
+// script runs inherit it, not the tunable (the Chromium of the viewer's
+// tests draws nothing with GLIBC_TUNABLES set). A value of the user's own
+// for the tunable stands; where the kernel has transparent huge pages off,
+// the executable cannot be run again, or another allocator replaces
+// glibc's (the sanitizers', or one preloaded, as valgrind's), the host
+// goes on as it is.
+const char kTunablesVariable[] = "GLIBC_TUNABLES";
+// The user's GLIBC_TUNABLES, or that there was none, over the second start.
+const char kTunablesWere[] = "ASHLAR_GLIBC_TUNABLES_WERE";
+const char kTunablesWereUnset[] = "ASHLAR_GLIBC_TUNABLES_WERE_UNSET";
+
+#if !defined(__SANITIZE_ADDRESS__)
+bool transparent_huge_pages_offered() {
+  const int file = open("/sys/kernel/mm/transparent_hugepage/enabled", O_RDONLY | O_CLOEXEC);
+  if (file < 0) return false;
+  char modes[128] = {};
+  const ssize_t length = read(file, modes, sizeof modes - 1);
+  close(file);
+  return length > 0 && std::strstr(modes, "[never]") == nullptr;
+}
+
+// Whether `entry` ("NAME=value") sets the variable `name`.
+bool sets(const char* entry, const char* name) {
+  const size_t length = std::strlen(name);
+  return std::strncmp(entry, name, length) == 0 && entry[length] == '=';
+}
+
+void start_again_with_huge_pages(int /*argc*/, char** argv, char** environment) {
+  static const char kTunable[] = "glibc.malloc.hugetlb=";
+  size_t count = 0;
+  const char* before = nullptr;  // the user's GLIBC_TUNABLES
+  for (; environment[count] != nullptr; ++count) {
+    const char* entry = environment[count];
+    if (sets(entry, kTunablesVariable)) before = entry + sizeof kTunablesVariable;
+    // Preloaded libraries (valgrind's, another malloc) interpose their own
+    // allocator, and valgrind would run the executable again outside itself.
+    if (sets(entry, "LD_PRELOAD") && entry[sizeof "LD_PRELOAD"] != '\0') return;
+  }
+  if ((before != nullptr && std::strstr(before, kTunable) != nullptr) || !transparent_huge_pages_offered()) return;
+  char tunables[4096], were[4096];
+  const int written = std::snprintf(tunables, sizeof tunables, "%s=%s%s%s1", kTunablesVariable,
+                                    before != nullptr ? before : "", before != nullptr && *before ? ":" : "", kTunable);
+  const int kept = before != nullptr ? std::snprintf(were, sizeof were, "%s=%s", kTunablesWere, before)
+                                     : std::snprintf(were, sizeof were, "%s=1", kTunablesWereUnset);
+  if (written < 0 || static_cast<size_t>(written) >= sizeof tunables || kept < 0 ||
+      static_cast<size_t>(kept) >= sizeof were) {
+    return;
+  }
+  std::vector<char*> with_huge_pages;
+  with_huge_pages.reserve(count + 3);
+  for (size_t k = 0; k < count; ++k) {
+    if (!sets(environment[k], kTunablesVariable)) with_huge_pages.push_back(environment[k]);
+  }
+  with_huge_pages.push_back(tunables);
+  with_huge_pages.push_back(were);
+  with_huge_pages.push_back(nullptr);
+  execve("/proc/self/exe", argv, with_huge_pages.data());
+}
+
+// glibc calls the functions of an executable's pre-initialisation array
+// with (argc, argv, envp) before any shared library's initialisation.
+__attribute__((section(".preinit_array"), used)) void (*const kStartAgainWithHugePages)(int, char**, char**) =
+    start_again_with_huge_pages;
+#endif
+
+// After the second start: GLIBC_TUNABLES as the user had it.
+void restore_environment_after_huge_pages() {
+  if (const char* were = std::getenv(kTunablesWere)) {
+    const std::string value = were;
+    setenv(kTunablesVariable, value.c_str(), 1);
+    unsetenv(kTunablesWere);
+  } else if (std::getenv(kTunablesWereUnset) != nullptr) {
+    unsetenv(kTunablesVariable);
+    unsetenv(kTunablesWereUnset);
+  }
+}
 
 void print_usage(FILE* out) {
   std::fprintf(out,
@@ -382,6 +477,7 @@ lua_State* sandboxed_state(CommandLine& command_line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  restore_environment_after_huge_pages();
   // Before any thread of the program's own exists: the set-up sets and
   // unsets OPENBLAS_CORETYPE, which a getenv on another thread (a study
   // worker's os.getenv, say) must not race with.

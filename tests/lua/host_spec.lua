@@ -294,6 +294,65 @@ fail()
     end)
   end)
 
+  -- glibc's malloc takes transparent huge pages only with the tunable
+  -- glibc.malloc.hugetlb=1, which the host adds to GLIBC_TUNABLES by
+  -- starting itself again, then puts the user's environment back
+  -- (host/host.cpp). Release suite only: under the sanitizers ASan's
+  -- allocator replaces glibc's and the host leaves the tunable alone.
+  describe("huge pages", function()
+    local modes = io.open("/sys/kernel/mm/transparent_hugepage/enabled")
+    local offered = modes and modes:read("a") or "[never]"
+    if modes then modes:close() end
+    -- Where the kernel gives them on request only (not to every process).
+    local on_request = offered:find("[madvise]", 1, true) ~= nil
+    local given = on_request or offered:find("[always]", 1, true) ~= nil
+
+    -- A host started with GLIBC_TUNABLES as given (nil: not set; this
+    -- spec's own host has it set) and `environment` before it: after Lua
+    -- has made a 64 MiB string (one block of glibc's malloc), the kB of
+    -- huge pages backing the host's memory, then the environment that a
+    -- script sees and that a program it runs inherits, and the arguments.
+    local function start(tunables, environment)
+      local command = (tunables and ("env GLIBC_TUNABLES=" .. quote(tunables)) or "env -u GLIBC_TUNABLES")
+        .. " " .. (environment or "") .. " " .. quote(ashlar_bin) .. " - one 'two words'"
+      local output, code = run(command, [[
+        local block = string.rep("x", 64 << 20)
+        local huge
+        for line in io.lines("/proc/self/smaps_rollup") do huge = huge or line:match("^AnonHugePages:%s*(%d+) kB") end
+        local child = io.popen("echo \"$GLIBC_TUNABLES\" $ASHLAR_GLIBC_TUNABLES_WERE $ASHLAR_GLIBC_TUNABLES_WERE_UNSET")
+        print(huge, os.getenv("GLIBC_TUNABLES"), child:read("l"), ...)
+        child:close()
+      ]])
+      assert.are.equal(0, code, output)
+      local kb, seen, inherited, arguments = output:match("^(%d+)\t([^\t]*)\t([^\t]*)\t(.*)\n$")
+      assert.are.equal("one\ttwo words", arguments, output)
+      return tonumber(kb), seen, inherited
+    end
+
+    it("backs a large block with huge pages, the user's GLIBC_TUNABLES kept for the script #unsanitized", function()
+      if not given then return end
+      local kb, seen, inherited = start(nil)
+      assert.is_true(kb >= 2048, "huge pages " .. kb .. " kB")  -- at least one 2 MiB page
+      assert.are.equal("nil", seen)
+      assert.are.equal("", inherited)
+      kb, seen, inherited = start("glibc.malloc.arena_max=2")
+      assert.is_true(kb >= 2048, "huge pages " .. kb .. " kB")
+      assert.are.equal("glibc.malloc.arena_max=2", seen)
+      assert.are.equal("glibc.malloc.arena_max=2", inherited)
+    end)
+
+    it("keeps the user's own value of the tunable and leaves preloaded allocators alone #unsanitized", function()
+      if not on_request then return end
+      local kb, seen = start("glibc.malloc.hugetlb=0")
+      assert.are.equal(0, kb)
+      assert.are.equal("glibc.malloc.hugetlb=0", seen)
+      -- As valgrind preloads its own allocator (libm stands in for it).
+      kb, seen = start(nil, "LD_PRELOAD=libm.so.6")
+      assert.are.equal(0, kb)
+      assert.are.equal("nil", seen)
+    end)
+  end)
+
   describe("globals", function()
     it("gives -e chunks and the prompt ashlar and models without a require", function()
       local output, code = ashlar("-e " .. quote("print(#ashlar.structure(), #models.arch{ voussoirs = 6 })"))
