@@ -1,18 +1,18 @@
 -- A study across MPI ranks gives the table a local run gives. Run by ctest
--- as `ashlar study_mpi.lua <mpiexec>` when the build has MPI.
+-- as `ashlar study_mpi.lua <mpiexec> <thicknesses>` when the build has MPI
+-- (tests/CMakeLists.txt says how many thicknesses, and why).
 local support = require "spec_support"
 local quote = support.quote
 
-local mpiexec = assert(arg[1], "usage: ashlar study_mpi.lua <mpiexec>")
+local mpiexec = assert(arg[1], "usage: ashlar study_mpi.lua <mpiexec> <thicknesses>")
+local THICKNESSES = assert(math.tointeger(tonumber(arg[2])), "usage: ashlar study_mpi.lua <mpiexec> <thicknesses>")
 local ashlar_bin = assert(arg[-1], "run by the ashlar host")
 local folder = support.temp_folder()
 
--- The example sweep with 7 thicknesses (× 3 voussoir counts × 2 frictions:
--- 42 analyses, enough for every rank to run rows; 31 thicknesses cost the
--- sanitizer suite 25 s more CPU, the ranks' slow unwinding): arguments db,
+-- The example sweep with THICKNESSES thicknesses (× 3 voussoir counts × 2
+-- frictions: enough analyses for every rank to run rows): arguments db,
 -- workers, csv, thicknesses.
 local sweep = quote(support.script_folder(1) .. "/../../scripts/arch_sweep.lua")
-local THICKNESSES = 7
 local ROWS = THICKNESSES * 3 * 2
 
 local function run(command)
